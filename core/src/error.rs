@@ -1,0 +1,83 @@
+//! Errors as values: every failure of hodr-core is one of these, never a panic or NaN.
+
+use core::fmt;
+
+/// Why an estimator (or a workspace) refused to produce a result.
+///
+/// Small and `Copy`, with no heap payloads. Where an error concerns a sample point, the
+/// point itself stays in the workspace ([`crate::Workspace::failed_point`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Error {
+    /// σ was ≤ 0, NaN or infinite.
+    InvalidSigma,
+    /// The number of antithetic pairs was 0.
+    NoSamples,
+    /// A slice's length does not match the problem dimension.
+    DimensionMismatch {
+        /// The length required.
+        expected: usize,
+        /// The length given.
+        found: usize,
+    },
+    /// A caller-provided buffer is too small for the requested work.
+    WorkspaceTooSmall {
+        /// Elements needed.
+        needed: usize,
+        /// Elements available.
+        available: usize,
+    },
+    /// A parameter (θ or a direction v) holds NaN or ±∞.
+    NonFiniteInput {
+        /// Index of the first offending coordinate.
+        index: usize,
+    },
+    /// The objective returned NaN or ±∞. The point is kept in the workspace.
+    NonFiniteObjective {
+        /// Which evaluation of this estimate (0-based, in evaluation order).
+        sample: usize,
+    },
+    /// The estimate itself overflowed (e.g. f ≈ 1e30 with σ ≈ 1e-12 in `f32`).
+    NonFiniteEstimate {
+        /// Index of the first non-finite output element.
+        index: usize,
+    },
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Error::InvalidSigma => write!(f, "smoothing width σ must be finite and > 0"),
+            Error::NoSamples => write!(f, "at least one antithetic pair is needed"),
+            Error::DimensionMismatch { expected, found } => {
+                write!(
+                    f,
+                    "dimension mismatch: expected length {expected}, found {found}"
+                )
+            }
+            Error::WorkspaceTooSmall { needed, available } => {
+                write!(
+                    f,
+                    "workspace too small: {needed} elements needed, {available} available"
+                )
+            }
+            Error::NonFiniteInput { index } => {
+                write!(f, "input coordinate {index} is not finite")
+            }
+            Error::NonFiniteObjective { sample } => {
+                write!(
+                    f,
+                    "objective returned a non-finite value at sample {sample}"
+                )
+            }
+            Error::NonFiniteEstimate { index } => {
+                write!(
+                    f,
+                    "estimate element {index} overflowed to a non-finite value"
+                )
+            }
+        }
+    }
+}
+
+impl core::error::Error for Error {}

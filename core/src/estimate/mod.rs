@@ -1,0 +1,530 @@
+//! Monte Carlo estimators of the smoothed gradient, Hessian and Hessian-vector product.
+//!
+//! Every estimator draws standardised offsets t from a density p, evaluates the objective
+//! at antithetic points θ ∓ σt, and weights the values by Dκ/p (DESIGN §1.2–1.6):
+//!
+//! * gradients use the odd combination (f(θ−τ) − f(θ+τ))/2 — the f(θ) part cancels;
+//! * Hessians and kernel HVPs use the even combination (f(θ−τ) + f(θ+τ))/2 − f(θ), with
+//!   f(θ) evaluated once per estimate as a control variate (the weights have zero mean).
+//!
+//! | method | density of t | evaluations |
+//! |---|---|---|
+//! | [`GradientMethod::Fr22`] | every coordinate p_G | 2P |
+//! | [`GradientMethod::PerElement`] | element i: tᵢ ~ p_G, rest N₁ | 2nP |
+//! | [`GradientMethod::Aggregate`] | mixture of the n element densities | 2P |
+//! | [`GradientMethod::Gaussian`] | N(0, I) | 2P |
+//! | [`HessianMethod::PerElement`] | element (i, j), i ≤ j: p_D or p_G×p_G | n(n+1)P + 1 |
+//! | [`HessianMethod::Aggregate`] | mixture of the n(n+1)/2 element densities | 2P + 1 |
+//! | [`HessianMethod::Gaussian`] | N(0, I) | 2P + 1 |
+//! | [`HvpMethod::CentralDifference`] | two gradient estimates at θ ± εv/‖v‖ | 2× gradient |
+//! | [`HvpMethod::Kernel`] | N(0, I), shared with the gradient | 2P + 1 |
+//!
+//! P is [`Estimator::pairs`]. All randomness comes from the estimator's RNG, in a fixed
+//! order, so a seed fixes the estimate.
+
+mod driver;
+mod fr22;
+mod gaussian;
+mod per_element;
+
+#[cfg(feature = "aggregate")]
+mod aggregate;
+#[cfg(feature = "hvp")]
+mod hvp;
+
+use rand_core::Rng;
+
+use crate::error::Error;
+use crate::objective::Objective;
+use crate::real::Real;
+use crate::workspace::Workspace;
+
+/// How to estimate the smoothed gradient.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum GradientMethod {
+    /// The FR22 baseline (DESIGN §1.6): every coordinate drawn from p_G at once, element i
+    /// weighted −sign(τᵢ)·Z. Exactly the Gaussian-smoothed gradient only for objectives
+    /// that are separable or quadratic; otherwise it smooths the other coordinates with
+    /// p_G instead of N₁.
+    Fr22,
+    /// Per-element importance sampling (DESIGN §1.2): P pairs per element, tᵢ ~ p_G,
+    /// other coordinates N₁, weight −sign(τᵢ)·Z.
+    PerElement,
+    /// Aggregate importance sampling (DESIGN §1.3): each pair serves every element; the
+    /// differentiated coordinate cycles through the elements from a random start, and
+    /// weights are −nZτₑ/‖τ‖₁·σ (bounded).
+    #[cfg(feature = "aggregate")]
+    Aggregate,
+    /// Plain Gaussian ("Stein") sampling (DESIGN §1.4): τ ~ N(0, σ²I), weight −τₑ/σ².
+    Gaussian,
+}
+
+impl GradientMethod {
+    /// Objective evaluations for one estimate in dimension `n` with `pairs` pairs.
+    pub fn evaluations(self, n: usize, pairs: usize) -> usize {
+        match self {
+            GradientMethod::PerElement => 2 * n * pairs,
+            _ => 2 * pairs,
+        }
+    }
+}
+
+/// How to estimate the smoothed Hessian.
+#[cfg(feature = "hessian")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum HessianMethod {
+    /// Per-element importance sampling using symmetry: P pairs for each of the n(n+1)/2
+    /// elements i ≤ j; diagonal tᵢ ~ p_D with weight sign(τᵢ² − σ²)·C, off-diagonal
+    /// tᵢ, tⱼ ~ p_G with weight sign(τᵢτⱼ)·Z².
+    PerElement,
+    /// Aggregate importance sampling over the n(n+1)/2 element densities (DESIGN §1.3);
+    /// the mixture density costs O(n) per sample.
+    #[cfg(feature = "aggregate")]
+    Aggregate,
+    /// Plain Gaussian sampling: weight ττᵀ/σ⁴ − I/σ².
+    Gaussian,
+}
+
+#[cfg(feature = "hessian")]
+impl HessianMethod {
+    /// Objective evaluations for one estimate in dimension `n` with `pairs` pairs
+    /// (including the control-variate evaluation of f(θ)).
+    pub fn evaluations(self, n: usize, pairs: usize) -> usize {
+        match self {
+            HessianMethod::PerElement => n * (n + 1) * pairs + 1,
+            _ => 2 * pairs + 1,
+        }
+    }
+}
+
+/// How to draw the two gradient estimates of a central-difference HVP.
+#[cfg(feature = "hvp")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Draws {
+    /// Independent offsets and noise seeds for the two gradients (the paper's code).
+    Independent,
+    /// Common random numbers: the same offsets and noise seeds for both gradients, so
+    /// their shared noise cancels in the difference.
+    Common,
+}
+
+/// How to estimate a Hessian-vector product Hv.
+#[cfg(feature = "hvp")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum HvpMethod {
+    /// (g(θ + εu) − g(θ − εu))/(2ε)·‖v‖ with u = v/‖v‖, ε = σ/3 (DESIGN §1.5), each g
+    /// from `gradient` with P pairs. Biased by O(ε²) third derivatives of f̄.
+    CentralDifference {
+        /// The gradient estimator differenced.
+        gradient: GradientMethod,
+        /// Independent or common random numbers.
+        draws: Draws,
+    },
+    /// The Gaussian kernel (τ(τ·v)/σ⁴ − v/σ²) with τ ~ N(0, σ²I) and the f(θ) control
+    /// variate (DESIGN §1.4): unbiased, and the same samples give the gradient too
+    /// ([`Estimator::gradient_and_hvp`]).
+    Kernel,
+}
+
+#[cfg(feature = "hvp")]
+impl HvpMethod {
+    /// Objective evaluations for one estimate in dimension `n` with `pairs` pairs.
+    pub fn evaluations(self, n: usize, pairs: usize) -> usize {
+        match self {
+            HvpMethod::CentralDifference { gradient, .. } => 2 * gradient.evaluations(n, pairs),
+            HvpMethod::Kernel => 2 * pairs + 1,
+        }
+    }
+}
+
+/// The ratio ε/σ of the central-difference HVP step (the paper's ε = σ/3).
+#[cfg(feature = "hvp")]
+pub const HVP_STEP_RATIO: f64 = 1.0 / 3.0;
+
+/// What an estimate cost, and what it learnt on the way.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Report<T> {
+    /// Objective evaluations used.
+    pub evaluations: usize,
+    /// f(θ) when the estimate evaluated it (the control variate), else `None`.
+    pub centre_value: Option<T>,
+}
+
+/// Smoothing width σ, number of antithetic pairs P, and the random stream.
+///
+/// The estimator owns its RNG so that a sequence of estimates (an optimisation) is a
+/// deterministic function of the seed it was created with.
+#[derive(Clone, Debug)]
+pub struct Estimator<T, R> {
+    sigma: T,
+    pairs: usize,
+    rng: R,
+}
+
+impl<T: Real, R: Rng> Estimator<T, R> {
+    /// An estimator with smoothing σ (`sigma`) and P = `pairs` antithetic pairs.
+    ///
+    /// # Errors
+    /// [`Error::InvalidSigma`] unless σ is finite and > 0; [`Error::NoSamples`] if
+    /// `pairs == 0`.
+    pub fn new(sigma: T, pairs: usize, rng: R) -> Result<Self, Error> {
+        check_sigma(sigma)?;
+        if pairs == 0 {
+            return Err(Error::NoSamples);
+        }
+        Ok(Estimator { sigma, pairs, rng })
+    }
+
+    /// σ, the standard deviation of the smoothing Gaussian.
+    #[inline]
+    pub fn sigma(&self) -> T {
+        self.sigma
+    }
+
+    /// Changes σ (for an annealing schedule).
+    ///
+    /// # Errors
+    /// [`Error::InvalidSigma`] unless σ is finite and > 0; σ is then unchanged.
+    pub fn set_sigma(&mut self, sigma: T) -> Result<(), Error> {
+        check_sigma(sigma)?;
+        self.sigma = sigma;
+        Ok(())
+    }
+
+    /// P, the antithetic pairs per estimate (per element for per-element methods).
+    #[inline]
+    pub fn pairs(&self) -> usize {
+        self.pairs
+    }
+
+    /// Changes P.
+    ///
+    /// # Errors
+    /// [`Error::NoSamples`] if `pairs == 0`; P is then unchanged.
+    pub fn set_pairs(&mut self, pairs: usize) -> Result<(), Error> {
+        if pairs == 0 {
+            return Err(Error::NoSamples);
+        }
+        self.pairs = pairs;
+        Ok(())
+    }
+
+    /// The random stream.
+    pub fn rng_mut(&mut self) -> &mut R {
+        &mut self.rng
+    }
+
+    /// Smoothed gradient ∇f̄(θ) into `grad` (length n).
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] if `theta` or `grad` is not of the workspace's length;
+    /// [`Error::NonFiniteInput`] for a non-finite θ; [`Error::NonFiniteObjective`] (the
+    /// point stays in the workspace); [`Error::NonFiniteEstimate`] on overflow. On error
+    /// `grad` holds no meaningful values.
+    pub fn gradient<O: Objective<T> + ?Sized>(
+        &mut self,
+        method: GradientMethod,
+        objective: &mut O,
+        theta: &[T],
+        ws: &mut Workspace<'_, T>,
+        grad: &mut [T],
+    ) -> Result<Report<T>, Error> {
+        check_vector(ws.dim, theta)?;
+        check_len(ws.dim, grad.len())?;
+        grad.fill(T::ZERO);
+        let evaluations = self.gradient_sum(method, objective, &[theta], T::ONE, ws, grad, 0)?;
+        let scale = T::ONE / (self.sigma * T::from_usize(self.pairs));
+        scale_checked(grad, scale)?;
+        Ok(Report {
+            evaluations,
+            centre_value: None,
+        })
+    }
+
+    /// Smoothed Hessian ∇²f̄(θ) into `hess` (n×n, row-major, exactly symmetric).
+    ///
+    /// # Errors
+    /// As [`Estimator::gradient`], with `hess.len()` required to be n².
+    #[cfg(feature = "hessian")]
+    pub fn hessian<O: Objective<T> + ?Sized>(
+        &mut self,
+        method: HessianMethod,
+        objective: &mut O,
+        theta: &[T],
+        ws: &mut Workspace<'_, T>,
+        hess: &mut [T],
+    ) -> Result<Report<T>, Error> {
+        let n = ws.dim;
+        check_vector(n, theta)?;
+        check_len(n * n, hess.len())?;
+        hess.fill(T::ZERO);
+        let centre = driver::evaluate_centre(objective, theta, &mut self.rng, &mut ws.batch, 0)?;
+        let placement = driver::Placement {
+            centres: &[theta],
+            sigma: self.sigma,
+            baseline: centre,
+            first_sample: 1,
+        };
+        let evaluations = 1 + match method {
+            HessianMethod::PerElement => {
+                let mut scheme = per_element::Hessian::new(n, self.pairs, hess);
+                driver::run(
+                    &mut scheme,
+                    objective,
+                    &placement,
+                    &mut self.rng,
+                    &mut ws.batch,
+                    n,
+                )?
+            }
+            #[cfg(feature = "aggregate")]
+            HessianMethod::Aggregate => {
+                let mut scheme = aggregate::Hessian::new(n, self.pairs, hess, &mut self.rng);
+                driver::run(
+                    &mut scheme,
+                    objective,
+                    &placement,
+                    &mut self.rng,
+                    &mut ws.batch,
+                    n,
+                )?
+            }
+            HessianMethod::Gaussian => {
+                let mut scheme = gaussian::Hessian::new(n, self.pairs, hess);
+                driver::run(
+                    &mut scheme,
+                    objective,
+                    &placement,
+                    &mut self.rng,
+                    &mut ws.batch,
+                    n,
+                )?
+            }
+        };
+        for i in 0..n {
+            for j in 0..i {
+                hess[i * n + j] = hess[j * n + i];
+            }
+        }
+        let scale = T::ONE / (self.sigma.sq() * T::from_usize(self.pairs));
+        scale_checked(hess, scale)?;
+        Ok(Report {
+            evaluations,
+            centre_value: Some(centre),
+        })
+    }
+
+    /// Smoothed Hessian-vector product ∇²f̄(θ)·v into `hv` (length n).
+    ///
+    /// v = 0 gives 0 without evaluating anything.
+    ///
+    /// # Errors
+    /// As [`Estimator::gradient`]; `v` must be finite and of length n too.
+    #[cfg(feature = "hvp")]
+    pub fn hvp<O: Objective<T> + ?Sized>(
+        &mut self,
+        method: HvpMethod,
+        objective: &mut O,
+        theta: &[T],
+        v: &[T],
+        ws: &mut Workspace<'_, T>,
+        hv: &mut [T],
+    ) -> Result<Report<T>, Error> {
+        match method {
+            HvpMethod::CentralDifference { gradient, draws } => {
+                hvp::central_difference(self, gradient, draws, objective, theta, v, ws, hv)
+            }
+            HvpMethod::Kernel => self.kernel_hvp(objective, theta, v, ws, None, hv),
+        }
+    }
+
+    /// Smoothed gradient and Hessian-vector product from one shared set of Gaussian
+    /// samples (DESIGN §1.4): 2P + 1 evaluations for both.
+    ///
+    /// # Errors
+    /// As [`Estimator::hvp`].
+    #[cfg(feature = "hvp")]
+    pub fn gradient_and_hvp<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        theta: &[T],
+        v: &[T],
+        ws: &mut Workspace<'_, T>,
+        grad: &mut [T],
+        hv: &mut [T],
+    ) -> Result<Report<T>, Error> {
+        self.kernel_hvp(objective, theta, v, ws, Some(grad), hv)
+    }
+
+    #[cfg(feature = "hvp")]
+    fn kernel_hvp<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        theta: &[T],
+        v: &[T],
+        ws: &mut Workspace<'_, T>,
+        mut grad: Option<&mut [T]>,
+        hv: &mut [T],
+    ) -> Result<Report<T>, Error> {
+        let n = ws.dim;
+        check_vector(n, theta)?;
+        check_vector(n, v)?;
+        check_len(n, hv.len())?;
+        if let Some(g) = grad.as_deref() {
+            check_len(n, g.len())?;
+        }
+        hv.fill(T::ZERO);
+        let centre = driver::evaluate_centre(objective, theta, &mut self.rng, &mut ws.batch, 0)?;
+        let placement = driver::Placement {
+            centres: &[theta],
+            sigma: self.sigma,
+            baseline: centre,
+            first_sample: 1,
+        };
+        let grad_acc: &mut [T] = match grad.as_deref_mut() {
+            Some(g) => g,
+            None => &mut ws.scratch[..n],
+        };
+        grad_acc.fill(T::ZERO);
+        let mut scheme = gaussian::Hvp::new(self.pairs, v, grad_acc, hv);
+        let evaluations = 1 + driver::run(
+            &mut scheme,
+            objective,
+            &placement,
+            &mut self.rng,
+            &mut ws.batch,
+            n,
+        )?;
+        let pairs = T::from_usize(self.pairs);
+        scale_checked(hv, T::ONE / (self.sigma.sq() * pairs))?;
+        if let Some(g) = grad {
+            scale_checked(g, T::ONE / (self.sigma * pairs))?;
+        }
+        Ok(Report {
+            evaluations,
+            centre_value: Some(centre),
+        })
+    }
+
+    /// Adds `sign` × Σ (gradient weight × odd combination) over `method`'s samples around
+    /// `centres` to `acc`, unscaled (the caller divides by σP). Returns evaluations.
+    #[allow(clippy::too_many_arguments)]
+    fn gradient_sum<O: Objective<T> + ?Sized>(
+        &mut self,
+        method: GradientMethod,
+        objective: &mut O,
+        centres: &[&[T]],
+        sign: T,
+        ws: &mut Workspace<'_, T>,
+        acc: &mut [T],
+        first_sample: usize,
+    ) -> Result<usize, Error> {
+        let n = ws.dim;
+        let placement = driver::Placement {
+            centres,
+            sigma: self.sigma,
+            baseline: T::ZERO,
+            first_sample,
+        };
+        let (rng, batch) = (&mut self.rng, &mut ws.batch);
+        match method {
+            GradientMethod::Fr22 => {
+                let mut scheme = fr22::Gradient::new(self.pairs, sign, acc);
+                driver::run(&mut scheme, objective, &placement, rng, batch, n)
+            }
+            GradientMethod::PerElement => {
+                let mut scheme = per_element::Gradient::new(n, self.pairs, sign, acc);
+                driver::run(&mut scheme, objective, &placement, rng, batch, n)
+            }
+            #[cfg(feature = "aggregate")]
+            GradientMethod::Aggregate => {
+                let mut scheme = aggregate::Gradient::new(n, self.pairs, sign, acc, rng);
+                driver::run(&mut scheme, objective, &placement, rng, batch, n)
+            }
+            GradientMethod::Gaussian => {
+                let mut scheme = gaussian::Gradient::new(self.pairs, sign, acc);
+                driver::run(&mut scheme, objective, &placement, rng, batch, n)
+            }
+        }
+    }
+}
+
+fn check_sigma<T: Real>(sigma: T) -> Result<(), Error> {
+    if sigma.is_finite() && sigma > T::ZERO {
+        Ok(())
+    } else {
+        Err(Error::InvalidSigma)
+    }
+}
+
+fn check_len(expected: usize, found: usize) -> Result<(), Error> {
+    if expected == found {
+        Ok(())
+    } else {
+        Err(Error::DimensionMismatch { expected, found })
+    }
+}
+
+fn check_vector<T: Real>(n: usize, x: &[T]) -> Result<(), Error> {
+    check_len(n, x.len())?;
+    match x.iter().position(|v| !v.is_finite()) {
+        Some(index) => Err(Error::NonFiniteInput { index }),
+        None => Ok(()),
+    }
+}
+
+/// Multiplies by `scale` and reports the first non-finite result.
+fn scale_checked<T: Real>(x: &mut [T], scale: T) -> Result<(), Error> {
+    for (index, v) in x.iter_mut().enumerate() {
+        *v *= scale;
+        if !v.is_finite() {
+            return Err(Error::NonFiniteEstimate { index });
+        }
+    }
+    Ok(())
+}
+
+/// A uniform index in 0..k (k ≥ 1) by Lemire's multiply-shift, for the random start of
+/// an aggregate estimator's cycle through its mixture components.
+#[cfg(feature = "aggregate")]
+fn uniform_index<R: Rng + ?Sized>(rng: &mut R, k: usize) -> usize {
+    ((rng.next_u64() as u128 * k as u128) >> 64) as usize
+}
+
+/// The (i, j), i ≤ j, of component `c` when the upper triangle of an n×n matrix is
+/// numbered row by row: row i starts at c = i·n − i(i−1)/2. O(1) by an integer square
+/// root, corrected by at most a step either way.
+#[cfg(feature = "hessian")]
+pub(crate) fn upper_triangle(c: usize, n: usize) -> (usize, usize) {
+    let start = |i: usize| i * n - i * i.saturating_sub(1) / 2;
+    let b = 2 * n as u64 + 1;
+    let disc = (b * b).saturating_sub(8 * c as u64);
+    let mut i = ((b - disc.isqrt()) / 2) as usize;
+    i = i.min(n - 1);
+    while i + 1 < n && start(i + 1) <= c {
+        i += 1;
+    }
+    while start(i) > c {
+        i -= 1;
+    }
+    (i, i + (c - start(i)))
+}
+
+/// Adds s·(ttᵀ − I) to the upper triangle (i ≤ j) of the row-major n×n matrix `out`.
+#[cfg(feature = "hessian")]
+pub(crate) fn add_rank_one<T: Real>(out: &mut [T], n: usize, t: &[T], s: T) {
+    for (i, &ti) in t.iter().enumerate() {
+        let row = &mut out[i * n..(i + 1) * n];
+        let sti = s * ti;
+        row[i] += sti * ti - s;
+        for (h, &tj) in row[i + 1..].iter_mut().zip(&t[i + 1..]) {
+            *h += sti * tj;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

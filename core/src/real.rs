@@ -1,0 +1,288 @@
+//! The float abstraction: one sealed trait over `f32` and `f64`, backed by `libm`.
+//!
+//! Every algorithm in hodr-core is generic over [`Real`], so the same code runs in double
+//! precision on a workstation and in single precision on a microcontroller whose FPU has
+//! no doubles. The trait is sealed: its method set can grow without breaking callers, and
+//! the per-precision choices (which normal quantile approximation, how many random bits a
+//! uniform number takes) stay in this file.
+//!
+//! Rejected: `num-traits::Float`. It would pull a larger surface than we use, and the
+//! precision-specific pieces (the normal quantile and the uniform draw) still need a
+//! trait of our own.
+
+use core::fmt::{Debug, Display};
+use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
+
+use rand_core::Rng;
+
+use crate::sample::normal;
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for f32 {}
+    impl Sealed for f64 {}
+}
+
+/// A floating-point type hodr-core computes in: `f32` or `f64`.
+///
+/// Transcendental functions come from `libm`, so results are the same on every target
+/// (no dependence on the platform's C library).
+pub trait Real:
+    sealed::Sealed
+    + Copy
+    + Default
+    + Debug
+    + Display
+    + PartialEq
+    + PartialOrd
+    + Send
+    + Sync
+    + 'static
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + MulAssign
+    + DivAssign
+{
+    /// 0.
+    const ZERO: Self;
+    /// 1.
+    const ONE: Self;
+    /// 2.
+    const TWO: Self;
+    /// ½.
+    const HALF: Self;
+    /// Machine epsilon: the gap between 1 and the next larger float.
+    const EPSILON: Self;
+    /// The smallest positive normal value.
+    const MIN_POSITIVE: Self;
+    /// The largest finite value.
+    const MAX: Self;
+    /// Number of significand bits (24 for `f32`, 53 for `f64`).
+    const MANTISSA_DIGITS: u32;
+
+    /// Converts from `f64`, rounding to nearest.
+    fn from_f64(x: f64) -> Self;
+    /// Converts to `f64` (exact).
+    fn to_f64(self) -> f64;
+    /// Converts a count, rounding to nearest.
+    fn from_usize(n: usize) -> Self;
+
+    /// |x|.
+    fn abs(self) -> Self;
+    /// √x.
+    fn sqrt(self) -> Self;
+    /// eˣ.
+    fn exp(self) -> Self;
+    /// Natural logarithm.
+    fn ln(self) -> Self;
+    /// ln(1 + x), accurate for small x.
+    fn ln_1p(self) -> Self;
+    /// Complementary error function erfc(x) = 1 − erf(x).
+    fn erfc(self) -> Self;
+    /// The larger of two values; if one is NaN, the other.
+    fn max(self, other: Self) -> Self;
+    /// The smaller of two values; if one is NaN, the other.
+    fn min(self, other: Self) -> Self;
+    /// True when neither infinite nor NaN.
+    fn is_finite(self) -> bool;
+
+    /// The standard normal quantile Φ⁻¹(p) for p ∈ (0, 1).
+    ///
+    /// `f64`: Wichura's AS 241 (PPND16), relative error about 1e-16.
+    /// `f32`: AS 241's PPND7, relative error about 1e-7, all in single precision.
+    /// p must lie strictly inside (0, 1); callers clamp (see [`crate::sample::normal`]).
+    fn normal_quantile_open(p: Self) -> Self;
+
+    /// A uniform number in the open interval (0, 1) on the grid (k + ½)·2⁻ᵐ, m the
+    /// significand width, so ξ and 1 − ξ are equally likely and 0 and 1 never occur.
+    fn uniform_open<R: Rng + ?Sized>(rng: &mut R) -> Self;
+
+    /// x², written once.
+    #[inline]
+    fn sq(self) -> Self {
+        self * self
+    }
+
+    /// +1 for x > 0, −1 for x < 0, 0 for x = 0 (and for NaN).
+    #[inline]
+    fn sign(self) -> Self {
+        if self > Self::ZERO {
+            Self::ONE
+        } else if self < Self::ZERO {
+            -Self::ONE
+        } else {
+            Self::ZERO
+        }
+    }
+}
+
+impl Real for f64 {
+    const ZERO: Self = 0.0;
+    const ONE: Self = 1.0;
+    const TWO: Self = 2.0;
+    const HALF: Self = 0.5;
+    const EPSILON: Self = f64::EPSILON;
+    const MIN_POSITIVE: Self = f64::MIN_POSITIVE;
+    const MAX: Self = f64::MAX;
+    const MANTISSA_DIGITS: u32 = f64::MANTISSA_DIGITS;
+
+    #[inline]
+    fn from_f64(x: f64) -> Self {
+        x
+    }
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self
+    }
+    #[inline]
+    fn from_usize(n: usize) -> Self {
+        n as f64
+    }
+    #[inline]
+    fn abs(self) -> Self {
+        libm::fabs(self)
+    }
+    #[inline]
+    fn sqrt(self) -> Self {
+        libm::sqrt(self)
+    }
+    #[inline]
+    fn exp(self) -> Self {
+        libm::exp(self)
+    }
+    #[inline]
+    fn ln(self) -> Self {
+        libm::log(self)
+    }
+    #[inline]
+    fn ln_1p(self) -> Self {
+        libm::log1p(self)
+    }
+    #[inline]
+    fn erfc(self) -> Self {
+        libm::erfc(self)
+    }
+    #[inline]
+    fn max(self, other: Self) -> Self {
+        libm::fmax(self, other)
+    }
+    #[inline]
+    fn min(self, other: Self) -> Self {
+        libm::fmin(self, other)
+    }
+    #[inline]
+    fn is_finite(self) -> bool {
+        f64::is_finite(self)
+    }
+    #[inline]
+    fn normal_quantile_open(p: Self) -> Self {
+        normal::ppnd16(p)
+    }
+    #[inline]
+    fn uniform_open<R: Rng + ?Sized>(rng: &mut R) -> Self {
+        // 53 random bits k, ξ = (k + ½)·2⁻⁵³: exact, symmetric about ½, never 0 or 1.
+        let k = rng.next_u64() >> 11;
+        (k as f64 + 0.5) * (1.0 / (1u64 << 53) as f64)
+    }
+}
+
+impl Real for f32 {
+    const ZERO: Self = 0.0;
+    const ONE: Self = 1.0;
+    const TWO: Self = 2.0;
+    const HALF: Self = 0.5;
+    const EPSILON: Self = f32::EPSILON;
+    const MIN_POSITIVE: Self = f32::MIN_POSITIVE;
+    const MAX: Self = f32::MAX;
+    const MANTISSA_DIGITS: u32 = f32::MANTISSA_DIGITS;
+
+    #[inline]
+    fn from_f64(x: f64) -> Self {
+        x as f32
+    }
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self as f64
+    }
+    #[inline]
+    fn from_usize(n: usize) -> Self {
+        n as f32
+    }
+    #[inline]
+    fn abs(self) -> Self {
+        libm::fabsf(self)
+    }
+    #[inline]
+    fn sqrt(self) -> Self {
+        libm::sqrtf(self)
+    }
+    #[inline]
+    fn exp(self) -> Self {
+        libm::expf(self)
+    }
+    #[inline]
+    fn ln(self) -> Self {
+        libm::logf(self)
+    }
+    #[inline]
+    fn ln_1p(self) -> Self {
+        libm::log1pf(self)
+    }
+    #[inline]
+    fn erfc(self) -> Self {
+        libm::erfcf(self)
+    }
+    #[inline]
+    fn max(self, other: Self) -> Self {
+        libm::fmaxf(self, other)
+    }
+    #[inline]
+    fn min(self, other: Self) -> Self {
+        libm::fminf(self, other)
+    }
+    #[inline]
+    fn is_finite(self) -> bool {
+        f32::is_finite(self)
+    }
+    #[inline]
+    fn normal_quantile_open(p: Self) -> Self {
+        normal::ppnd7(p)
+    }
+    #[inline]
+    fn uniform_open<R: Rng + ?Sized>(rng: &mut R) -> Self {
+        // 24 random bits k, ξ = (k + ½)·2⁻²⁴: exact in f32, symmetric, never 0 or 1.
+        let k = rng.next_u32() >> 8;
+        (k as f32 + 0.5) * (1.0 / (1u32 << 24) as f32)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand_core::SeedableRng;
+    use rand_xoshiro::Xoshiro256PlusPlus;
+
+    #[test]
+    fn uniform_is_open_and_symmetric_grid() {
+        let mut rng = Xoshiro256PlusPlus::seed_from_u64(1);
+        for _ in 0..10_000 {
+            let a = f64::uniform_open(&mut rng);
+            assert!(a > 0.0 && a < 1.0);
+            // 1 − ξ is on the same grid: (2⁵³ − 1 − k + ½)·2⁻⁵³.
+            let b = f32::uniform_open(&mut rng);
+            assert!(b > 0.0 && b < 1.0);
+        }
+    }
+
+    #[test]
+    fn sign_of_zero_and_nan_is_zero() {
+        assert_eq!(0.0f64.sign(), 0.0);
+        assert_eq!(f64::NAN.sign(), 0.0);
+        assert_eq!((-3.0f32).sign(), -1.0);
+    }
+}

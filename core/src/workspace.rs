@@ -1,0 +1,176 @@
+//! Caller-provided memory for the estimators.
+//!
+//! hodr-core never allocates. A [`Workspace`] borrows slices that the caller owns: `Vec`s
+//! on a host (n = 1024 and more, chosen at run time), `static` or stack arrays on a
+//! microcontroller, or a [`FixedWorkspace`] for small n known at compile time.
+//!
+//! The batch capacity `rows` is how many objective evaluations are prepared and handed
+//! to [`crate::Objective::evaluate_batch`] at once. Estimates do not depend on it: points
+//! are drawn in the same order whatever the capacity, so a bigger workspace only lets a
+//! host evaluate more in parallel.
+
+use crate::error::Error;
+use crate::objective::NoiseSeed;
+use crate::real::Real;
+
+/// The smallest batch capacity: one group of common-random-number HVP points
+/// (θ+εu ∓ τ, θ−εu ∓ τ).
+pub const MIN_ROWS: usize = 4;
+
+/// Scratch vectors of length n kept beside the batch: the two shifted centres θ ± εu of a
+/// central-difference HVP, and a direction buffer.
+pub const SCRATCH_VECTORS: usize = 3;
+
+/// Borrowed buffers for estimating derivatives of an n-dimensional objective.
+#[derive(Debug)]
+pub struct Workspace<'a, T> {
+    pub(crate) dim: usize,
+    pub(crate) batch: BatchBuffers<'a, T>,
+    pub(crate) scratch: &'a mut [T],
+}
+
+/// The part of a workspace that holds one batch of evaluations.
+#[derive(Debug)]
+pub(crate) struct BatchBuffers<'a, T> {
+    /// `rows × dim` points, row-major.
+    pub(crate) points: &'a mut [T],
+    /// `groups × dim` standardised offsets t = τ/σ, one per antithetic group.
+    pub(crate) offsets: &'a mut [T],
+    /// `rows` objective values.
+    pub(crate) values: &'a mut [T],
+    /// `rows` noise seeds.
+    pub(crate) seeds: &'a mut [NoiseSeed],
+    /// Row of the point that last gave a non-finite value, if any.
+    pub(crate) failed: Option<usize>,
+}
+
+impl<'a, T: Real> Workspace<'a, T> {
+    /// Length of the `T` buffer that [`Workspace::new`] needs for dimension `dim` and
+    /// batch capacity `rows`: `dim·(rows + rows/2 + 3) + rows`.
+    pub const fn buffer_len(dim: usize, rows: usize) -> usize {
+        dim * (rows + rows / 2 + SCRATCH_VECTORS) + rows
+    }
+
+    /// A workspace for dimension `dim` carved from one buffer. The batch capacity is
+    /// `seeds.len()` evaluations; any excess in `buffer` is left unused.
+    ///
+    /// # Errors
+    /// [`Error::WorkspaceTooSmall`] when `seeds.len() < MIN_ROWS` or `buffer` is shorter
+    /// than [`Workspace::buffer_len`]; [`Error::DimensionMismatch`] when `dim == 0`.
+    pub fn new(dim: usize, buffer: &'a mut [T], seeds: &'a mut [NoiseSeed]) -> Result<Self, Error> {
+        let rows = seeds.len();
+        if dim == 0 {
+            return Err(Error::DimensionMismatch {
+                expected: 1,
+                found: 0,
+            });
+        }
+        if rows < MIN_ROWS {
+            return Err(Error::WorkspaceTooSmall {
+                needed: MIN_ROWS,
+                available: rows,
+            });
+        }
+        let needed = Self::buffer_len(dim, rows);
+        if buffer.len() < needed {
+            return Err(Error::WorkspaceTooSmall {
+                needed,
+                available: buffer.len(),
+            });
+        }
+        let (points, rest) = buffer.split_at_mut(rows * dim);
+        let (offsets, rest) = rest.split_at_mut(rows / 2 * dim);
+        let (values, rest) = rest.split_at_mut(rows);
+        let (scratch, _) = rest.split_at_mut(SCRATCH_VECTORS * dim);
+        Ok(Workspace {
+            dim,
+            batch: BatchBuffers {
+                points,
+                offsets,
+                values,
+                seeds,
+                failed: None,
+            },
+            scratch,
+        })
+    }
+
+    /// The dimension n this workspace serves.
+    #[inline]
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// Batch capacity: evaluations prepared per call of `evaluate_batch`.
+    #[inline]
+    pub fn rows(&self) -> usize {
+        self.batch.seeds.len()
+    }
+
+    /// The point at which the objective last returned a non-finite value, if the latest
+    /// estimate failed with [`Error::NonFiniteObjective`].
+    pub fn failed_point(&self) -> Option<&[T]> {
+        self.batch
+            .failed
+            .map(|row| &self.batch.points[row * self.dim..(row + 1) * self.dim])
+    }
+}
+
+/// Inline storage for a workspace of compile-time dimension `N` and batch capacity `R`
+/// (`R ≥ MIN_ROWS`). Memory: `(2R + 3)·N + R` floats and `R` seeds.
+///
+/// ```
+/// use hodr_core::FixedWorkspace;
+/// let mut storage = FixedWorkspace::<f32, 2, 8>::new();
+/// let ws = storage.workspace();
+/// assert_eq!((ws.dim(), ws.rows()), (2, 8));
+/// ```
+#[derive(Clone, Debug)]
+pub struct FixedWorkspace<T, const N: usize, const R: usize> {
+    points: [[T; N]; R],
+    offsets: [[T; N]; R],
+    values: [T; R],
+    seeds: [NoiseSeed; R],
+    scratch: [[T; N]; SCRATCH_VECTORS],
+}
+
+impl<T: Real, const N: usize, const R: usize> FixedWorkspace<T, N, R> {
+    const VALID: () = assert!(
+        N > 0 && R >= MIN_ROWS,
+        "FixedWorkspace needs N ≥ 1 and R ≥ MIN_ROWS"
+    );
+
+    /// Zeroed storage. Usable in a `static` initialiser.
+    pub const fn new() -> Self {
+        #[allow(clippy::let_unit_value)]
+        let () = Self::VALID;
+        FixedWorkspace {
+            points: [[T::ZERO; N]; R],
+            offsets: [[T::ZERO; N]; R],
+            values: [T::ZERO; R],
+            seeds: [0; R],
+            scratch: [[T::ZERO; N]; SCRATCH_VECTORS],
+        }
+    }
+
+    /// A workspace borrowing this storage.
+    pub fn workspace(&mut self) -> Workspace<'_, T> {
+        Workspace {
+            dim: N,
+            batch: BatchBuffers {
+                points: self.points.as_flattened_mut(),
+                offsets: self.offsets.as_flattened_mut(),
+                values: &mut self.values,
+                seeds: &mut self.seeds,
+                failed: None,
+            },
+            scratch: self.scratch.as_flattened_mut(),
+        }
+    }
+}
+
+impl<T: Real, const N: usize, const R: usize> Default for FixedWorkspace<T, N, R> {
+    fn default() -> Self {
+        Self::new()
+    }
+}

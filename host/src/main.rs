@@ -1,0 +1,3 @@
+//! The `hodr` command line.
+
+fn main() {}

@@ -1,0 +1,1 @@
+//! Cross-crate integration and statistical tests for hodr live in `tests/`.
