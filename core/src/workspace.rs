@@ -26,6 +26,9 @@ pub const SCRATCH_VECTORS: usize = 3;
 pub struct Workspace<'a, T> {
     pub(crate) dim: usize,
     pub(crate) batch: BatchBuffers<'a, T>,
+    // Part of the memory layout whatever the features, so that `buffer_len` means the
+    // same in every build; only the HVP estimators read it.
+    #[cfg_attr(not(feature = "hvp"), allow(dead_code))]
     pub(crate) scratch: &'a mut [T],
 }
 
