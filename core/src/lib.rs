@@ -12,6 +12,7 @@
 //! failure an [`Error`] value, every random number from the caller's `rand_core::Rng`.
 //!
 //! ```
+//! # #[cfg(all(feature = "hvp", feature = "aggregate"))] {
 //! use hodr_core::{Estimator, GradientMethod, HvpMethod, Draws, Workspace};
 //! use rand_xoshiro::{Xoshiro256PlusPlus, rand_core::SeedableRng};
 //!
@@ -31,6 +32,7 @@
 //! let method = HvpMethod::CentralDifference { gradient: GradientMethod::Aggregate, draws: Draws::Common };
 //! let report = est.hvp(method, &mut f, &theta, &[1.0, 0.0], &mut ws, &mut hv)?;
 //! assert_eq!(report.evaluations, 2 * 2 * 256);
+//! # }
 //! # Ok::<(), hodr_core::Error>(())
 //! ```
 //!
