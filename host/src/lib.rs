@@ -6,5 +6,8 @@
 
 #![deny(missing_docs)]
 
+pub mod box2ref;
+pub mod metrics;
 pub mod problems;
+pub mod runtime;
 pub mod variance;

@@ -29,7 +29,7 @@ impl<T: Real> GradientDescent<T> {
         n
     }
 
-    pub(crate) fn step<R: Rng, O: Objective<T> + ?Sized>(
+    pub(crate) fn step<R: Rng + Clone, O: Objective<T> + ?Sized>(
         &self,
         oracle: &mut Oracle<'_, '_, T, R, O>,
         theta: &mut [T],
@@ -103,7 +103,7 @@ impl<T: Real> Adam<T> {
     }
 
     /// `powers` holds (β₁ᵗ, β₂ᵗ) of the previous step, (1, 1) at the start.
-    pub(crate) fn step<R: Rng, O: Objective<T> + ?Sized>(
+    pub(crate) fn step<R: Rng + Clone, O: Objective<T> + ?Sized>(
         &self,
         oracle: &mut Oracle<'_, '_, T, R, O>,
         theta: &mut [T],

@@ -86,6 +86,17 @@ impl<T: Real> Method<T> {
         }
     }
 
+    /// True when every estimate of an iteration reuses the same samples.
+    pub fn reuses_samples(&self) -> bool {
+        match self {
+            #[cfg(feature = "cg")]
+            Method::Ncg(m) => m.reuse_samples,
+            #[cfg(feature = "cg")]
+            Method::NewtonCg(m) => m.reuse_samples,
+            _ => false,
+        }
+    }
+
     fn validate(&self) -> Result<(), Error> {
         match self {
             Method::GradientDescent(m) => m.validate(),
@@ -202,7 +213,7 @@ pub struct Optimiser<'b, T, R> {
     state: State<T>,
 }
 
-impl<T: Real, R: Rng> fmt::Debug for Optimiser<'_, T, R> {
+impl<T: Real, R: Rng + Clone> fmt::Debug for Optimiser<'_, T, R> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Optimiser")
             .field("method", &self.method)
@@ -213,7 +224,7 @@ impl<T: Real, R: Rng> fmt::Debug for Optimiser<'_, T, R> {
     }
 }
 
-impl<'b, T: Real, R: Rng> Optimiser<'b, T, R> {
+impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
     /// An optimiser starting at `theta` (updated in place), with `buffer` of at least
     /// [`Method::buffer_len`] floats. The estimator's σ is set by the schedule; its
     /// number of pairs and its RNG are used as they are.
@@ -341,12 +352,17 @@ impl<'b, T: Real, R: Rng> Optimiser<'b, T, R> {
 
         let (saved, buf) = self.buffer.split_at_mut(n);
         saved.copy_from_slice(self.theta);
+        let snapshot = self
+            .method
+            .reuses_samples()
+            .then(|| self.estimator.rng_mut().clone());
         let mut oracle = Oracle {
             estimator: &mut self.estimator,
             objective,
             ws,
             evaluations: 0,
             loss: None,
+            snapshot,
         };
         let tol = self.budget.gradient_tolerance;
         let theta = &mut *self.theta;
@@ -371,6 +387,10 @@ impl<'b, T: Real, R: Rng> Optimiser<'b, T, R> {
         };
         st.evaluations += oracle.evaluations;
         let loss = oracle.loss;
+        if self.method.reuses_samples() {
+            // Fresh samples next iteration: step the stream past this iteration's draws.
+            let _ = self.estimator.rng_mut().next_u64();
+        }
         let outcome = match result {
             Ok(o) => o,
             Err(error) => {

@@ -58,6 +58,14 @@ pub struct Ncg<T> {
     pub line_search_tolerance: T,
     /// Restart d = r every this many iterations (≥ 1).
     pub recompute: usize,
+    /// Reuse one sample set for every estimate of an iteration (gradient, HVPs, line
+    /// search): the RNG is rewound to its state at the iteration's start before each
+    /// estimate, so all of them see the same offsets and noise seeds. The iteration then
+    /// works on one fixed sample-average approximation of f̄: with central-difference
+    /// HVPs of the same gradient estimator, Ĥv = M·∇²f̄·v and ĝ = M·∇f̄ share the random
+    /// matrix M, which cancels from the Newton step on quadratics. Fresh samples come
+    /// with each new iteration.
+    pub reuse_samples: bool,
 }
 
 /// NCG's memory between iterations.
@@ -99,7 +107,7 @@ impl<T: Real> Ncg<T> {
         }
     }
 
-    pub(crate) fn step<R: Rng, O: Objective<T> + ?Sized>(
+    pub(crate) fn step<R: Rng + Clone, O: Objective<T> + ?Sized>(
         &self,
         oracle: &mut Oracle<'_, '_, T, R, O>,
         theta: &mut [T],
@@ -205,7 +213,7 @@ impl<T: Real> Ncg<T> {
 
     /// Ĥd into `hd`, using `hess` (n² floats) for Hessian curvature.
     #[cfg_attr(not(feature = "hessian"), allow(unused_variables))]
-    fn curvature_along<R: Rng, O: Objective<T> + ?Sized>(
+    fn curvature_along<R: Rng + Clone, O: Objective<T> + ?Sized>(
         &self,
         oracle: &mut Oracle<'_, '_, T, R, O>,
         theta: &[T],

@@ -37,7 +37,7 @@ impl<T: Real> Newton<T> {
         2 * n + 2 * n * n
     }
 
-    pub(crate) fn step<R: Rng, O: Objective<T> + ?Sized>(
+    pub(crate) fn step<R: Rng + Clone, O: Objective<T> + ?Sized>(
         &self,
         oracle: &mut Oracle<'_, '_, T, R, O>,
         theta: &mut [T],

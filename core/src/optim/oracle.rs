@@ -21,9 +21,19 @@ pub(crate) struct Oracle<'a, 'w, T, R, O: ?Sized> {
     pub evaluations: usize,
     /// The latest mean objective value seen (an estimate of the loss near θ).
     pub loss: Option<T>,
+    /// With sample reuse: the RNG state at the start of the iteration, restored before
+    /// every estimate so that all of them draw the same offsets and noise seeds.
+    pub snapshot: Option<R>,
 }
 
-impl<T: Real, R: Rng, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> {
+impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> {
+    /// Rewinds the estimator's random stream to the iteration's snapshot, if reusing.
+    fn rewind(&mut self) {
+        if let Some(s) = &self.snapshot {
+            *self.estimator.rng_mut() = s.clone();
+        }
+    }
+
     #[cfg(any(feature = "hessian", feature = "cg"))]
     pub fn sigma(&self) -> T {
         self.estimator.sigma()
@@ -35,6 +45,7 @@ impl<T: Real, R: Rng, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> {
         theta: &[T],
         out: &mut [T],
     ) -> Result<(), Error> {
+        self.rewind();
         let r = self
             .estimator
             .gradient(method, self.objective, theta, self.ws, out)?;
@@ -51,6 +62,7 @@ impl<T: Real, R: Rng, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> {
         v: &[T],
         out: &mut [T],
     ) -> Result<(), Error> {
+        self.rewind();
         let r = self
             .estimator
             .hvp(method, self.objective, theta, v, self.ws, out)?;
@@ -67,6 +79,7 @@ impl<T: Real, R: Rng, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> {
         grad: &mut [T],
         hv: &mut [T],
     ) -> Result<(), Error> {
+        self.rewind();
         let r = self
             .estimator
             .gradient_and_hvp(self.objective, theta, v, self.ws, grad, hv)?;
@@ -82,6 +95,7 @@ impl<T: Real, R: Rng, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> {
         theta: &[T],
         out: &mut [T],
     ) -> Result<(), Error> {
+        self.rewind();
         let r = self
             .estimator
             .hessian(method, self.objective, theta, self.ws, out)?;

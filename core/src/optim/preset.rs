@@ -10,7 +10,7 @@
 //! | `OurHvpa` | NCG | aggregate IS | central-difference HVP of aggregate gradients |
 //! | `NcgKernel` | NCG | Gaussian | kernel HVP, samples shared with the gradient |
 //! | `NewtonCgKernel` | Newton-CG (Steihaug) | Gaussian | kernel HVP |
-//! | `NewtonCgAggregate` | Newton-CG (Steihaug) | aggregate IS | CRN central-difference HVP |
+//! | `NewtonCgAggregate` | Newton-CG (Steihaug), one sample set per iteration | aggregate IS | CRN central-difference HVP |
 //!
 //! The paper's HVP presets draw the two gradients of a central difference independently
 //! (as its code does); [`Hyper::common_random_numbers`] switches them to common random
@@ -65,7 +65,8 @@ pub enum Preset {
     NcgKernel,
     /// Newton-CG (Steihaug) + Gaussian gradient + kernel HVP.
     NewtonCgKernel,
-    /// Newton-CG (Steihaug) + aggregate gradient + CRN aggregate HVP.
+    /// Newton-CG (Steihaug) + aggregate gradient + CRN aggregate HVP, every estimate of
+    /// an iteration from the same samples (up to 10 inner steps).
     NewtonCgAggregate,
 }
 
@@ -125,6 +126,7 @@ impl Preset {
                 line_search_iterations: h.line_search_iterations,
                 line_search_tolerance: h.line_search_tolerance,
                 recompute: h.recompute,
+                reuse_samples: false,
             })
         };
         let newton_cg = |gradient, hvp| {
@@ -134,6 +136,7 @@ impl Preset {
                 trust_radius: h.trust_radius,
                 max_inner: 3,
                 inner_tolerance: T::from_f64(0.1),
+                reuse_samples: false,
             })
         };
         match self {
@@ -164,13 +167,17 @@ impl Preset {
             ),
             Preset::NcgKernel => ncg(GradientMethod::Gaussian, Curvature::Hvp(HvpMethod::Kernel)),
             Preset::NewtonCgKernel => newton_cg(GradientMethod::Gaussian, HvpMethod::Kernel),
-            Preset::NewtonCgAggregate => newton_cg(
-                GradientMethod::Aggregate,
-                HvpMethod::CentralDifference {
+            Preset::NewtonCgAggregate => Method::NewtonCg(NewtonCg {
+                gradient: GradientMethod::Aggregate,
+                hvp: HvpMethod::CentralDifference {
                     gradient: GradientMethod::Aggregate,
                     draws: Draws::Common,
                 },
-            ),
+                trust_radius: h.trust_radius,
+                max_inner: 3,
+                inner_tolerance: T::from_f64(0.1),
+                reuse_samples: true,
+            }),
         }
     }
 

@@ -39,6 +39,14 @@ pub struct NewtonCg<T> {
     pub max_inner: usize,
     /// Inner CG stops when ‖r‖ ≤ this × ‖ĝ‖. Default in presets: 0.1.
     pub inner_tolerance: T,
+    /// Reuse one sample set for every estimate of an iteration (gradient, HVPs, line
+    /// search): the RNG is rewound to its state at the iteration's start before each
+    /// estimate, so all of them see the same offsets and noise seeds. The iteration then
+    /// works on one fixed sample-average approximation of f̄: with central-difference
+    /// HVPs of the same gradient estimator, Ĥv = M·∇²f̄·v and ĝ = M·∇f̄ share the random
+    /// matrix M, which cancels from the Newton step on quadratics. Fresh samples come
+    /// with each new iteration.
+    pub reuse_samples: bool,
 }
 
 impl<T: Real> NewtonCg<T> {
@@ -60,7 +68,7 @@ impl<T: Real> NewtonCg<T> {
         5 * n
     }
 
-    pub(crate) fn step<R: Rng, O: Objective<T> + ?Sized>(
+    pub(crate) fn step<R: Rng + Clone, O: Objective<T> + ?Sized>(
         &self,
         oracle: &mut Oracle<'_, '_, T, R, O>,
         theta: &mut [T],
