@@ -214,15 +214,13 @@ pub fn run(problem: Problem, preset: Preset, seed: u64, crn: bool) -> Vec<Sample
         error: error(opt.theta()),
     }];
     let clock = Instant::now();
-    loop {
-        match opt.step(objective.as_mut(), &mut ws, 0.0) {
-            Ok(Some(report)) => samples.push(Sample {
-                time: clock.elapsed().as_secs_f64(),
-                evaluations: report.evaluations,
-                error: error(opt.theta()),
-            }),
-            Ok(None) | Err(_) => break,
-        }
+    // A failed iteration ends the run; its samples so far stand.
+    while let Ok(Some(report)) = opt.step(objective.as_mut(), &mut ws, 0.0) {
+        samples.push(Sample {
+            time: clock.elapsed().as_secs_f64(),
+            evaluations: report.evaluations,
+            error: error(opt.theta()),
+        });
     }
     samples
 }
