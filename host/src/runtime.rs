@@ -10,9 +10,9 @@
 //!
 //! | problem | start | pairs | σ | Δ | LS | recompute | Adam η | budget |
 //! |---|---|---|---|---|---|---|---|---|
-//! | QUAD-near | U[−3,3]² | 4 | 1 → 0.05 | 50 | 5 | 5 | 0.5 | 3000 evaluations |
-//! | QUAD-far | U[800,1000]² | 4 | 1 → 0.05 | 50 | 5 | 5 | 0.5 | 6000 evaluations |
-//! | BOX2-REF | U[210,360)² | 6 | 100 → 0.01 (FR22 → 0.1) | 2 | 2 | 10 | 0.5 (FR22 0.3) | 4000 evaluations |
+//! | QUAD-near | U\[−3,3\]² | 4 | 1 → 0.05 | 50 | 5 | 5 | 0.5 | 3000 evaluations |
+//! | QUAD-far | U\[800,1000\]² | 4 | 1 → 0.05 | 50 | 5 | 5 | 0.5 | 6000 evaluations |
+//! | BOX2-REF | U\[210,360)² | 6 | 100 → 0.01 (FR22 → 0.1) | 2 | 2 | 10 | 0.5 (FR22 0.3) | 4000 evaluations |
 //! | STIFF-κ | θ* + 1·(unit vector) | 4 | 0.5 → 0.05 | 10 | 3 | 5 | 0.05 | 3000 evaluations |
 //!
 //! STIFF-κ is ½(x − θ*)ᵀA(x − θ*) in 2-D with eigenvalues 1 and κ on axes rotated by 30°.

@@ -14,7 +14,7 @@
 //! | [`NewtonCg`] (`cg`) | Steihaug trust-region CG on Ĥp = −ĝ with HVPs |
 //!
 //! σ follows a [`Schedule`] over the [`Budget`]'s progress. Memory is the caller's: θ and
-//! one buffer of [`Optimiser::buffer_len`] floats.
+//! one buffer of [`Method::buffer_len`] floats.
 
 #[cfg(feature = "hessian")]
 mod cholesky;
