@@ -2,7 +2,9 @@
 //!
 //! Coordinate k of θ sets one attribute of one shape to `offset + scale·θₖ` (pixels,
 //! radians or colour units), so that with a suitable scale every θ coordinate is of
-//! order one and a single smoothing width σ suits all of them. Bindings are applied in
+//! order one and a single smoothing width σ suits all of them. A binding may clamp the
+//! value to a range (as the paper's BOX2 clamps positions), so that a shape cannot
+//! leave the image, where hiding it would lower the loss. Bindings are applied in
 //! order to a fresh copy of the scene's shape on every evaluation.
 
 use crate::error::Error;
@@ -44,7 +46,8 @@ pub enum Attribute {
     VertexY(usize),
 }
 
-/// θ coordinate ↦ `offset + scale·θ` written to `attribute` of shape `shape`.
+/// θ coordinate ↦ `offset + scale·θ`, optionally clamped, written to `attribute` of
+/// shape `shape`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Binding {
     /// Index of the shape in the scene.
@@ -55,6 +58,8 @@ pub struct Binding {
     pub scale: f64,
     /// The attribute's value at θ = 0. Finite. Default: 0.
     pub offset: f64,
+    /// `Some([lo, hi])` clamps the value to [lo, hi] (finite, lo ≤ hi). Default: `None`.
+    pub clamp: Option<[f64; 2]>,
 }
 
 impl Binding {
@@ -65,7 +70,14 @@ impl Binding {
             attribute,
             scale,
             offset: 0.0,
+            clamp: None,
         }
+    }
+
+    /// The same binding with its value clamped to [lo, hi].
+    pub fn with_clamp(mut self, lo: f64, hi: f64) -> Self {
+        self.clamp = Some([lo, hi]);
+        self
     }
 
     /// The same binding with `offset`.
@@ -77,7 +89,11 @@ impl Binding {
     /// The attribute value for θ coordinate `t`.
     #[inline]
     pub fn value(&self, t: f64) -> f64 {
-        self.offset + self.scale * t
+        let v = self.offset + self.scale * t;
+        match self.clamp {
+            Some([lo, hi]) => v.clamp(lo, hi),
+            None => v,
+        }
     }
 }
 
@@ -114,7 +130,10 @@ impl ParamMap {
                     attribute: format!("{:?}", b.attribute),
                 });
             }
-            if !(b.scale.is_finite() && b.scale != 0.0 && b.offset.is_finite()) {
+            let clamp_ok = b
+                .clamp
+                .is_none_or(|[lo, hi]| lo.is_finite() && hi.is_finite() && lo <= hi);
+            if !(b.scale.is_finite() && b.scale != 0.0 && b.offset.is_finite() && clamp_ok) {
                 return Err(Error::InvalidScale {
                     binding: k,
                     scale: b.scale,
