@@ -322,7 +322,7 @@ fn tri1d_geometry(u: f32) -> (f32, f32) {
 fn tri1d_map(u: f32) -> Vec<Binding> {
     // The scene holds the triangle at x = 2u (θ* = 2); θ translates it by u·(θ − 2).
     // Clamped so the whole triangle stays in the image.
-    let (u, h) = (f64::from(u), f64::from(tri1d_geometry(u as f32).1));
+    let (u, h) = (f64::from(u), f64::from(tri1d_geometry(u).1));
     vec![
         Binding::new(0, Attribute::X, u)
             .with_offset(-2.0 * u)

@@ -5,9 +5,9 @@
 //! 1. **Where**: `candidates` random shapes are drawn with centres sampled in
 //!    proportion to the current squared residual ‖C − T‖² per pixel and log-uniform
 //!    sizes; all are evaluated in one parallel batch.
-//! 2. **Refine**: the best `restarts` candidates are optimised with the smoothed
-//!    second-order step loop (`newton`: aggregate gradient + aggregate Hessian from
-//!    hodr-core, damped Newton, trust radius, σ annealed). The objective
+//! 2. **Refine**: the best `restarts` candidates are optimised with hodr-core's
+//!    Newton optimiser on the smoothed loss (aggregate gradient + aggregate Hessian
+//!    estimators, shifted Cholesky, trust radius Δ·σ, σ annealed linearly). The objective
 //!    (`coverage`) gives each geometry its best colour in closed form, so θ is
 //!    geometry only and the colour is exact for it.
 //! 3. **Keep**: the lowest loss seen by any evaluation (candidates, estimator samples
@@ -56,7 +56,7 @@ pub struct FitOptions {
     pub candidates: usize,
     /// Best candidates refined per shape, 1..=candidates. Default: 2.
     pub restarts: usize,
-    /// Damped Newton iterations per refinement (0 = candidates only). Default: 24.
+    /// Newton iterations per refinement (0 = candidates only). Default: 24.
     pub iterations: usize,
     /// Antithetic pairs per estimate, ≥ 1. Default: 4.
     pub pairs: usize,
