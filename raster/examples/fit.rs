@@ -1,5 +1,7 @@
 //! Fits the shipped test image (or a given one) and reports time and RMSE:
-//! `cargo run --release -p hodr-raster --example fit -- N KIND [OUT.png] [TARGET]`.
+//! `cargo run --release -p hodr-raster --example fit -- N KIND [OUT.png] [TARGET]`
+//! (environment: `FIT_SEED`, `FIT_CANDIDATES`, `FIT_RESTARTS`, `FIT_ITERATIONS`,
+//! `FIT_PAIRS` override the defaults of `FitOptions`).
 
 use std::time::Instant;
 
@@ -14,7 +16,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Some(path) => Target::open(path)?,
         None => test_image::landscape(test_image::BENCHMARK_SIDE)?,
     };
-    let options = FitOptions::new(shapes, kind);
+    let env = |name: &str| std::env::var(name).ok().and_then(|s| s.parse::<usize>().ok());
+    let defaults = FitOptions::new(shapes, kind);
+    let options = FitOptions {
+        seed: env("FIT_SEED").map_or(0, |s| s as u64),
+        candidates: env("FIT_CANDIDATES").unwrap_or(defaults.candidates),
+        restarts: env("FIT_RESTARTS").unwrap_or(defaults.restarts),
+        iterations: env("FIT_ITERATIONS").unwrap_or(defaults.iterations),
+        pairs: env("FIT_PAIRS").unwrap_or(defaults.pairs),
+        ..defaults
+    };
     let start = Instant::now();
     let result = fit(&target, &options)?;
     let seconds = start.elapsed().as_secs_f64();

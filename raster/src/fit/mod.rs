@@ -56,9 +56,9 @@ pub struct FitOptions {
     pub candidates: usize,
     /// Best candidates refined per shape, 1..=candidates. Default: 2.
     pub restarts: usize,
-    /// Newton iterations per refinement (0 = candidates only). Default: 24.
+    /// Newton iterations per refinement (0 = candidates only). Default: 64.
     pub iterations: usize,
-    /// Antithetic pairs per estimate, ≥ 1. Default: 4.
+    /// Antithetic pairs per estimate, ≥ 1. Default: 3.
     pub pairs: usize,
     /// σ at the first iteration, in units of an eighth of the longer image side.
     /// Default: 0.2.
@@ -79,8 +79,8 @@ impl FitOptions {
             seed: 0,
             candidates: 256,
             restarts: 2,
-            iterations: 24,
-            pairs: 4,
+            iterations: 64,
+            pairs: 3,
             sigma_start: 0.2,
             sigma_end: 0.02,
             trust: 2.0,
