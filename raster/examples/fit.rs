@@ -16,7 +16,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Some(path) => Target::open(path)?,
         None => test_image::landscape(test_image::BENCHMARK_SIDE)?,
     };
-    let env = |name: &str| std::env::var(name).ok().and_then(|s| s.parse::<usize>().ok());
+    let env = |name: &str| {
+        std::env::var(name)
+            .ok()
+            .and_then(|s| s.parse::<usize>().ok())
+    };
     let defaults = FitOptions::new(shapes, kind);
     let options = FitOptions {
         seed: env("FIT_SEED").map_or(0, |s| s as u64),
