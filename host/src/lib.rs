@@ -9,5 +9,6 @@
 pub mod box2ref;
 pub mod metrics;
 pub mod problems;
+pub mod report;
 pub mod runtime;
 pub mod variance;

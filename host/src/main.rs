@@ -1,8 +1,19 @@
-//! The `hodr` command line.
+//! The `hodr` command line. Every subcommand reports bad arguments or files as one line
+//! on stderr and exits with a non-zero code.
 
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand};
+use hodr_core::optim::preset::Preset;
+use hodr_host::report::{self, Config, Method, Overrides, Settings, task};
 
 /// hodr: second-order optimisation of discontinuous, black-box renderers.
+///
+/// Without a subcommand, runs the quick report on the built-in tasks.
 #[derive(Parser, Debug)]
 #[command(version, about, long_about = None)]
 struct Cli {
@@ -12,7 +23,85 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Variance of every estimator at equal evaluation budgets (Markdown table on stdout).
+    /// Error against run time for every method on every task (report.md, plots, CSV, JSON).
+    Report {
+        /// Tasks to run (comma-separated; default all, see `hodr tasks`).
+        #[arg(long, value_delimiter = ',')]
+        tasks: Vec<String>,
+        /// Methods to run (comma-separated; default all presets and CMA-ES).
+        #[arg(long, value_delimiter = ',')]
+        methods: Vec<String>,
+        /// Seeds per task × method (default 20, or 5 with --quick).
+        #[arg(long)]
+        seeds: Option<u64>,
+        /// 5 seeds and smaller budgets: about a minute on 2 cores.
+        #[arg(long)]
+        quick: bool,
+        /// Objective evaluations per run for every task (default: each task's budget).
+        #[arg(long)]
+        budget: Option<usize>,
+        /// Hyper-parameter override for every task, key=value (repeatable): pairs,
+        /// sigma_start, sigma_end, trust_radius, ls_iters, recompute, lr, crn.
+        #[arg(long = "set")]
+        set: Vec<String>,
+        /// Output directory.
+        #[arg(long, default_value = "report")]
+        out: PathBuf,
+    },
+    /// Every task with its dimension and a one-line description.
+    Tasks,
+    /// Render a task at given parameters (default: its true parameters) to a PNG.
+    Render {
+        /// The task.
+        #[arg(long)]
+        task: String,
+        /// Parameters, comma-separated (default: the task's θ*).
+        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+        params: Vec<f64>,
+        /// Samples per pixel (path-traced tasks).
+        #[arg(long, default_value_t = 64)]
+        spp: u32,
+        /// Output PNG.
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Optimise one task with one method, printing per-iteration progress.
+    Optimize {
+        /// The task.
+        #[arg(long)]
+        task: String,
+        /// The method (a preset name or CMA-ES).
+        #[arg(long, default_value = "OurHVPA")]
+        method: String,
+        /// Seed (start and sampling).
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Objective evaluations (default: the task's budget).
+        #[arg(long)]
+        budget: Option<usize>,
+        /// Where to write the result image (tasks with images).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Approximate an image with N shapes; writes PNG (and SVG).
+    Fit2d {
+        /// The target image (PNG or JPEG).
+        #[arg(long)]
+        target: PathBuf,
+        /// Number of shapes.
+        #[arg(long, default_value_t = 16)]
+        shapes: usize,
+        /// Shape kind: triangle, rect or ellipse.
+        #[arg(long, default_value = "triangle")]
+        kind: String,
+        /// Output PNG.
+        #[arg(long)]
+        out: PathBuf,
+        /// Also write an SVG.
+        #[arg(long)]
+        svg: Option<PathBuf>,
+    },
+    /// Variance of every estimator at equal evaluation budgets (Markdown on stdout).
     Variance {
         /// Repetitions per table cell.
         #[arg(long, default_value_t = 2000, value_parser = clap::value_parser!(u64).range(2..))]
@@ -29,14 +118,163 @@ enum Command {
     },
 }
 
-fn main() -> anyhow::Result<()> {
+fn main() -> ExitCode {
     let cli = Cli::parse();
-    match cli.command.unwrap_or(Command::Variance { repeats: 2000 }) {
+    let interrupt = Arc::new(AtomicBool::new(false));
+    let flag = Arc::clone(&interrupt);
+    // A second Ctrl-C while finishing up exits at once.
+    let _ = ctrlc::set_handler(move || {
+        if flag.swap(true, Ordering::SeqCst) {
+            std::process::exit(130);
+        }
+    });
+    match run(cli, &interrupt) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("hodr: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
+    let command = cli.command.unwrap_or(Command::Report {
+        tasks: Vec::new(),
+        methods: Vec::new(),
+        seeds: None,
+        quick: true,
+        budget: None,
+        set: Vec::new(),
+        out: report::default_out().to_path_buf(),
+    });
+    match command {
+        Command::Report {
+            tasks,
+            methods,
+            seeds,
+            quick,
+            budget,
+            set,
+            out,
+        } => {
+            let mut overrides = Overrides::default();
+            for s in &set {
+                overrides.set(s)?;
+            }
+            let config = Config {
+                tasks,
+                methods,
+                seeds: seeds.unwrap_or(if quick { 5 } else { 20 }),
+                settings: Settings {
+                    quick,
+                    budget,
+                    overrides,
+                },
+                out,
+            };
+            let path = report::report(&config, interrupt, true)?;
+            if interrupt.load(Ordering::Relaxed) {
+                eprintln!("interrupted: wrote the finished runs");
+            }
+            println!("report written to {}", path.display());
+        }
+        Command::Tasks => {
+            for t in task::all()? {
+                println!("{:<10} n = {:<5} {}", t.name(), t.dim(), t.description());
+            }
+        }
+        Command::Render {
+            task: name,
+            params,
+            spp: _,
+            out,
+        } => {
+            let t = task::select(std::slice::from_ref(&name))?.remove(0);
+            let theta = if params.is_empty() {
+                t.optimum()
+            } else {
+                params
+            };
+            if theta.len() != t.dim() {
+                bail!(
+                    "{} takes {} parameters, got {}",
+                    t.name(),
+                    t.dim(),
+                    theta.len()
+                );
+            }
+            let img = t
+                .image(&theta)?
+                .with_context(|| format!("{} has no image", t.name()))?;
+            img.save(&out)
+                .with_context(|| format!("writing {}", out.display()))?;
+            println!("wrote {}", out.display());
+        }
+        Command::Optimize {
+            task: name,
+            method,
+            seed,
+            budget,
+            out,
+        } => {
+            let t = task::select(std::slice::from_ref(&name))?.remove(0);
+            let m =
+                Method::from_name(&method).with_context(|| format!("unknown method `{method}`"))?;
+            let settings = Settings {
+                quick: false,
+                budget,
+                overrides: Overrides::default(),
+            };
+            let mut k = 0usize;
+            let r = report::run_observed(t.as_ref(), m, seed, &settings, interrupt, &mut |p| {
+                println!(
+                    "iter {k:>4}  t = {:>9.4} s  evals = {:>7}  param error = {:.4e}  image error = {:.4e}",
+                    p.time, p.evaluations, p.param_error, p.image_error
+                );
+                k += 1;
+            })?;
+            if let Some(why) = &r.stopped {
+                eprintln!("stopped early: {why}");
+            }
+            println!("θ = {:?}", r.theta);
+            let path = out.unwrap_or_else(|| {
+                PathBuf::from(format!("optimize_{}.png", t.name().to_ascii_lowercase()))
+            });
+            if let Some(img) = t.image(&r.theta)? {
+                img.save(&path)
+                    .with_context(|| format!("writing {}", path.display()))?;
+                println!("result image written to {}", path.display());
+            }
+        }
+        Command::Fit2d {
+            target,
+            shapes,
+            kind,
+            out,
+            svg,
+        } => {
+            let kind: hodr_raster::ShapeKind = kind.parse().map_err(|e| anyhow::anyhow!("{e}"))?;
+            let target_image = hodr_raster::Target::open(&target)?;
+            let options = hodr_raster::fit::FitOptions::new(shapes, kind);
+            let fit = hodr_raster::fit::fit_until(&target_image, &options, interrupt)?;
+            fit.save_png(&out)?;
+            if let Some(svg) = &svg {
+                fit.save_svg(svg)?;
+            }
+            if interrupt.load(Ordering::Relaxed) {
+                eprintln!("interrupted: writing the shapes placed so far");
+            }
+            let placed = fit.scene().shapes().len();
+            println!(
+                "{placed} shapes, RMSE {:.5}; wrote {}",
+                fit.rmse(),
+                out.display()
+            );
+        }
         Command::Variance { repeats } => {
             print!("{}", hodr_host::variance::study(repeats as usize));
         }
         Command::Runtime { seeds, crn } => {
-            use hodr_core::optim::preset::Preset;
             use hodr_host::runtime::{Problem, table};
             print!("{}", table(&Problem::all(), &Preset::ALL, seeds, crn));
         }

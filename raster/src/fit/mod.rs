@@ -23,6 +23,7 @@ mod encode;
 mod newton;
 
 use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::{Rng, SeedableRng};
@@ -167,6 +168,15 @@ impl Fit {
 /// [`Error::InvalidOption`] for options out of range; estimator errors (not expected:
 /// the objective is finite everywhere).
 pub fn fit(target: &Target, options: &FitOptions) -> Result<Fit, Error> {
+    fit_until(target, options, &AtomicBool::new(false))
+}
+
+/// [`fit`], stopping before the next shape once `stop` is set (e.g. by Ctrl-C): the
+/// result then holds the shapes placed so far.
+///
+/// # Errors
+/// As [`fit`].
+pub fn fit_until(target: &Target, options: &FitOptions, stop: &AtomicBool) -> Result<Fit, Error> {
     let dim = options.check()?;
     let (width, height) = (target.width(), target.height());
     let unit = f64::from(width.max(height)) / 8.0;
@@ -191,7 +201,7 @@ pub fn fit(target: &Target, options: &FitOptions) -> Result<Fit, Error> {
         trust: options.trust,
     };
 
-    'shapes: while scene.shapes().len() < options.shapes {
+    'shapes: while scene.shapes().len() < options.shapes && !stop.load(Ordering::Relaxed) {
         for _ in 0..MAX_ATTEMPTS {
             let base = residual_cdf(canvas.data(), target.rgb(), &mut residual);
             let mut objective = ShapeObjective {

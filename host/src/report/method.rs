@@ -1,0 +1,239 @@
+//! The methods compared: hodr-core's presets and CMA-ES (the `cmaes` crate), run on a
+//! task for one seed while recording error against time.
+//!
+//! Timing: a run's clock measures only optimisation; it is paused while the report
+//! probes the image error after each iteration (one extra, untimed evaluation at a fixed
+//! noise seed). Runs execute one after another, each free to use both cores inside its
+//! objective's batch evaluation, so no two runs compete for a core.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+use anyhow::Result;
+use hodr_core::optim::preset::Preset;
+use hodr_core::optim::{Budget, Optimiser};
+use hodr_core::{Estimator, Workspace};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rand_xoshiro::rand_core::SeedableRng;
+use serde::Serialize;
+
+use super::Settings;
+use super::task::Task;
+
+/// A method of the comparison.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// A hodr-core preset.
+    Preset(Preset),
+    /// CMA-ES (Hansen), initial step σ_start of the task, default population.
+    CmaEs,
+}
+
+impl Method {
+    /// Every method: the presets, then CMA-ES.
+    pub fn all() -> Vec<Method> {
+        Preset::ALL
+            .iter()
+            .map(|&p| Method::Preset(p))
+            .chain([Method::CmaEs])
+            .collect()
+    }
+
+    /// Display name.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Method::Preset(p) => p.name(),
+            Method::CmaEs => "CMA-ES",
+        }
+    }
+
+    /// The method called `name` (case-insensitive).
+    pub fn from_name(name: &str) -> Option<Method> {
+        if name.eq_ignore_ascii_case("cma-es") || name.eq_ignore_ascii_case("cmaes") {
+            return Some(Method::CmaEs);
+        }
+        Preset::from_name(name).map(Method::Preset)
+    }
+}
+
+/// One recorded point of a run.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Point {
+    /// Optimisation wall time, seconds.
+    pub time: f64,
+    /// Objective evaluations.
+    pub evaluations: usize,
+    /// ‖θ − θ*‖.
+    pub param_error: f64,
+    /// The loss at a fixed noise seed.
+    pub image_error: f64,
+}
+
+/// One run: task × method × seed.
+#[derive(Clone, Debug, Serialize)]
+pub struct Run {
+    /// Task name.
+    pub task: String,
+    /// Method name.
+    pub method: String,
+    /// Seed.
+    pub seed: u64,
+    /// Points after every iteration (the first is the start).
+    pub points: Vec<Point>,
+    /// The final θ.
+    pub theta: Vec<f64>,
+    /// Why the run stopped early, if it did (a failed iteration or an interrupt).
+    pub stopped: Option<String>,
+}
+
+/// Runs `method` on `task` from `task.start(seed)` until the evaluation budget
+/// (`settings.budget`, else the task's) is used or `interrupt` is set. Hyper-parameters
+/// are the task's with `settings.overrides` applied.
+///
+/// # Errors
+/// When the task's objective cannot be built.
+pub fn run(
+    task: &dyn Task,
+    method: Method,
+    seed: u64,
+    settings: &Settings,
+    interrupt: &AtomicBool,
+) -> Result<Run> {
+    run_observed(task, method, seed, settings, interrupt, &mut |_| {})
+}
+
+/// [`run`], calling `observe` with every point as it is recorded.
+///
+/// # Errors
+/// As [`run`].
+pub fn run_observed(
+    task: &dyn Task,
+    method: Method,
+    seed: u64,
+    settings: &Settings,
+    interrupt: &AtomicBool,
+    observe: &mut dyn FnMut(&Point),
+) -> Result<Run> {
+    let mut objective = task.objective()?;
+    let mut probe = task.objective()?;
+    let optimum = task.optimum();
+    let start = task.start(seed);
+    let budget = settings
+        .budget
+        .unwrap_or_else(|| task.budget(settings.quick));
+    let param_error = |t: &[f64]| {
+        t.iter()
+            .zip(&optimum)
+            .map(|(a, b)| (a - b) * (a - b))
+            .sum::<f64>()
+            .sqrt()
+    };
+    let mut points = vec![Point {
+        time: 0.0,
+        evaluations: 0,
+        param_error: param_error(&start),
+        image_error: task.image_error(probe.as_mut(), &start),
+    }];
+    observe(&points[0]);
+    let mut record =
+        |elapsed: Duration, evaluations: usize, theta: &[f64], points: &mut Vec<Point>| {
+            let p = Point {
+                time: elapsed.as_secs_f64(),
+                evaluations,
+                param_error: param_error(theta),
+                image_error: task.image_error(probe.as_mut(), theta),
+            };
+            observe(&p);
+            points.push(p);
+        };
+    let mut stopped = None;
+    let theta = match method {
+        Method::Preset(preset) => {
+            let h = settings.overrides.apply(task.hyper(preset));
+            let m = preset.method(&h);
+            let n = task.dim();
+            let mut theta = start.clone();
+            let mut buffer = vec![0.0; m.buffer_len(n)];
+            let est = Estimator::new(
+                h.sigma_start,
+                h.pairs,
+                Xoshiro256PlusPlus::seed_from_u64(seed),
+            )?;
+            let mut opt = Optimiser::new(
+                m,
+                preset.schedule(&h),
+                Budget::evaluations(budget),
+                est,
+                &mut theta,
+                &mut buffer,
+            )?;
+            let rows = 64;
+            let (mut wb, mut seeds) = (
+                vec![0.0; Workspace::<f64>::buffer_len(n, rows)],
+                vec![0; rows],
+            );
+            let mut ws = Workspace::new(n, &mut wb, &mut seeds)?;
+            let mut elapsed = Duration::ZERO;
+            loop {
+                if interrupt.load(Ordering::Relaxed) {
+                    stopped = Some("interrupted".to_string());
+                    break;
+                }
+                let clock = Instant::now();
+                let step = opt.step(objective.as_mut(), &mut ws, 0.0);
+                elapsed += clock.elapsed();
+                match step {
+                    Ok(Some(report)) => {
+                        record(elapsed, report.evaluations, opt.theta(), &mut points)
+                    }
+                    Ok(None) => break,
+                    Err(failed) => {
+                        stopped = Some(failed.to_string());
+                        break;
+                    }
+                }
+            }
+            opt.theta().to_vec()
+        }
+        Method::CmaEs => {
+            let sigma = settings
+                .overrides
+                .apply(task.hyper(Preset::OurHvpa))
+                .sigma_start;
+            let mut noise = 0u64;
+            let mut f = move |x: &cmaes::DVector<f64>| {
+                noise = noise.wrapping_add(1);
+                objective.evaluate(x.as_slice(), noise)
+            };
+            let mut cma = cmaes::CMAESOptions::new(start.clone(), sigma)
+                .seed(seed)
+                .max_function_evals(budget)
+                .build(&mut f)
+                .map_err(|e| anyhow::anyhow!("CMA-ES options: {e:?}"))?;
+            let mut elapsed = Duration::ZERO;
+            loop {
+                if interrupt.load(Ordering::Relaxed) {
+                    stopped = Some("interrupted".to_string());
+                    break;
+                }
+                let clock = Instant::now();
+                let done = cma.next();
+                elapsed += clock.elapsed();
+                let mean = cma.mean().as_slice().to_vec();
+                record(elapsed, cma.function_evals(), &mean, &mut points);
+                if done.is_some() {
+                    break;
+                }
+            }
+            cma.mean().as_slice().to_vec()
+        }
+    };
+    Ok(Run {
+        task: task.name().to_string(),
+        method: method.name().to_string(),
+        seed,
+        points,
+        theta,
+        stopped,
+    })
+}

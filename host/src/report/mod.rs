@@ -1,0 +1,292 @@
+//! The report harness: error against run time for every method on every task
+//! (DESIGN §4–5).
+//!
+//! For each task × method × seed it records, after every iteration, the optimisation
+//! wall time, the objective evaluations, the image error (the loss at a fixed noise
+//! seed) and the parameter error ‖θ − θ*‖; then it writes
+//!
+//! * `report.md`: per task, the median time / evaluations to 90, 99, 99.9 % reduction
+//!   of image and parameter error, each method's ratio to the best, the plots and strip;
+//! * `plot_<task>_{image,param}.png`: median error against time, log–log;
+//! * `strip_<task>.png`: init / result / target (tasks with images);
+//! * `results.csv` (one row per run) and `results.json` (settings, summary, every point).
+//!
+//! Timing policy: runs execute one at a time; inside a run the objective may use both
+//! cores (batch evaluation); the clock is paused while the error probe runs. An
+//! interrupt (Ctrl-C) stops the current run at its next iteration, and the report is
+//! written from the runs finished so far.
+
+mod method;
+mod output;
+mod plot;
+mod summary;
+pub mod task;
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use anyhow::{Context, Result, bail};
+use hodr_core::optim::preset::Hyper;
+use indicatif::{ProgressBar, ProgressStyle};
+use serde::Serialize;
+
+pub use method::{Method, Point, Run, run, run_observed};
+pub use summary::{ErrorKind, Row};
+
+/// Command-line overrides of the per-task hyper-parameters (applied to every task).
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Overrides {
+    /// Antithetic pairs.
+    pub pairs: Option<usize>,
+    /// σ at the start.
+    pub sigma_start: Option<f64>,
+    /// σ at the end.
+    pub sigma_end: Option<f64>,
+    /// Trust radius Δ (units of σ).
+    pub trust_radius: Option<f64>,
+    /// Line-search steps.
+    pub line_search_iterations: Option<usize>,
+    /// NCG restart period.
+    pub recompute: Option<usize>,
+    /// Adam's learning rate.
+    pub learning_rate: Option<f64>,
+    /// Common random numbers for the paper's HVP presets.
+    pub common_random_numbers: Option<bool>,
+}
+
+impl Overrides {
+    /// `h` with every set override applied.
+    pub fn apply(&self, mut h: Hyper<f64>) -> Hyper<f64> {
+        if let Some(v) = self.pairs {
+            h.pairs = v;
+        }
+        if let Some(v) = self.sigma_start {
+            h.sigma_start = v;
+        }
+        if let Some(v) = self.sigma_end {
+            h.sigma_end = v;
+        }
+        if let Some(v) = self.trust_radius {
+            h.trust_radius = v;
+        }
+        if let Some(v) = self.line_search_iterations {
+            h.line_search_iterations = v;
+        }
+        if let Some(v) = self.recompute {
+            h.recompute = v;
+        }
+        if let Some(v) = self.learning_rate {
+            h.learning_rate = v;
+        }
+        if let Some(v) = self.common_random_numbers {
+            h.common_random_numbers = v;
+        }
+        h
+    }
+
+    /// Parses one `key=value` override.
+    ///
+    /// # Errors
+    /// An unknown key or an unparsable value.
+    pub fn set(&mut self, assignment: &str) -> Result<()> {
+        let (key, value) = assignment
+            .split_once('=')
+            .with_context(|| format!("`{assignment}` is not key=value"))?;
+        let bad = || format!("bad value `{value}` for `{key}`");
+        match key.trim() {
+            "pairs" => self.pairs = Some(value.parse().with_context(bad)?),
+            "sigma_start" => self.sigma_start = Some(value.parse().with_context(bad)?),
+            "sigma_end" => self.sigma_end = Some(value.parse().with_context(bad)?),
+            "trust_radius" => self.trust_radius = Some(value.parse().with_context(bad)?),
+            "ls_iters" | "line_search_iterations" => {
+                self.line_search_iterations = Some(value.parse().with_context(bad)?)
+            }
+            "recompute" => self.recompute = Some(value.parse().with_context(bad)?),
+            "lr" | "learning_rate" => self.learning_rate = Some(value.parse().with_context(bad)?),
+            "crn" => self.common_random_numbers = Some(value.parse().with_context(bad)?),
+            other => bail!(
+                "unknown hyper-parameter `{other}` (pairs, sigma_start, sigma_end, trust_radius, ls_iters, recompute, lr, crn)"
+            ),
+        }
+        Ok(())
+    }
+}
+
+/// How runs are made.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Settings {
+    /// The smaller budgets of `--quick`.
+    pub quick: bool,
+    /// Evaluations per run for every task, instead of the task's own.
+    pub budget: Option<usize>,
+    /// Hyper-parameter overrides.
+    pub overrides: Overrides,
+}
+
+/// What to run.
+#[derive(Clone, Debug, Serialize)]
+pub struct Config {
+    /// Task names (empty: all).
+    pub tasks: Vec<String>,
+    /// Method names (empty: all).
+    pub methods: Vec<String>,
+    /// Seeds 0..seeds per task × method.
+    pub seeds: u64,
+    /// Run settings.
+    pub settings: Settings,
+    /// Output directory.
+    pub out: PathBuf,
+}
+
+/// Runs the report and writes its files; returns the path of `report.md`.
+///
+/// # Errors
+/// Unknown tasks or methods, a task that cannot be set up, unwritable output.
+pub fn report(config: &Config, interrupt: &AtomicBool, progress: bool) -> Result<PathBuf> {
+    let tasks = task::select(&config.tasks)?;
+    let methods: Vec<Method> = if config.methods.is_empty() {
+        Method::all()
+    } else {
+        config
+            .methods
+            .iter()
+            .map(|m| Method::from_name(m).with_context(|| format!("unknown method `{m}`")))
+            .collect::<Result<_>>()?
+    };
+    if config.seeds == 0 {
+        bail!("--seeds must be at least 1");
+    }
+    std::fs::create_dir_all(&config.out)
+        .with_context(|| format!("creating {}", config.out.display()))?;
+    let total = tasks.len() as u64 * methods.len() as u64 * config.seeds;
+    let bar = if progress {
+        ProgressBar::new(total)
+    } else {
+        ProgressBar::hidden()
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let mut runs = Vec::new();
+    'outer: for t in &tasks {
+        for &m in &methods {
+            for seed in 0..config.seeds {
+                if interrupt.load(Ordering::Relaxed) {
+                    break 'outer;
+                }
+                bar.set_message(format!("{} {} seed {seed}", t.name(), m.name()));
+                let r = run(t.as_ref(), m, seed, &config.settings, interrupt)?;
+                let interrupted = r.stopped.as_deref() == Some("interrupted");
+                if !interrupted {
+                    runs.push(r);
+                }
+                bar.inc(1);
+            }
+        }
+    }
+    bar.finish_and_clear();
+    write_outputs(
+        config,
+        &tasks,
+        &methods,
+        &runs,
+        interrupt.load(Ordering::Relaxed),
+    )
+}
+
+fn write_outputs(
+    config: &Config,
+    tasks: &[Box<dyn task::Task>],
+    methods: &[Method],
+    runs: &[Run],
+    interrupted: bool,
+) -> Result<PathBuf> {
+    use std::fmt::Write as _;
+    let out = &config.out;
+    let names: Vec<&str> = methods.iter().map(|m| m.name()).collect();
+    let mut all_rows = Vec::new();
+    let mut md = String::from("# hodr report: error against run time\n\n");
+    let _ = writeln!(
+        md,
+        "Seeds: {} per task × method{}. Cells: median wall time / objective evaluations to 90, 99 and 99.9 % \
+         reduction of the image error (the loss at a fixed noise seed) and of the parameter error ‖θ − θ*‖; \
+         \"—\" where half or more of the seeds never got there. ×best: median time to 99 % parameter-error \
+         reduction over the best method's. Runs execute one at a time; the clock excludes the error probes.\n",
+        config.seeds,
+        if config.settings.quick {
+            " (quick budgets)"
+        } else {
+            ""
+        }
+    );
+    if interrupted {
+        let _ = writeln!(
+            md,
+            "**Interrupted**: only the runs finished before Ctrl-C are included.\n"
+        );
+    }
+    for t in tasks {
+        let mine: Vec<Run> = runs
+            .iter()
+            .filter(|r| r.task == t.name())
+            .cloned()
+            .collect();
+        if mine.is_empty() {
+            continue;
+        }
+        let rows = summary::rows(t.name(), &names, &mine);
+        let slug = output::slug(t.name());
+        let _ = writeln!(
+            md,
+            "## {}\n\n{} (n = {}).\n",
+            t.name(),
+            t.description(),
+            t.dim()
+        );
+        md.push_str(&output::table(&rows));
+        md.push('\n');
+        for kind in ErrorKind::BOTH {
+            let file = format!("plot_{slug}_{}.png", kind.label());
+            plot::error_against_time(&out.join(&file), t.name(), kind, &names, &mine)?;
+            if out.join(&file).exists() {
+                let _ = writeln!(
+                    md,
+                    "![{} {} error against time]({file})\n",
+                    t.name(),
+                    kind.label()
+                );
+            }
+        }
+        if let Some(best) = rows
+            .iter()
+            .filter(|r| r.final_param_error.is_some())
+            .min_by(|a, b| {
+                a.final_param_error
+                    .partial_cmp(&b.final_param_error)
+                    .unwrap_or(std::cmp::Ordering::Equal)
+            })
+            && let Some(run) = mine.iter().find(|r| r.method == best.method && r.seed == 0)
+        {
+            let file = format!("strip_{slug}.png");
+            if output::write_strip(&out.join(&file), t.as_ref(), &t.start(0), &run.theta)? {
+                let _ = writeln!(
+                    md,
+                    "Init / result ({}, seed 0) / target:\n\n![strip]({file})\n",
+                    best.method
+                );
+            }
+        }
+        all_rows.extend(rows);
+    }
+    output::write_csv(&out.join("results.csv"), runs)?;
+    output::write_json(&out.join("results.json"), config, runs, &all_rows)?;
+    let path = out.join("report.md");
+    std::fs::write(&path, md).with_context(|| format!("writing {}", path.display()))?;
+    Ok(path)
+}
+
+/// The default output directory of `hodr report`.
+pub fn default_out() -> &'static Path {
+    Path::new("report")
+}

@@ -1,0 +1,285 @@
+//! The tasks of the report behind one interface: analytic (QUAD, BOX2-REF), 2D raster
+//! (hodr-raster) and, as they land, 3D path-traced ones.
+
+use anyhow::{Context, Result};
+use hodr_core::optim::preset::{Hyper, Preset};
+use hodr_core::{Objective, Real};
+use image::{GrayImage, RgbImage};
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rand_xoshiro::rand_core::SeedableRng;
+
+use crate::box2ref::{self, Box2Ref};
+
+/// Noise seed of the image-error probe: every probe sees the same renderer noise.
+pub const PROBE_SEED: u64 = 0x1A6E_E550_4BE5;
+
+/// A task the report can run.
+pub trait Task: Send + Sync {
+    /// Name as on the command line, e.g. "BOX2-REF".
+    fn name(&self) -> &str;
+    /// One line for `hodr tasks`.
+    fn description(&self) -> String;
+    /// Number of parameters n.
+    fn dim(&self) -> usize;
+    /// θ*.
+    fn optimum(&self) -> Vec<f64>;
+    /// A start from the task's start distribution, fixed by `seed`.
+    fn start(&self, seed: u64) -> Vec<f64>;
+    /// Per-task hyper-parameters of `preset` (DESIGN §3; data, overridable).
+    fn hyper(&self, preset: Preset) -> Hyper<f64>;
+    /// Objective evaluations per run (`quick`: the smaller budget of `--quick`).
+    fn budget(&self, quick: bool) -> usize;
+    /// A fresh objective (the loss being optimised).
+    ///
+    /// # Errors
+    /// When the task's own setup fails (e.g. a target image cannot be built).
+    fn objective(&self) -> Result<Box<dyn Objective<f64> + Send>>;
+    /// The image error at θ: the loss at a fixed noise seed ([`PROBE_SEED`]).
+    fn image_error(&self, objective: &mut dyn Objective<f64>, theta: &[f64]) -> f64 {
+        objective.evaluate(theta, PROBE_SEED)
+    }
+    /// A picture of θ for the init / result / target strips, if the task has one.
+    ///
+    /// # Errors
+    /// When rendering fails.
+    fn image(&self, theta: &[f64]) -> Result<Option<RgbImage>>;
+}
+
+/// QUAD, f = 5x₀² + 5x₁² + 7.5x₀x₁, with either start distribution.
+pub struct Quad {
+    far: bool,
+}
+
+impl Quad {
+    /// Starts uniform in [−3, 3]² (`far = false`) or the paper's [800, 1000]².
+    pub fn new(far: bool) -> Self {
+        Quad { far }
+    }
+}
+
+fn uniform(seed: u64, salt: u64) -> impl FnMut() -> f64 {
+    let mut rng =
+        Xoshiro256PlusPlus::seed_from_u64(seed.wrapping_mul(0x9E37_79B9).wrapping_add(salt));
+    move || f64::uniform_open(&mut rng)
+}
+
+/// The QUAD objective.
+pub(crate) fn quad(x: &[f64]) -> f64 {
+    5.0 * x[0] * x[0] + 5.0 * x[1] * x[1] + 7.5 * x[0] * x[1]
+}
+
+impl Task for Quad {
+    fn name(&self) -> &str {
+        if self.far { "QUAD-far" } else { "QUAD" }
+    }
+    fn description(&self) -> String {
+        let range = if self.far {
+            "[800, 1000]²"
+        } else {
+            "[−3, 3]²"
+        };
+        format!("5x₀² + 5x₁² + 7.5x₀x₁, starts uniform in {range}")
+    }
+    fn dim(&self) -> usize {
+        2
+    }
+    fn optimum(&self) -> Vec<f64> {
+        vec![0.0, 0.0]
+    }
+    fn start(&self, seed: u64) -> Vec<f64> {
+        let mut u = uniform(seed, 1);
+        if self.far {
+            vec![800.0 + 200.0 * u(), 800.0 + 200.0 * u()]
+        } else {
+            vec![6.0 * u() - 3.0, 6.0 * u() - 3.0]
+        }
+    }
+    fn hyper(&self, _preset: Preset) -> Hyper<f64> {
+        Hyper {
+            pairs: 4,
+            sigma_start: 1.0,
+            sigma_end: 0.05,
+            trust_radius: 50.0,
+            line_search_iterations: 5,
+            line_search_tolerance: 1e-3,
+            recompute: 5,
+            learning_rate: 0.5,
+            common_random_numbers: false,
+        }
+    }
+    fn budget(&self, quick: bool) -> usize {
+        match (self.far, quick) {
+            (false, true) => 1500,
+            (false, false) => 3000,
+            (true, true) => 3000,
+            (true, false) => 6000,
+        }
+    }
+    fn objective(&self) -> Result<Box<dyn Objective<f64> + Send>> {
+        Ok(Box::new(quad as fn(&[f64]) -> f64))
+    }
+    fn image(&self, _theta: &[f64]) -> Result<Option<RgbImage>> {
+        Ok(None)
+    }
+}
+
+/// The paper's BOX2 renderer ([`crate::box2ref`]).
+pub struct Box2RefTask;
+
+impl Task for Box2RefTask {
+    fn name(&self) -> &str {
+        "BOX2-REF"
+    }
+    fn description(&self) -> String {
+        "the paper's BOX2: a 500×500 superellipse square to (150, 150), starts in [210, 360)²"
+            .into()
+    }
+    fn dim(&self) -> usize {
+        2
+    }
+    fn optimum(&self) -> Vec<f64> {
+        box2ref::TARGET.to_vec()
+    }
+    fn start(&self, seed: u64) -> Vec<f64> {
+        let mut u = uniform(seed, 2);
+        vec![210.0 + 150.0 * u(), 210.0 + 150.0 * u()]
+    }
+    fn hyper(&self, preset: Preset) -> Hyper<f64> {
+        let fr22 = preset == Preset::Fr22;
+        Hyper {
+            pairs: 6,
+            sigma_start: 100.0,
+            sigma_end: if fr22 { 0.1 } else { 0.01 },
+            trust_radius: 2.0,
+            line_search_iterations: 2,
+            line_search_tolerance: 1e-3,
+            recompute: 10,
+            learning_rate: if fr22 { 0.3 } else { 0.5 },
+            common_random_numbers: false,
+        }
+    }
+    fn budget(&self, quick: bool) -> usize {
+        if quick { 1500 } else { 4000 }
+    }
+    fn objective(&self) -> Result<Box<dyn Objective<f64> + Send>> {
+        Ok(Box::new(Box2Ref::new()))
+    }
+    fn image(&self, theta: &[f64]) -> Result<Option<RgbImage>> {
+        let img = Box2Ref::new().render(theta);
+        let side = box2ref::SIZE as u32;
+        let gray = GrayImage::from_fn(side, side, |x, y| {
+            image::Luma([(img[(y * side + x) as usize].clamp(0.0, 1.0) * 255.0).round() as u8])
+        });
+        Ok(Some(image::DynamicImage::ImageLuma8(gray).to_rgb8()))
+    }
+}
+
+/// A hodr-raster task (TRI1D, BOX2, BOX10, SHAPES) at 64×64.
+pub struct RasterTask {
+    task: hodr_raster::tasks::Task,
+    name: String,
+}
+
+impl RasterTask {
+    /// The raster task called `name`.
+    ///
+    /// # Errors
+    /// Unknown name.
+    pub fn new(name: &str) -> Result<Self> {
+        let task =
+            hodr_raster::tasks::by_name(name).with_context(|| format!("raster task {name}"))?;
+        Ok(RasterTask {
+            name: task.name().to_ascii_uppercase(),
+            task,
+        })
+    }
+}
+
+impl Task for RasterTask {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn description(&self) -> String {
+        let s = self.task.size();
+        format!(
+            "2D raster ({s}×{s}, tiny-skia): {} parameters, image MSE, plateau starts",
+            self.task.dim()
+        )
+    }
+    fn dim(&self) -> usize {
+        self.task.dim()
+    }
+    fn optimum(&self) -> Vec<f64> {
+        self.task.theta_true().to_vec()
+    }
+    fn start(&self, seed: u64) -> Vec<f64> {
+        self.task.start(seed)
+    }
+    fn hyper(&self, preset: Preset) -> Hyper<f64> {
+        let mut h = self.task.settings().hyper();
+        if preset.is_first_order() {
+            // Adam's step is η per iteration; the paper's first-order rates are in the
+            // same σ units as its second-order trust radii.
+            h.learning_rate = h.learning_rate.max(0.05);
+        }
+        h
+    }
+    fn budget(&self, quick: bool) -> usize {
+        let base = 600 * self.task.dim().max(2);
+        if quick { base / 2 } else { base * 2 }
+    }
+    fn objective(&self) -> Result<Box<dyn Objective<f64> + Send>> {
+        Ok(Box::new(self.task.objective()?))
+    }
+    fn image(&self, theta: &[f64]) -> Result<Option<RgbImage>> {
+        let objective = self.task.objective()?;
+        let pixmap = objective.render(theta)?;
+        let target = hodr_raster::Target::from_pixmap(&pixmap);
+        Ok(RgbImage::from_raw(
+            target.width(),
+            target.height(),
+            target.rgb().to_vec(),
+        ))
+    }
+}
+
+/// The image of θ*, for the strip's target panel.
+pub fn target_image(task: &dyn Task) -> Result<Option<RgbImage>> {
+    task.image(&task.optimum())
+}
+
+/// Every built-in task, in report order.
+///
+/// # Errors
+/// When a task cannot be constructed (a bug in its constants).
+pub fn all() -> Result<Vec<Box<dyn Task>>> {
+    let mut tasks: Vec<Box<dyn Task>> = vec![
+        Box::new(Quad::new(false)),
+        Box::new(Quad::new(true)),
+        Box::new(Box2RefTask),
+    ];
+    for name in hodr_raster::tasks::NAMES {
+        tasks.push(Box::new(RasterTask::new(name)?));
+    }
+    Ok(tasks)
+}
+
+/// The tasks named in `names` (case-insensitive), or an error naming the unknown one.
+///
+/// # Errors
+/// An unknown task name.
+pub fn select(names: &[String]) -> Result<Vec<Box<dyn Task>>> {
+    let mut all = all()?;
+    if names.is_empty() {
+        return Ok(all);
+    }
+    let mut chosen = Vec::new();
+    for name in names {
+        let k = all
+            .iter()
+            .position(|t| t.name().eq_ignore_ascii_case(name))
+            .with_context(|| format!("unknown task `{name}` (see `hodr tasks`)"))?;
+        chosen.push(all.remove(k));
+    }
+    Ok(chosen)
+}

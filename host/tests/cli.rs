@@ -1,0 +1,166 @@
+//! Smoke tests of the `hodr` command line with tiny budgets.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn hodr(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_hodr"))
+        .args(args)
+        .output()
+        .expect("hodr runs")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("hodr-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn help_everywhere() {
+    for sub in [
+        &[][..],
+        &["report"],
+        &["tasks"],
+        &["render"],
+        &["optimize"],
+        &["fit2d"],
+        &["variance"],
+        &["runtime"],
+    ] {
+        let mut args = sub.to_vec();
+        args.push("--help");
+        let out = hodr(&args);
+        assert!(out.status.success(), "{args:?}");
+        assert!(String::from_utf8_lossy(&out.stdout).contains("Usage"));
+    }
+}
+
+#[test]
+fn tasks_lists_every_task() {
+    let out = hodr(&["tasks"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    for name in ["QUAD", "BOX2-REF", "TRI1D", "BOX2", "BOX10", "SHAPES"] {
+        assert!(text.contains(name), "{name} missing from {text}");
+    }
+}
+
+#[test]
+fn report_writes_parseable_files() {
+    let dir = scratch("report");
+    let out = hodr(&[
+        "report",
+        "--tasks",
+        "quad,box2",
+        "--methods",
+        "OurHVPA,FR22,CMA-ES",
+        "--seeds",
+        "2",
+        "--budget",
+        "200",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("results.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 2 * 3 * 2);
+    let header_fields = csv.lines().next().unwrap().split(',').count();
+    assert!(csv.lines().all(|l| l.split(',').count() == header_fields));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("results.json")).unwrap()).unwrap();
+    assert_eq!(json["runs"].as_array().unwrap().len(), 12);
+    let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    assert!(md.contains("## QUAD") && md.contains("## BOX2") && md.contains("OurHVPA"));
+    assert!(dir.join("plot_quad_param.png").exists());
+    assert!(dir.join("strip_box2.png").exists());
+}
+
+#[test]
+fn render_optimize_and_fit2d_write_images() {
+    let dir = scratch("images");
+    let png = dir.join("box2.png");
+    let out = hodr(&["render", "--task", "BOX2", "--out", png.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(png.exists());
+    let res = dir.join("opt.png");
+    let out = hodr(&[
+        "optimize",
+        "--task",
+        "box2",
+        "--method",
+        "OurHVPA",
+        "--budget",
+        "300",
+        "--out",
+        res.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).contains("iter"));
+    assert!(res.exists());
+    let fit = dir.join("fit.png");
+    let svg = dir.join("fit.svg");
+    let out = hodr(&[
+        "fit2d",
+        "--target",
+        png.to_str().unwrap(),
+        "--shapes",
+        "2",
+        "--kind",
+        "rect",
+        "--out",
+        fit.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(fit.exists() && svg.exists());
+}
+
+#[test]
+fn bad_input_gives_one_line_and_nonzero_exit() {
+    for args in [
+        &["report", "--tasks", "nope", "--out", "/tmp/hodr-never"][..],
+        &["optimize", "--task", "QUAD", "--method", "nope"],
+        &[
+            "render",
+            "--task",
+            "BOX2",
+            "--params",
+            "1,2,3",
+            "--out",
+            "/tmp/x.png",
+        ],
+        &[
+            "fit2d",
+            "--target",
+            "/does/not/exist.png",
+            "--out",
+            "/tmp/x.png",
+        ],
+        &["report", "--set", "pairs=many"],
+    ] {
+        let out = hodr(args);
+        assert!(!out.status.success(), "{args:?} should fail");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.starts_with("hodr: "), "{err}");
+    }
+}
