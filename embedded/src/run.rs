@@ -90,6 +90,9 @@ impl RunResult {
 ///
 /// Deterministic: the same problem and algorithm give bit-identical results on every
 /// target whose `f32` arithmetic is IEEE 754 round-to-nearest without fused operations.
+///
+/// # Panics
+/// If the problem's dimension exceeds [`MAX_DIM`] (the built-in problems do not).
 pub fn run_one(problem: &Problem, algorithm: Algorithm, storage: &mut Storage) -> RunResult {
     let n = problem.start.len();
     let mut result = RunResult {
