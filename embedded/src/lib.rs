@@ -1,0 +1,41 @@
+//! # hodr-embedded
+//!
+//! The workload of hodr's Cortex-M firmware (`firmware/`), as a `no_std`, heap-free
+//! library, so that the firmware and its host reference run *the same code*: the same
+//! problems, settings, seeds and float type (`f32`), and the same report format.
+//!
+//! * [`problem`]: QUAD (f = 5x₀² + 5x₁² + 7.5x₀x₁) and PLATEAU (a 1-D well of zero loss
+//!   in a plateau of one), with their settings;
+//! * [`algorithm`]: FR22 (Adam), OurHVPA (NCG + aggregate HVP, feature `ncg`) and
+//!   OurH (NCG + per-element Hessian, feature `hessian`);
+//! * [`run_all`]: every problem with every compiled-in algorithm, in static memory
+//!   ([`Storage`]), one report line per run to an [`Output`];
+//! * [`report`]: writing those lines without `core::fmt` (printing one `f32` with it adds
+//!   11 KiB of flash to the firmware), and parsing and comparing them (the
+//!   firmware-against-host check).
+//!
+//! Features select the algorithms and, through them, the hodr-core features the firmware
+//! links: none (gradient estimators + Adam), `ncg` (+ hvp, aggregate, cg), `hessian`
+//! (every hodr-core feature). Results of an algorithm do not depend on which others are
+//! compiled in.
+//!
+//! ```
+//! let mut storage = hodr_embedded::Storage::new();
+//! let mut report = Vec::new();
+//! hodr_embedded::run_all(&mut |bytes: &[u8]| report.extend_from_slice(bytes), &mut storage);
+//! assert!(report.starts_with(b"run QUAD FR22 evaluations=3000 "));
+//! ```
+
+#![no_std]
+#![deny(missing_docs)]
+
+#[cfg(test)]
+extern crate std;
+
+pub mod algorithm;
+pub mod problem;
+pub mod report;
+mod run;
+
+pub use report::Output;
+pub use run::{MAX_DIM, OPTIMISER_FLOATS, ROWS, Storage, run_all, run_one};
