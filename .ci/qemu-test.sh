@@ -2,7 +2,7 @@
 # hodr-core on a Cortex-M4F: builds firmware/ for each feature set, runs it under QEMU
 # (mps2-an386, semihosting) and checks its report against the host reference built from
 # the same code (hodr-embedded), then prints the size and stack table of
-# firmware/BENCHMARKS.md.
+# the top-level BENCHMARKS.md ("hodr-core on a microcontroller").
 #
 # Needs qemu-system-arm on the PATH; installs the Rust target and llvm-tools itself.
 # Exits non-zero when a build fails, the firmware fails or hangs, or a report differs.
