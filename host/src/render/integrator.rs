@@ -13,7 +13,7 @@
 //! probability q = min(max channel of β, 0.95) and β is divided by q.
 //!
 //! **Determinism.** Sample n of pixel p in a frame with seed s uses the numbers
-//! [`SampleStream::new`]`(s, p, n)`; dimension 0–1 jitter the pixel (box filter) and
+//! [`PixelSampler::new`]`(s, p).sample(n)`; dimension 0–1 jitter the pixel (box filter) and
 //! each vertex k ≥ 1 owns dimensions 2 + 6(k − 1) … 7 + 6(k − 1): light choice, light
 //! point (2), BSDF (2), roulette. Pixels are independent, so the image is bit-identical
 //! at any thread count.
@@ -33,8 +33,8 @@ use super::light::{Light, power_heuristic, sample_area};
 use super::material::{Albedo, Material, reflect, sample_cosine, sample_dielectric};
 use super::math::{Ray, Rgb, Vec3};
 use super::plan::Plan;
-use super::sampler::SampleStream;
-use super::scene::Scene;
+use super::sampler::{PixelSampler, SampleStream};
+use super::scene::{NO_OBJECT, Scene};
 use super::shape::Shape;
 
 /// Dimensions each path vertex owns in the sample stream.
@@ -102,9 +102,10 @@ fn run<const NEE: bool, const EMIT: bool, const DIRECT_LAST: bool>(
         .for_each(|(y, row)| {
             for (x, out) in row.chunks_exact_mut(3).enumerate() {
                 let pixel = y as u64 * u64::from(width) + x as u64;
+                let sampler = PixelSampler::new(sequence, seed, pixel);
                 let mut sum = Rgb::ZERO;
                 for n in 0..spp {
-                    let stream = SampleStream::new(sequence, seed, pixel, n);
+                    let stream = sampler.sample(n);
                     let (jx, jy) = stream.get2(0);
                     let ray = scene
                         .camera()
@@ -144,7 +145,9 @@ fn trace<const NEE: bool, const EMIT: bool, const DIRECT_LAST: bool>(
     let mut specular = true;
     let mut bsdf_pdf = 0.0f32;
     let mut depth = 1u32;
-    while let Some(hit) = scene.intersect(&ray, f32::INFINITY, plan.bvh) {
+    // The object the current ray leaves, when it cannot hit it again.
+    let mut skip = NO_OBJECT;
+    while let Some(hit) = scene.intersect(&ray, f32::INFINITY, skip, plan.bvh) {
         let object = &scene.objects()[hit.object as usize];
         let material = scene.materials()[object.material as usize];
         let want_uv = plan.textures && matches!(material, Material::Diffuse(Albedo::Texture(_)));
@@ -187,8 +190,19 @@ fn trace<const NEE: bool, const EMIT: bool, const DIRECT_LAST: bool>(
                 };
                 let last = DIRECT_LAST && depth + 1 >= max_depth;
                 if NEE {
-                    radiance +=
-                        beta * rho * direct(scene, plan, surface.p, ng, ns, stream, base, last);
+                    // Shadow rays leave on the `ng` side.
+                    let own = if object.shape.cannot_rehit(surface.ng, ng) {
+                        hit.object
+                    } else {
+                        NO_OBJECT
+                    };
+                    let at = Vertex {
+                        p: surface.p,
+                        ng,
+                        ns,
+                        own,
+                    };
+                    radiance += beta * rho * direct(scene, plan, &at, stream, base, last);
                 }
                 if last {
                     break;
@@ -223,6 +237,11 @@ fn trace<const NEE: bool, const EMIT: bool, const DIRECT_LAST: bool>(
                 ray = Ray::new(spawn(surface.p, side), s.wi);
             }
         }
+        skip = if object.shape.cannot_rehit(surface.ng, ray.dir) {
+            hit.object
+        } else {
+            NO_OBJECT
+        };
         if depth >= roulette {
             let q = beta.max_component().min(MAX_SURVIVAL);
             // q is never NaN: β is finite (non-finite samples are dropped later anyway).
@@ -236,20 +255,30 @@ fn trace<const NEE: bool, const EMIT: bool, const DIRECT_LAST: bool>(
     radiance
 }
 
-/// NEE at a diffuse point `p` (normals facing the outgoing side): Le·cos θ·w/(π·p_light)
-/// for one sampled light, or 0 if it is blocked or behind. The caller multiplies by β·ρ.
-#[allow(clippy::too_many_arguments)]
+/// A diffuse path vertex, as NEE needs it.
+struct Vertex {
+    /// Position.
+    p: Vec3,
+    /// Geometric normal on the side of the outgoing direction.
+    ng: Vec3,
+    /// Shading normal on the same side.
+    ns: Vec3,
+    /// The vertex's object if shadow rays cannot hit it again, else [`NO_OBJECT`].
+    own: u32,
+}
+
+/// NEE at a diffuse vertex: Le·cos θ·w/(π·p_light) for one sampled light, or 0 if it is
+/// blocked or behind. The caller multiplies by β·ρ.
 #[inline]
 fn direct(
     scene: &Scene,
     plan: &Plan,
-    p: Vec3,
-    ng: Vec3,
-    ns: Vec3,
+    at: &Vertex,
     stream: &SampleStream,
     base: usize,
     full_weight: bool,
 ) -> Rgb {
+    let Vertex { p, ng, ns, own } = *at;
     let lights = scene.lights();
     let count = lights.len();
     if count == 0 {
@@ -287,8 +316,13 @@ fn direct(
                 return Rgb::ZERO;
             }
             // A planar emitter cannot block a segment that ends on it.
-            let skip = matches!(emitter_object.shape, Shape::Quad(_)).then_some(object);
-            if scene.occluded(&Ray::new(origin, wi), dist * (1.0 - 1e-4), skip, plan.bvh) {
+            let target = if matches!(emitter_object.shape, Shape::Quad(_)) {
+                object
+            } else {
+                NO_OBJECT
+            };
+            let shadow = Ray::new(origin, wi);
+            if scene.occluded(&shadow, dist * (1.0 - 1e-4), (own, target), plan.bvh) {
                 return Rgb::ZERO;
             }
             let light_pdf = pick * dist2 / (cos_l * area);
@@ -311,7 +345,8 @@ fn direct(
             if cos_s <= 0.0 || ng.dot(wi) <= 0.0 {
                 return Rgb::ZERO;
             }
-            if scene.occluded(&Ray::new(origin, wi), dist * (1.0 - 1e-4), None, plan.bvh) {
+            let shadow = Ray::new(origin, wi);
+            if scene.occluded(&shadow, dist * (1.0 - 1e-4), (own, NO_OBJECT), plan.bvh) {
                 return Rgb::ZERO;
             }
             point.intensity * (cos_s * FRAC_1_PI / (dist2 * pick))

@@ -61,48 +61,77 @@ fn unit_f32(bits: u64) -> f32 {
     (bits >> 40) as f32 * (1.0 / 16_777_216.0)
 }
 
+#[inline]
+fn salt(dim: usize) -> u64 {
+    (dim as u64 + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+}
+
+/// The per-pixel part of the sample streams: the pixel's key and its Kronecker shifts,
+/// hashed once per pixel rather than once per sample.
+#[derive(Clone, Copy, Debug)]
+pub struct PixelSampler {
+    sequence: Sequence,
+    /// Hash of (frame seed, pixel).
+    pixel_key: u64,
+    /// Cranley–Patterson shifts s of the Kronecker dimensions.
+    shifts: [f64; KRONECKER_DIMS],
+}
+
+impl PixelSampler {
+    /// The sampler of pixel `pixel` in the frame with seed `seed`.
+    #[inline]
+    pub fn new(sequence: Sequence, seed: u64, pixel: u64) -> PixelSampler {
+        let pixel_key = mix64(mix64(seed) ^ pixel);
+        let mut shifts = [0.0; KRONECKER_DIMS];
+        if sequence == Sequence::Kronecker {
+            for (dim, s) in shifts.iter_mut().enumerate() {
+                *s = (mix64(pixel_key ^ salt(dim)) >> 11) as f64 * (1.0 / 9_007_199_254_740_992.0);
+            }
+        }
+        PixelSampler {
+            sequence,
+            pixel_key,
+            shifts,
+        }
+    }
+
+    /// The stream of sample `index` of this pixel.
+    #[inline]
+    pub fn sample(&self, index: u32) -> SampleStream<'_> {
+        SampleStream {
+            pixel: self,
+            sample_key: mix64(
+                self.pixel_key ^ u64::from(index).wrapping_mul(0xD6E8_FEB8_6659_FD93),
+            ),
+            index: f64::from(index),
+        }
+    }
+}
+
 /// The uniform numbers of one sample of one pixel.
 ///
 /// Dimensions are addressed explicitly (`get(dim)`), so a path that ends early or takes
 /// a different branch does not shift the numbers its later vertices would use.
 #[derive(Clone, Copy, Debug)]
-pub struct SampleStream {
-    /// Hash of (frame seed, pixel): fixes the per-pixel shifts.
-    pixel_key: u64,
+pub struct SampleStream<'a> {
+    pixel: &'a PixelSampler,
     /// Hash of (frame seed, pixel, sample): keys the independent dimensions.
     sample_key: u64,
     /// Sample index n within the pixel.
-    index: u32,
-    sequence: Sequence,
+    index: f64,
 }
 
-impl SampleStream {
-    /// The stream of sample `index` of pixel `pixel` in the frame with seed `seed`.
-    #[inline]
-    pub fn new(sequence: Sequence, seed: u64, pixel: u64, index: u32) -> SampleStream {
-        let pixel_key = mix64(mix64(seed) ^ pixel);
-        let sample_key = mix64(pixel_key ^ u64::from(index).wrapping_mul(0xD6E8_FEB8_6659_FD93));
-        SampleStream {
-            pixel_key,
-            sample_key,
-            index,
-            sequence,
-        }
-    }
-
+impl SampleStream<'_> {
     /// The uniform number in [0, 1) of dimension `dim`.
     #[inline]
     pub fn get(&self, dim: usize) -> f32 {
-        let salt = (dim as u64 + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15);
-        match self.sequence {
-            Sequence::Kronecker if dim < KRONECKER_DIMS => {
-                let shift =
-                    (mix64(self.pixel_key ^ salt) >> 11) as f64 * (1.0 / 9_007_199_254_740_992.0);
-                let x = shift + f64::from(self.index) * R8_ALPHA[dim];
-                // x − ⌊x⌋ is in [0, 1); rounding to f32 may give 1.0, so clamp below 1.
-                ((x - x.floor()) as f32).min(1.0 - f32::EPSILON / 2.0)
-            }
-            _ => unit_f32(mix64(self.sample_key ^ salt)),
+        if self.pixel.sequence == Sequence::Kronecker && dim < KRONECKER_DIMS {
+            let x = self.pixel.shifts[dim] + self.index * R8_ALPHA[dim];
+            // x ≥ 0, so truncation is ⌊x⌋ (and inlines, unlike `floor` without SSE4.1);
+            // x − ⌊x⌋ is in [0, 1), but rounding to f32 may give 1.0: clamp below 1.
+            ((x - (x as u64) as f64) as f32).min(1.0 - f32::EPSILON / 2.0)
+        } else {
+            unit_f32(mix64(self.sample_key ^ salt(dim)))
         }
     }
 
@@ -134,8 +163,9 @@ mod tests {
         for sequence in [Sequence::Independent, Sequence::Kronecker] {
             let mut sum = 0.0f64;
             let count = 4096;
+            let pixel = PixelSampler::new(sequence, 7, 3);
             for n in 0..count {
-                let s = SampleStream::new(sequence, 7, 3, n);
+                let s = pixel.sample(n);
                 for d in 0..12 {
                     let u = s.get(d);
                     assert!((0.0..1.0).contains(&u));
@@ -149,9 +179,12 @@ mod tests {
 
     #[test]
     fn same_coordinates_same_number() {
-        let a = SampleStream::new(Sequence::Kronecker, 11, 5, 2);
-        let b = SampleStream::new(Sequence::Kronecker, 11, 5, 2);
-        let c = SampleStream::new(Sequence::Kronecker, 12, 5, 2);
+        let (pa, pb, pc) = (
+            PixelSampler::new(Sequence::Kronecker, 11, 5),
+            PixelSampler::new(Sequence::Kronecker, 11, 5),
+            PixelSampler::new(Sequence::Kronecker, 12, 5),
+        );
+        let (a, b, c) = (pa.sample(2), pb.sample(2), pc.sample(2));
         assert_eq!(a.get(9), b.get(9));
         assert_eq!(a.get(1), b.get(1));
         assert_ne!(a.get(1), c.get(1));

@@ -15,7 +15,7 @@ use super::material::{Albedo, Material};
 use super::math::{Aabb, Ray};
 use super::plan::Plan;
 use super::sampler::Sequence;
-use super::shape::{Hit, Shape};
+use super::shape::{Hit, Quad, Shape, Sphere};
 use super::texture::Texture;
 
 /// One shape with its material and optional area emission.
@@ -71,6 +71,9 @@ impl Default for Depth {
 /// less than testing boxes first).
 pub const LIST_MAX_OBJECTS: usize = 8;
 
+/// The object index that matches no object (for the `skip` arguments of ray queries).
+pub const NO_OBJECT: u32 = u32::MAX;
+
 /// A renderable scene.
 #[derive(Clone, Debug)]
 pub struct Scene {
@@ -86,6 +89,11 @@ pub struct Scene {
     areas: Vec<f32>,
     boxes: Vec<Aabb>,
     top: Bvh,
+    /// List mode: the quads, the spheres, and the other objects, each with its object
+    /// index, so that the common analytic shapes are tested in tight, inlined loops.
+    quads: Vec<(Quad, u32)>,
+    spheres: Vec<(Sphere, u32)>,
+    others: Vec<u32>,
     plan: Plan,
     committed: bool,
 }
@@ -105,6 +113,9 @@ impl Scene {
             areas: Vec::new(),
             boxes: Vec::new(),
             top: Bvh::new(),
+            quads: Vec::new(),
+            spheres: Vec::new(),
+            others: Vec::new(),
             plan: Plan::general(),
             committed: false,
         }
@@ -238,6 +249,9 @@ impl Scene {
         self.lights.clear();
         self.areas.clear();
         self.boxes.clear();
+        self.quads.clear();
+        self.spheres.clear();
+        self.others.clear();
         for (index, object) in self.objects.iter().enumerate() {
             object.shape.validate()?;
             if object.material as usize >= self.materials.len() {
@@ -269,6 +283,11 @@ impl Scene {
             }
             self.areas.push(area);
             self.boxes.push(object.shape.bounds());
+            match &object.shape {
+                Shape::Quad(q) => self.quads.push((*q, index as u32)),
+                Shape::Sphere(s) => self.spheres.push((*s, index as u32)),
+                Shape::Cuboid(_) | Shape::Mesh(_) => self.others.push(index as u32),
+            }
         }
         for light in &self.point_lights {
             let i = light.intensity;
@@ -305,21 +324,50 @@ impl Scene {
         })
     }
 
-    /// Closest hit in (0, `t_max`): through the object BVH when `bvh`, else by testing
-    /// every object.
+    /// Closest hit in (0, `t_max`) on any object but `skip` (pass [`NO_OBJECT`] to test
+    /// all): through the object BVH when `bvh`, else by testing every object.
     #[inline]
-    pub fn intersect(&self, ray: &Ray, t_max: f32, bvh: bool) -> Option<Hit> {
+    pub fn intersect(&self, ray: &Ray, t_max: f32, skip: u32, bvh: bool) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         if bvh {
             self.top.closest(ray.origin, ray.dir, t_max, |k, t_max| {
+                if k == skip {
+                    return None;
+                }
                 let hit = self.objects[k as usize].shape.intersect(ray, t_max, k)?;
                 best = Some(hit);
                 Some(hit.t)
             });
         } else {
-            let mut t_max = t_max;
-            for (k, object) in self.objects.iter().enumerate() {
-                if let Some(hit) = object.shape.intersect(ray, t_max, k as u32) {
+            let (mut t_max, mut object) = (t_max, NO_OBJECT);
+            for (q, k) in &self.quads {
+                if *k != skip
+                    && let Some(t) = q.hit(ray, t_max)
+                {
+                    (t_max, object) = (t, *k);
+                }
+            }
+            for (s, k) in &self.spheres {
+                if *k != skip
+                    && let Some(t) = s.hit(ray, t_max)
+                {
+                    (t_max, object) = (t, *k);
+                }
+            }
+            if object != NO_OBJECT {
+                best = Some(Hit {
+                    t: t_max,
+                    object,
+                    prim: 0,
+                    u: 0.0,
+                    v: 0.0,
+                });
+            }
+            for &k in &self.others {
+                if k == skip {
+                    continue;
+                }
+                if let Some(hit) = self.objects[k as usize].shape.intersect(ray, t_max, k) {
                     t_max = hit.t;
                     best = Some(hit);
                 }
@@ -328,18 +376,27 @@ impl Scene {
         best
     }
 
-    /// True if an object other than `skip` blocks the ray within (0, `t_max`).
+    /// True if an object other than `skip.0` and `skip.1` blocks the ray within
+    /// (0, `t_max`).
     #[inline]
-    pub fn occluded(&self, ray: &Ray, t_max: f32, skip: Option<u32>, bvh: bool) -> bool {
+    pub fn occluded(&self, ray: &Ray, t_max: f32, skip: (u32, u32), bvh: bool) -> bool {
+        let tested = |k: u32| k != skip.0 && k != skip.1;
         if bvh {
             self.top.any(ray.origin, ray.dir, t_max, |k| {
-                Some(k) != skip && self.objects[k as usize].shape.occluded(ray, t_max)
+                tested(k) && self.objects[k as usize].shape.occluded(ray, t_max)
             })
         } else {
-            self.objects
+            self.quads
                 .iter()
-                .enumerate()
-                .any(|(k, o)| Some(k as u32) != skip && o.shape.occluded(ray, t_max))
+                .any(|(q, k)| tested(*k) && q.hit(ray, t_max).is_some())
+                || self
+                    .spheres
+                    .iter()
+                    .any(|(s, k)| tested(*k) && s.hit(ray, t_max).is_some())
+                || self
+                    .others
+                    .iter()
+                    .any(|&k| tested(k) && self.objects[k as usize].shape.occluded(ray, t_max))
         }
     }
 }

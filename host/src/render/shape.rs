@@ -22,7 +22,7 @@ pub struct Sphere {
 impl Sphere {
     /// Closest root of ‖o + t·d − c‖² = r² in (0, `t_max`), via the numerically stable
     /// form of the quadratic (the root of larger magnitude first, the other as c/(a·t₁)).
-    #[inline]
+    #[inline(always)]
     pub fn hit(&self, ray: &Ray, t_max: f32) -> Option<f32> {
         let oc = ray.origin - self.center;
         let a = ray.dir.length_squared();
@@ -56,14 +56,20 @@ impl Sphere {
 
 /// A parallelogram {corner + a·edge_u + b·edge_v : a, b ∈ [0, 1]} with geometric normal
 /// n = edge_u × edge_v / ‖edge_u × edge_v‖ and texture coordinates (a, b).
+///
+/// Intersection: t = (n·corner − n·o)/(n·d), then (a, b) = (q·u*, q·v*) for q = p − corner,
+/// with the dual basis u* = (edge_v × n)/A, v* = (n × edge_u)/A (A the area), which
+/// satisfies u*·edge_u = v*·edge_v = 1, u*·edge_v = v*·edge_u = 0.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Quad {
     corner: Vec3,
     edge_u: Vec3,
     edge_v: Vec3,
     normal: Vec3,
-    /// (edge_u × edge_v)/‖edge_u × edge_v‖², so that a = w·(q × edge_v), b = w·(edge_u × q).
-    w: Vec3,
+    /// n·corner, the plane offset.
+    offset: f32,
+    dual_u: Vec3,
+    dual_v: Vec3,
     area: f32,
 }
 
@@ -81,12 +87,15 @@ impl Quad {
         if area <= 0.0 || !area.is_finite() {
             return Err(RenderError::InvalidGeometry("zero-area quad"));
         }
+        let normal = cross / area;
         Ok(Quad {
             corner,
             edge_u,
             edge_v,
-            normal: cross / area,
-            w: cross / (area * area),
+            normal,
+            offset: normal.dot(corner),
+            dual_u: edge_v.cross(normal) / area,
+            dual_v: normal.cross(edge_u) / area,
             area,
         })
     }
@@ -124,13 +133,11 @@ impl Quad {
     }
 
     /// Distance to the plane hit inside the parallelogram, in (0, `t_max`).
-    #[inline]
+    #[inline(always)]
     pub fn hit(&self, ray: &Ray, t_max: f32) -> Option<f32> {
         let denom = self.normal.dot(ray.dir);
-        if denom == 0.0 {
-            return None;
-        }
-        let t = self.normal.dot(self.corner - ray.origin) / denom;
+        let t = (self.offset - self.normal.dot(ray.origin)) / denom;
+        // Also rejects denom = 0 (t = ±∞ or NaN).
         if !(t > 0.0 && t < t_max) {
             return None;
         }
@@ -146,10 +153,7 @@ impl Quad {
     #[inline]
     fn coords(&self, p: Vec3) -> (f32, f32) {
         let q = p - self.corner;
-        (
-            self.w.dot(q.cross(self.edge_v)),
-            self.w.dot(self.edge_u.cross(q)),
-        )
+        (q.dot(self.dual_u), q.dot(self.dual_v))
     }
 
     fn bounds(&self) -> Aabb {
@@ -363,6 +367,18 @@ impl Shape {
                 let d = m.transform.inverse_vector(ray.dir);
                 m.mesh.occluded(o, d, t_max)
             }
+        }
+    }
+
+    /// True when a ray leaving this shape's surface point with outward geometric normal
+    /// `ng` along `dir` cannot meet the shape again: always for a plane, on the outer
+    /// side for convex solids (spheres, boxes), never assumed for meshes.
+    #[inline]
+    pub fn cannot_rehit(&self, ng: Vec3, dir: Vec3) -> bool {
+        match self {
+            Shape::Quad(_) => true,
+            Shape::Sphere(_) | Shape::Cuboid(_) => ng.dot(dir) > 0.0,
+            Shape::Mesh(_) => false,
         }
     }
 
