@@ -37,6 +37,11 @@ pub enum Error {
         /// Which evaluation of this estimate (0-based, in evaluation order).
         sample: usize,
     },
+    /// A setting is out of its documented range (named by its field).
+    InvalidSetting {
+        /// The field's name.
+        name: &'static str,
+    },
     /// The estimate itself overflowed (e.g. f ≈ 1e30 with σ ≈ 1e-12 in `f32`).
     NonFiniteEstimate {
         /// Index of the first non-finite output element.
@@ -70,6 +75,7 @@ impl fmt::Display for Error {
                     "objective returned a non-finite value at sample {sample}"
                 )
             }
+            Error::InvalidSetting { name } => write!(f, "setting `{name}` is out of range"),
             Error::NonFiniteEstimate { index } => {
                 write!(
                     f,

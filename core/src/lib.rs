@@ -12,6 +12,7 @@
 //! failure an [`Error`] value, every random number from the caller's `rand_core::Rng`.
 //!
 //! ```
+//! # #[cfg(all(feature = "hvp", feature = "aggregate"))] {
 //! use hodr_core::{Estimator, GradientMethod, HvpMethod, Draws, Workspace};
 //! use rand_xoshiro::{Xoshiro256PlusPlus, rand_core::SeedableRng};
 //!
@@ -31,6 +32,7 @@
 //! let method = HvpMethod::CentralDifference { gradient: GradientMethod::Aggregate, draws: Draws::Common };
 //! let report = est.hvp(method, &mut f, &theta, &[1.0, 0.0], &mut ws, &mut hv)?;
 //! assert_eq!(report.evaluations, 2 * 2 * 256);
+//! # }
 //! # Ok::<(), hodr_core::Error>(())
 //! ```
 //!
@@ -39,11 +41,15 @@
 //! * [`kernel`]: the Gaussian-derivative kernels and normalising constants;
 //! * [`sample`]: inverse CDFs of the sampling densities, and offset placement;
 //! * [`estimate`]: the estimators, behind one [`Estimator`];
+//! * [`optim`]: gradient descent, Adam, Newton, NCG and Newton-CG as step machines, σ
+//!   schedules, budgets, and the paper's method presets;
+//! * [`trace`]: a fixed-memory convergence trace;
 //! * [`Objective`], [`Workspace`], [`Error`].
 //!
 //! ## Features
-//! The minimal build (no default features) has the gradient estimators. `hessian`,
-//! `hvp` and `aggregate` add the rest; all are on by default.
+//! The minimal build (no default features) has the gradient estimators with gradient
+//! descent and Adam. `hessian` (Hessians, Newton), `hvp`, `aggregate` and `cg` (NCG,
+//! Newton-CG; implies `hvp`) add the rest; all are on by default.
 
 #![no_std]
 #![deny(missing_docs)]
@@ -55,8 +61,10 @@ mod error;
 pub mod estimate;
 pub mod kernel;
 mod objective;
+pub mod optim;
 pub mod real;
 pub mod sample;
+pub mod trace;
 mod workspace;
 
 pub use error::Error;

@@ -45,6 +45,23 @@ pub(crate) struct BatchBuffers<'a, T> {
     pub(crate) seeds: &'a mut [NoiseSeed],
     /// Row of the point that last gave a non-finite value, if any.
     pub(crate) failed: Option<usize>,
+    /// Sum and count of the objective values of the current estimate.
+    pub(crate) value_sum: T,
+    pub(crate) value_count: usize,
+}
+
+impl<T: Real> BatchBuffers<'_, T> {
+    /// Starts a new estimate: forgets the failed point and the value tally.
+    pub(crate) fn begin(&mut self) {
+        self.failed = None;
+        self.value_sum = T::ZERO;
+        self.value_count = 0;
+    }
+
+    /// Mean of the objective values of the current estimate, if any.
+    pub(crate) fn mean_value(&self) -> Option<T> {
+        (self.value_count > 0).then(|| self.value_sum / T::from_usize(self.value_count))
+    }
 }
 
 impl<'a, T: Real> Workspace<'a, T> {
@@ -93,6 +110,8 @@ impl<'a, T: Real> Workspace<'a, T> {
                 values,
                 seeds,
                 failed: None,
+                value_sum: T::ZERO,
+                value_count: 0,
             },
             scratch,
         })
@@ -166,6 +185,8 @@ impl<T: Real, const N: usize, const R: usize> FixedWorkspace<T, N, R> {
                 values: &mut self.values,
                 seeds: &mut self.seeds,
                 failed: None,
+                value_sum: T::ZERO,
+                value_count: 0,
             },
             scratch: self.scratch.as_flattened_mut(),
         }

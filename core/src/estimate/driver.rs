@@ -114,6 +114,8 @@ where
                 sample: placement.first_sample + done * rows_per_group + row,
             });
         }
+        buffers.value_sum += buffers.values[..used].iter().fold(T::ZERO, |s, &v| s + v);
+        buffers.value_count += used;
         for k in 0..chunk {
             let values = &buffers.values[k * rows_per_group..(k + 1) * rows_per_group];
             let mut pair = Pair {
@@ -130,7 +132,6 @@ where
         }
         done += chunk;
     }
-    buffers.failed = None;
     Ok(total * rows_per_group)
 }
 
@@ -156,5 +157,7 @@ where
         buffers.failed = Some(0);
         return Err(Error::NonFiniteObjective { sample });
     }
+    buffers.value_sum += value;
+    buffers.value_count += 1;
     Ok(value)
 }

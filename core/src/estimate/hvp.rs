@@ -33,12 +33,14 @@ pub(super) fn central_difference<T: Real, R: Rng, O: Objective<T> + ?Sized>(
     check_vector(n, theta)?;
     check_vector(n, v)?;
     check_len(n, hv.len())?;
+    ws.batch.begin();
     hv.fill(T::ZERO);
     let norm = norm2(v);
     if norm == T::ZERO {
         return Ok(Report {
             evaluations: 0,
             centre_value: None,
+            mean_value: None,
         });
     }
     let sigma = estimator.sigma();
@@ -73,6 +75,7 @@ pub(super) fn central_difference<T: Real, R: Rng, O: Objective<T> + ?Sized>(
     Ok(Report {
         evaluations,
         centre_value: None,
+        mean_value: ws.batch.mean_value(),
     })
 }
 

@@ -151,6 +151,10 @@ pub struct Report<T> {
     pub evaluations: usize,
     /// f(θ) when the estimate evaluated it (the control variate), else `None`.
     pub centre_value: Option<T>,
+    /// Mean of every objective value the estimate saw (`None` if it evaluated nothing).
+    /// For Gaussian sampling an unbiased estimate of f̄(θ); for importance sampling only
+    /// a diagnostic of the loss near θ.
+    pub mean_value: Option<T>,
 }
 
 /// Smoothing width σ, number of antithetic pairs P, and the random stream.
@@ -234,6 +238,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
     ) -> Result<Report<T>, Error> {
         check_vector(ws.dim, theta)?;
         check_len(ws.dim, grad.len())?;
+        ws.batch.begin();
         grad.fill(T::ZERO);
         let evaluations = self.gradient_sum(method, objective, &[theta], T::ONE, ws, grad, 0)?;
         let scale = T::ONE / (self.sigma * T::from_usize(self.pairs));
@@ -241,6 +246,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
         Ok(Report {
             evaluations,
             centre_value: None,
+            mean_value: ws.batch.mean_value(),
         })
     }
 
@@ -260,6 +266,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
         let n = ws.dim;
         check_vector(n, theta)?;
         check_len(n * n, hess.len())?;
+        ws.batch.begin();
         hess.fill(T::ZERO);
         let centre = driver::evaluate_centre(objective, theta, &mut self.rng, &mut ws.batch, 0)?;
         let placement = driver::Placement {
@@ -314,6 +321,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
         Ok(Report {
             evaluations,
             centre_value: Some(centre),
+            mean_value: ws.batch.mean_value(),
         })
     }
 
@@ -376,6 +384,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
         if let Some(g) = grad.as_deref() {
             check_len(n, g.len())?;
         }
+        ws.batch.begin();
         hv.fill(T::ZERO);
         let centre = driver::evaluate_centre(objective, theta, &mut self.rng, &mut ws.batch, 0)?;
         let placement = driver::Placement {
@@ -406,6 +415,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
         Ok(Report {
             evaluations,
             centre_value: Some(centre),
+            mean_value: ws.batch.mean_value(),
         })
     }
 

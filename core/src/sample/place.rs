@@ -17,7 +17,7 @@ pub fn gaussian<T: Real, R: Rng + ?Sized>(rng: &mut R, t: &mut [T]) {
     }
 }
 
-/// t[i] ~ p_G, every other coordinate ~ N₁ (per-element gradient, DESIGN §1.2).
+/// tᵢ ~ p_G, every other coordinate ~ N₁ (per-element gradient, DESIGN §1.2).
 #[inline]
 pub fn gradient_element<T: Real, R: Rng + ?Sized>(rng: &mut R, t: &mut [T], i: usize) {
     for (k, x) in t.iter_mut().enumerate() {
@@ -38,7 +38,7 @@ pub fn gradient_all<T: Real, R: Rng + ?Sized>(rng: &mut R, t: &mut [T]) {
     }
 }
 
-/// t[i] ~ p_D, every other coordinate ~ N₁ (Hessian diagonal element i).
+/// tᵢ ~ p_D, every other coordinate ~ N₁ (Hessian diagonal element i).
 #[cfg(feature = "hessian")]
 #[inline]
 pub fn hessian_diagonal<T: Real, R: Rng + ?Sized>(rng: &mut R, t: &mut [T], i: usize) {
@@ -52,7 +52,7 @@ pub fn hessian_diagonal<T: Real, R: Rng + ?Sized>(rng: &mut R, t: &mut [T], i: u
     }
 }
 
-/// t[i], t[j] ~ p_G independently (i ≠ j), every other coordinate ~ N₁ (Hessian
+/// tᵢ, tⱼ ~ p_G independently (i ≠ j), every other coordinate ~ N₁ (Hessian
 /// off-diagonal element (i, j): ∂ᵢ∂ⱼN factorises into N₁′(tᵢ)·N₁′(tⱼ)).
 #[cfg(feature = "hessian")]
 #[inline]

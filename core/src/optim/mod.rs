@@ -1,0 +1,460 @@
+//! Optimisers driven by the smoothed estimators (DESIGN §1.7).
+//!
+//! An [`Optimiser`] is a step machine: [`Optimiser::step`] performs one iteration and
+//! returns a plain-data [`StepReport`]; the caller owns the clock (no_std has none), any
+//! logging, progress display and checkpoints, and may inspect θ between steps.
+//! [`Optimiser::run`] loops to a [`Termination`].
+//!
+//! | method | per iteration |
+//! |---|---|
+//! | [`GradientDescent`] | θ ← θ − ηĝ |
+//! | [`Adam`] | Adam on ĝ |
+//! | [`Newton`] (`hessian`) | (Ĥ + λI)p = −ĝ by shifted Cholesky, ‖p‖ ≤ Δσ |
+//! | [`Ncg`] (`cg`) | Fletcher–Reeves NCG, Newton–Raphson line search with HVPs |
+//! | [`NewtonCg`] (`cg`) | Steihaug trust-region CG on Ĥp = −ĝ with HVPs |
+//!
+//! σ follows a [`Schedule`] over the [`Budget`]'s progress. Memory is the caller's: θ and
+//! one buffer of [`Method::buffer_len`] floats.
+
+#[cfg(feature = "hessian")]
+mod cholesky;
+mod first_order;
+#[cfg(feature = "cg")]
+mod ncg;
+#[cfg(feature = "hessian")]
+mod newton;
+mod oracle;
+#[cfg(all(feature = "hessian", feature = "aggregate", feature = "cg"))]
+pub mod preset;
+mod schedule;
+#[cfg(feature = "cg")]
+mod steihaug;
+pub(crate) mod vector;
+
+use core::fmt;
+
+use rand_core::Rng;
+
+pub use first_order::{Adam, GradientDescent};
+#[cfg(feature = "cg")]
+pub use ncg::{Curvature, Ncg};
+#[cfg(feature = "hessian")]
+pub use newton::Newton;
+pub use schedule::{Budget, Schedule, Termination};
+#[cfg(feature = "cg")]
+pub use steihaug::NewtonCg;
+
+use crate::error::Error;
+use crate::estimate::Estimator;
+use crate::objective::Objective;
+use crate::real::Real;
+use crate::workspace::Workspace;
+use oracle::Oracle;
+
+/// Which optimiser, with its settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Method<T> {
+    /// Plain gradient descent.
+    GradientDescent(GradientDescent<T>),
+    /// Adam.
+    Adam(Adam<T>),
+    /// Newton with the full estimated Hessian.
+    #[cfg(feature = "hessian")]
+    Newton(Newton<T>),
+    /// Nonlinear conjugate gradient.
+    #[cfg(feature = "cg")]
+    Ncg(Ncg<T>),
+    /// Newton-CG with a Steihaug trust region.
+    #[cfg(feature = "cg")]
+    NewtonCg(NewtonCg<T>),
+}
+
+impl<T: Real> Method<T> {
+    /// Floats of optimiser memory needed in dimension n (besides θ and the workspace).
+    pub fn buffer_len(&self, n: usize) -> usize {
+        // One extra vector keeps θ at the start of the iteration, restored on failure.
+        n + match self {
+            Method::GradientDescent(_) => GradientDescent::<T>::buffer_len(n),
+            Method::Adam(_) => Adam::<T>::buffer_len(n),
+            #[cfg(feature = "hessian")]
+            Method::Newton(_) => Newton::<T>::buffer_len(n),
+            #[cfg(feature = "cg")]
+            Method::Ncg(m) => m.buffer_len(n),
+            #[cfg(feature = "cg")]
+            Method::NewtonCg(_) => NewtonCg::<T>::buffer_len(n),
+        }
+    }
+
+    /// True when every estimate of an iteration reuses the same samples.
+    pub fn reuses_samples(&self) -> bool {
+        match self {
+            #[cfg(feature = "cg")]
+            Method::Ncg(m) => m.reuse_samples,
+            #[cfg(feature = "cg")]
+            Method::NewtonCg(m) => m.reuse_samples,
+            _ => false,
+        }
+    }
+
+    fn validate(&self) -> Result<(), Error> {
+        match self {
+            Method::GradientDescent(m) => m.validate(),
+            Method::Adam(m) => m.validate(),
+            #[cfg(feature = "hessian")]
+            Method::Newton(m) => m.validate(),
+            #[cfg(feature = "cg")]
+            Method::Ncg(m) => m.validate(),
+            #[cfg(feature = "cg")]
+            Method::NewtonCg(m) => m.validate(),
+        }
+    }
+}
+
+/// What one iteration did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepReport<T> {
+    /// 1-based number of this iteration.
+    pub iteration: usize,
+    /// Objective evaluations used so far (all iterations).
+    pub evaluations: usize,
+    /// σ used in this iteration.
+    pub sigma: T,
+    /// Mean objective value of this iteration's last estimate: an estimate of the loss
+    /// near θ (unbiased for f̄ only with Gaussian sampling).
+    pub loss: Option<T>,
+    /// ‖ĝ‖ at the start of the iteration.
+    pub gradient_norm: T,
+    /// Total distance θ moved in this iteration.
+    pub step_length: T,
+    /// The latest dᵀĤd/dᵀd seen (NCG, Newton-CG).
+    pub curvature: Option<T>,
+    /// The diagonal shift λ of the Newton solve.
+    pub shift: Option<T>,
+    /// The trust radius Δ·σ in force (0 for first-order methods).
+    pub trust_radius: T,
+    /// NCG restarted its direction.
+    pub restarted: bool,
+    /// A non-positive-curvature (or failed-factorisation) fallback step was taken.
+    pub fallback: bool,
+    /// Set when this iteration ended the run.
+    pub termination: Option<Termination>,
+}
+
+/// The per-method part of a step's result.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Outcome<T> {
+    pub gradient_norm: T,
+    pub step_length: T,
+    pub curvature: Option<T>,
+    pub shift: Option<T>,
+    pub restarted: bool,
+    pub fallback: bool,
+    pub converged: bool,
+}
+
+impl<T: Real> Default for Outcome<T> {
+    fn default() -> Self {
+        Outcome {
+            gradient_norm: T::ZERO,
+            step_length: T::ZERO,
+            curvature: None,
+            shift: None,
+            restarted: false,
+            fallback: false,
+            converged: false,
+        }
+    }
+}
+
+/// An iteration failed; θ is back at its value from the start of that iteration.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Failed {
+    /// The 1-based iteration that failed.
+    pub iteration: usize,
+    /// What failed.
+    pub error: Error,
+}
+
+impl fmt::Display for Failed {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "iteration {} failed: {}", self.iteration, self.error)
+    }
+}
+
+impl core::error::Error for Failed {
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
+        Some(&self.error)
+    }
+}
+
+/// Optimiser memory between iterations.
+#[derive(Clone, Copy, Debug)]
+struct State<T> {
+    iteration: usize,
+    evaluations: usize,
+    adam_powers: (T, T),
+    #[cfg(feature = "cg")]
+    ncg: ncg::NcgState<T>,
+    /// Newton-CG's running mean of positive curvatures.
+    #[cfg(feature = "cg")]
+    mean_curvature: Option<T>,
+    finished: Option<Termination>,
+}
+
+/// A resumable optimisation of θ (borrowed, updated in place).
+pub struct Optimiser<'b, T, R> {
+    method: Method<T>,
+    schedule: Schedule<T>,
+    budget: Budget<T>,
+    estimator: Estimator<T, R>,
+    theta: &'b mut [T],
+    buffer: &'b mut [T],
+    state: State<T>,
+}
+
+impl<T: Real, R: Rng + Clone> fmt::Debug for Optimiser<'_, T, R> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Optimiser")
+            .field("method", &self.method)
+            .field("iteration", &self.state.iteration)
+            .field("evaluations", &self.state.evaluations)
+            .field("theta", &self.theta)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
+    /// An optimiser starting at `theta` (updated in place), with `buffer` of at least
+    /// [`Method::buffer_len`] floats. The estimator's σ is set by the schedule; its
+    /// number of pairs and its RNG are used as they are.
+    ///
+    /// # Errors
+    /// [`Error::InvalidSetting`] naming the offending setting, [`Error::InvalidSigma`]
+    /// for a bad schedule, [`Error::WorkspaceTooSmall`] for a short buffer,
+    /// [`Error::NonFiniteInput`] for a non-finite start.
+    pub fn new(
+        method: Method<T>,
+        schedule: Schedule<T>,
+        budget: Budget<T>,
+        estimator: Estimator<T, R>,
+        theta: &'b mut [T],
+        buffer: &'b mut [T],
+    ) -> Result<Self, Error> {
+        method.validate()?;
+        schedule.validate()?;
+        budget.validate()?;
+        let n = theta.len();
+        if n == 0 {
+            return Err(Error::DimensionMismatch {
+                expected: 1,
+                found: 0,
+            });
+        }
+        if let Some(index) = theta.iter().position(|x| !x.is_finite()) {
+            return Err(Error::NonFiniteInput { index });
+        }
+        let needed = method.buffer_len(n);
+        if buffer.len() < needed {
+            return Err(Error::WorkspaceTooSmall {
+                needed,
+                available: buffer.len(),
+            });
+        }
+        buffer[..needed].fill(T::ZERO);
+        Ok(Optimiser {
+            method,
+            schedule,
+            budget,
+            estimator,
+            theta,
+            buffer,
+            state: State {
+                iteration: 0,
+                evaluations: 0,
+                adam_powers: (T::ONE, T::ONE),
+                #[cfg(feature = "cg")]
+                ncg: ncg::NcgState::default(),
+                #[cfg(feature = "cg")]
+                mean_curvature: None,
+                finished: None,
+            },
+        })
+    }
+
+    /// The current parameters (after a failure: those from before the failed iteration).
+    pub fn theta(&self) -> &[T] {
+        self.theta
+    }
+
+    /// Iterations completed.
+    pub fn iteration(&self) -> usize {
+        self.state.iteration
+    }
+
+    /// Objective evaluations used.
+    pub fn evaluations(&self) -> usize {
+        self.state.evaluations
+    }
+
+    /// Why the run ended, once it has.
+    pub fn termination(&self) -> Option<Termination> {
+        self.state.finished
+    }
+
+    /// The method and its settings.
+    pub fn method(&self) -> &Method<T> {
+        &self.method
+    }
+
+    /// The estimator (σ, pairs, RNG).
+    pub fn estimator(&self) -> &Estimator<T, R> {
+        &self.estimator
+    }
+
+    /// One iteration. `now` is the caller's clock in the units of
+    /// [`Budget::max_time`] (pass 0 when there is no time limit).
+    ///
+    /// Returns `Ok(None)` without evaluating anything once the run has ended (see
+    /// [`Optimiser::termination`]).
+    ///
+    /// # Errors
+    /// [`Failed`] naming the iteration when an estimate fails (a non-finite objective
+    /// value, an overflowing estimate); θ is restored to its value at the start of the
+    /// iteration, and further steps may be attempted.
+    pub fn step<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        ws: &mut Workspace<'_, T>,
+        now: T,
+    ) -> Result<Option<StepReport<T>>, Failed> {
+        if self.state.finished.is_some() {
+            return Ok(None);
+        }
+        let st = &mut self.state;
+        if let Some(t) = self.budget.exhausted(st.iteration, st.evaluations, now) {
+            st.finished = Some(t);
+            return Ok(None);
+        }
+        let iteration = st.iteration + 1;
+        let fail = |error| Failed { iteration, error };
+        let n = self.theta.len();
+        if ws.dim() != n {
+            return Err(fail(Error::DimensionMismatch {
+                expected: n,
+                found: ws.dim(),
+            }));
+        }
+        let sigma = self
+            .schedule
+            .sigma(self.budget.progress(st.iteration, st.evaluations, now));
+        self.estimator.set_sigma(sigma).map_err(fail)?;
+
+        let (saved, buf) = self.buffer.split_at_mut(n);
+        saved.copy_from_slice(self.theta);
+        let snapshot = self
+            .method
+            .reuses_samples()
+            .then(|| self.estimator.rng_mut().clone());
+        let mut oracle = Oracle {
+            estimator: &mut self.estimator,
+            objective,
+            ws,
+            evaluations: 0,
+            loss: None,
+            snapshot,
+        };
+        let tol = self.budget.gradient_tolerance;
+        let theta = &mut *self.theta;
+        let (result, trust) = match &self.method {
+            Method::GradientDescent(m) => (m.step(&mut oracle, theta, buf, tol), T::ZERO),
+            Method::Adam(m) => (
+                m.step(&mut oracle, theta, buf, &mut st.adam_powers, tol),
+                T::ZERO,
+            ),
+            #[cfg(feature = "hessian")]
+            Method::Newton(m) => (m.step(&mut oracle, theta, buf, tol), m.trust_radius * sigma),
+            #[cfg(feature = "cg")]
+            Method::Ncg(m) => (
+                m.step(&mut oracle, theta, buf, &mut st.ncg, tol),
+                m.trust_radius * sigma,
+            ),
+            #[cfg(feature = "cg")]
+            Method::NewtonCg(m) => (
+                m.step(&mut oracle, theta, buf, &mut st.mean_curvature, tol),
+                m.trust_radius * sigma,
+            ),
+        };
+        st.evaluations += oracle.evaluations;
+        let loss = oracle.loss;
+        if self.method.reuses_samples() {
+            // Fresh samples next iteration: step the stream past this iteration's draws.
+            let _ = self.estimator.rng_mut().next_u64();
+        }
+        let outcome = match result {
+            Ok(o) => o,
+            Err(error) => {
+                theta.copy_from_slice(saved);
+                return Err(fail(error));
+            }
+        };
+        if let Some(index) = theta.iter().position(|x| !x.is_finite()) {
+            theta.copy_from_slice(saved);
+            return Err(fail(Error::NonFiniteEstimate { index }));
+        }
+        st.iteration = iteration;
+        let termination = if outcome.converged {
+            Some(Termination::Converged)
+        } else {
+            self.budget.exhausted(st.iteration, st.evaluations, now)
+        };
+        // A budget reached after this step is recorded at the next call; convergence now.
+        if outcome.converged {
+            st.finished = termination;
+        }
+        Ok(Some(StepReport {
+            iteration,
+            evaluations: st.evaluations,
+            sigma,
+            loss,
+            gradient_norm: outcome.gradient_norm,
+            step_length: outcome.step_length,
+            curvature: outcome.curvature,
+            shift: outcome.shift,
+            trust_radius: trust,
+            restarted: outcome.restarted,
+            fallback: outcome.fallback,
+            termination,
+        }))
+    }
+
+    /// Steps until the run ends, calling `observe` after every iteration. `clock` gives
+    /// the caller's time in the units of [`Budget::max_time`].
+    ///
+    /// # Errors
+    /// The first [`Failed`] iteration; θ keeps the last good parameters.
+    pub fn run<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        ws: &mut Workspace<'_, T>,
+        mut clock: impl FnMut() -> T,
+        mut observe: impl FnMut(&StepReport<T>, &[T]),
+    ) -> Result<Termination, Failed> {
+        loop {
+            match self.step(objective, ws, clock())? {
+                Some(report) => observe(&report, self.theta),
+                None => {
+                    return Ok(self.state.finished.unwrap_or(Termination::MaxIterations));
+                }
+            }
+        }
+    }
+}
+
+fn check_positive<T: Real>(x: T, name: &'static str) -> Result<(), Error> {
+    if x.is_finite() && x > T::ZERO {
+        Ok(())
+    } else {
+        Err(Error::InvalidSetting { name })
+    }
+}

@@ -1,0 +1,106 @@
+//! The estimators as seen by an optimiser: one place that counts evaluations and keeps
+//! the latest loss estimate.
+
+use rand_core::Rng;
+
+use crate::error::Error;
+#[cfg(feature = "hessian")]
+use crate::estimate::HessianMethod;
+#[cfg(feature = "cg")]
+use crate::estimate::HvpMethod;
+use crate::estimate::{Estimator, GradientMethod};
+use crate::objective::Objective;
+use crate::real::Real;
+use crate::workspace::Workspace;
+
+pub(crate) struct Oracle<'a, 'w, T, R, O: ?Sized> {
+    pub estimator: &'a mut Estimator<T, R>,
+    pub objective: &'a mut O,
+    pub ws: &'a mut Workspace<'w, T>,
+    /// Evaluations used by this iteration so far.
+    pub evaluations: usize,
+    /// The latest mean objective value seen (an estimate of the loss near θ).
+    pub loss: Option<T>,
+    /// With sample reuse: the RNG state at the start of the iteration, restored before
+    /// every estimate so that all of them draw the same offsets and noise seeds.
+    pub snapshot: Option<R>,
+}
+
+impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> {
+    /// Rewinds the estimator's random stream to the iteration's snapshot, if reusing.
+    fn rewind(&mut self) {
+        if let Some(s) = &self.snapshot {
+            *self.estimator.rng_mut() = s.clone();
+        }
+    }
+
+    #[cfg(any(feature = "hessian", feature = "cg"))]
+    pub fn sigma(&self) -> T {
+        self.estimator.sigma()
+    }
+
+    pub fn gradient(
+        &mut self,
+        method: GradientMethod,
+        theta: &[T],
+        out: &mut [T],
+    ) -> Result<(), Error> {
+        self.rewind();
+        let r = self
+            .estimator
+            .gradient(method, self.objective, theta, self.ws, out)?;
+        self.evaluations += r.evaluations;
+        self.loss = r.mean_value.or(self.loss);
+        Ok(())
+    }
+
+    #[cfg(feature = "cg")]
+    pub fn hvp(
+        &mut self,
+        method: HvpMethod,
+        theta: &[T],
+        v: &[T],
+        out: &mut [T],
+    ) -> Result<(), Error> {
+        self.rewind();
+        let r = self
+            .estimator
+            .hvp(method, self.objective, theta, v, self.ws, out)?;
+        self.evaluations += r.evaluations;
+        self.loss = r.mean_value.or(self.loss);
+        Ok(())
+    }
+
+    #[cfg(feature = "cg")]
+    pub fn gradient_and_hvp(
+        &mut self,
+        theta: &[T],
+        v: &[T],
+        grad: &mut [T],
+        hv: &mut [T],
+    ) -> Result<(), Error> {
+        self.rewind();
+        let r = self
+            .estimator
+            .gradient_and_hvp(self.objective, theta, v, self.ws, grad, hv)?;
+        self.evaluations += r.evaluations;
+        self.loss = r.centre_value.or(self.loss);
+        Ok(())
+    }
+
+    #[cfg(feature = "hessian")]
+    pub fn hessian(
+        &mut self,
+        method: HessianMethod,
+        theta: &[T],
+        out: &mut [T],
+    ) -> Result<(), Error> {
+        self.rewind();
+        let r = self
+            .estimator
+            .hessian(method, self.objective, theta, self.ws, out)?;
+        self.evaluations += r.evaluations;
+        self.loss = r.centre_value.or(self.loss);
+        Ok(())
+    }
+}

@@ -1,0 +1,191 @@
+//! The paper's methods (and ours) as ready-made optimiser settings.
+//!
+//! | preset | optimiser | gradient | curvature |
+//! |---|---|---|---|
+//! | `Fr22` | Adam | FR22 | — |
+//! | `OurG` | Adam | per-element IS | — |
+//! | `OurH` | NCG | per-element IS | per-element IS Hessian |
+//! | `OurHNewton` | Newton | per-element IS | per-element IS Hessian |
+//! | `OurHvp` | NCG | per-element IS | central-difference HVP of per-element gradients |
+//! | `OurHvpa` | NCG | aggregate IS | central-difference HVP of aggregate gradients |
+//! | `NcgKernel` | NCG | Gaussian | kernel HVP, samples shared with the gradient |
+//! | `NewtonCgKernel` | Newton-CG (Steihaug) | Gaussian | kernel HVP |
+//! | `NewtonCgAggregate` | Newton-CG (Steihaug), one sample set per iteration | aggregate IS | CRN central-difference HVP |
+//!
+//! The paper's HVP presets draw the two gradients of a central difference independently
+//! (as its code does); [`Hyper::common_random_numbers`] switches them to common random
+//! numbers. Our additions always use common random numbers.
+
+use super::{Adam, Curvature, Method, Ncg, Newton, NewtonCg, Schedule};
+use crate::estimate::{Draws, GradientMethod, HessianMethod, HvpMethod};
+use crate::real::Real;
+
+/// Per-task hyper-parameters (DESIGN §3: pairs / σ start → end / trust region /
+/// line-search iterations / recompute; Adam's learning rate).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hyper<T> {
+    /// Antithetic pairs per estimate (per element for per-element estimators).
+    pub pairs: usize,
+    /// σ at the start of the run.
+    pub sigma_start: T,
+    /// σ at the end of the budget.
+    pub sigma_end: T,
+    /// Δ, in units of σ.
+    pub trust_radius: T,
+    /// NCG line-search steps.
+    pub line_search_iterations: usize,
+    /// NCG line-search tolerance on α²·dᵀd. Default: 1e-3 (the paper's BOX2 value).
+    pub line_search_tolerance: T,
+    /// NCG restart period.
+    pub recompute: usize,
+    /// Adam's learning rate.
+    pub learning_rate: T,
+    /// Central-difference HVPs of the paper's presets with common random numbers.
+    /// Default: `false` (the paper's choice).
+    pub common_random_numbers: bool,
+}
+
+/// A named method.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Preset {
+    /// Adam + FR22 gradient (the baseline).
+    Fr22,
+    /// Adam + per-element IS gradient.
+    OurG,
+    /// NCG + per-element IS gradient and Hessian.
+    OurH,
+    /// Newton + per-element IS gradient and Hessian.
+    OurHNewton,
+    /// NCG + per-element IS gradient + central-difference HVP.
+    OurHvp,
+    /// NCG + aggregate gradient + aggregate central-difference HVP.
+    OurHvpa,
+    /// NCG + Gaussian gradient + kernel HVP from shared samples.
+    NcgKernel,
+    /// Newton-CG (Steihaug) + Gaussian gradient + kernel HVP.
+    NewtonCgKernel,
+    /// Newton-CG (Steihaug) + aggregate gradient + CRN aggregate HVP, every estimate of
+    /// an iteration from the same samples (up to 10 inner steps).
+    NewtonCgAggregate,
+}
+
+impl Preset {
+    /// Every preset, the paper's first.
+    pub const ALL: [Preset; 9] = [
+        Preset::Fr22,
+        Preset::OurG,
+        Preset::OurH,
+        Preset::OurHNewton,
+        Preset::OurHvp,
+        Preset::OurHvpa,
+        Preset::NcgKernel,
+        Preset::NewtonCgKernel,
+        Preset::NewtonCgAggregate,
+    ];
+
+    /// The name used in reports and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::Fr22 => "FR22",
+            Preset::OurG => "OurG",
+            Preset::OurH => "OurH",
+            Preset::OurHNewton => "OurH-Newton",
+            Preset::OurHvp => "OurHVP",
+            Preset::OurHvpa => "OurHVPA",
+            Preset::NcgKernel => "NCG-kernel",
+            Preset::NewtonCgKernel => "NewtonCG-kernel",
+            Preset::NewtonCgAggregate => "NewtonCG-A",
+        }
+    }
+
+    /// The preset with this name (case-insensitive), if any.
+    pub fn from_name(name: &str) -> Option<Preset> {
+        Preset::ALL
+            .into_iter()
+            .find(|p| p.name().eq_ignore_ascii_case(name))
+    }
+
+    /// True for the first-order presets (Adam).
+    pub fn is_first_order(self) -> bool {
+        matches!(self, Preset::Fr22 | Preset::OurG)
+    }
+
+    /// The optimiser settings for these hyper-parameters.
+    pub fn method<T: Real>(self, h: &Hyper<T>) -> Method<T> {
+        let paper_draws = if h.common_random_numbers {
+            Draws::Common
+        } else {
+            Draws::Independent
+        };
+        let ncg = |gradient, curvature| {
+            Method::Ncg(Ncg {
+                gradient,
+                curvature,
+                trust_radius: h.trust_radius,
+                line_search_iterations: h.line_search_iterations,
+                line_search_tolerance: h.line_search_tolerance,
+                recompute: h.recompute,
+                reuse_samples: false,
+            })
+        };
+        let newton_cg = |gradient, hvp| {
+            Method::NewtonCg(NewtonCg {
+                gradient,
+                hvp,
+                trust_radius: h.trust_radius,
+                max_inner: 3,
+                inner_tolerance: T::from_f64(0.1),
+                reuse_samples: false,
+            })
+        };
+        match self {
+            Preset::Fr22 => Method::Adam(Adam::new(GradientMethod::Fr22, h.learning_rate)),
+            Preset::OurG => Method::Adam(Adam::new(GradientMethod::PerElement, h.learning_rate)),
+            Preset::OurH => ncg(
+                GradientMethod::PerElement,
+                Curvature::Hessian(HessianMethod::PerElement),
+            ),
+            Preset::OurHNewton => Method::Newton(Newton {
+                gradient: GradientMethod::PerElement,
+                hessian: HessianMethod::PerElement,
+                trust_radius: h.trust_radius,
+            }),
+            Preset::OurHvp => ncg(
+                GradientMethod::PerElement,
+                Curvature::Hvp(HvpMethod::CentralDifference {
+                    gradient: GradientMethod::PerElement,
+                    draws: paper_draws,
+                }),
+            ),
+            Preset::OurHvpa => ncg(
+                GradientMethod::Aggregate,
+                Curvature::Hvp(HvpMethod::CentralDifference {
+                    gradient: GradientMethod::Aggregate,
+                    draws: paper_draws,
+                }),
+            ),
+            Preset::NcgKernel => ncg(GradientMethod::Gaussian, Curvature::Hvp(HvpMethod::Kernel)),
+            Preset::NewtonCgKernel => newton_cg(GradientMethod::Gaussian, HvpMethod::Kernel),
+            Preset::NewtonCgAggregate => Method::NewtonCg(NewtonCg {
+                gradient: GradientMethod::Aggregate,
+                hvp: HvpMethod::CentralDifference {
+                    gradient: GradientMethod::Aggregate,
+                    draws: Draws::Common,
+                },
+                trust_radius: h.trust_radius,
+                max_inner: 3,
+                inner_tolerance: T::from_f64(0.1),
+                reuse_samples: true,
+            }),
+        }
+    }
+
+    /// The linear σ schedule of these hyper-parameters.
+    pub fn schedule<T: Real>(self, h: &Hyper<T>) -> Schedule<T> {
+        Schedule::Linear {
+            start: h.sigma_start,
+            end: h.sigma_end,
+        }
+    }
+}

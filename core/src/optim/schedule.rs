@@ -1,0 +1,193 @@
+//! The smoothing schedule σ(progress) and the budgets that define progress.
+
+use crate::error::Error;
+use crate::real::Real;
+
+/// How σ changes over the run. Progress p ∈ [0, 1] is the largest used fraction of the
+/// [`Budget`]'s iteration, evaluation and time limits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Schedule<T> {
+    /// σ fixed.
+    Constant(T),
+    /// σ = start + (end − start)·p: the paper's linear annealing.
+    Linear {
+        /// σ at p = 0.
+        start: T,
+        /// σ at p = 1.
+        end: T,
+    },
+}
+
+impl<T: Real> Schedule<T> {
+    /// σ at progress p (clamped to [0, 1]).
+    pub fn sigma(&self, progress: T) -> T {
+        match *self {
+            Schedule::Constant(s) => s,
+            Schedule::Linear { start, end } => {
+                let p = progress.max(T::ZERO).min(T::ONE);
+                start + (end - start) * p
+            }
+        }
+    }
+
+    pub(crate) fn validate(&self) -> Result<(), Error> {
+        let ok = |s: T| s.is_finite() && s > T::ZERO;
+        let valid = match *self {
+            Schedule::Constant(s) => ok(s),
+            Schedule::Linear { start, end } => ok(start) && ok(end),
+        };
+        if valid {
+            Ok(())
+        } else {
+            Err(Error::InvalidSigma)
+        }
+    }
+}
+
+/// When to stop. Limits are checked between iterations, so the last iteration may
+/// overrun the evaluation limit by one iteration's worth.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Budget<T> {
+    /// Stop after this many iterations. Default: `None`.
+    pub max_iterations: Option<usize>,
+    /// Stop once this many objective evaluations are used. Default: `None`.
+    pub max_evaluations: Option<usize>,
+    /// Stop once the caller's clock (the `now` passed to each step, in the caller's
+    /// units) reaches this. Default: `None`.
+    pub max_time: Option<T>,
+    /// Stop when the estimated gradient norm falls to this or below. Default: `None`.
+    pub gradient_tolerance: Option<T>,
+}
+
+impl<T: Real> Default for Budget<T> {
+    fn default() -> Self {
+        Budget {
+            max_iterations: None,
+            max_evaluations: None,
+            max_time: None,
+            gradient_tolerance: None,
+        }
+    }
+}
+
+impl<T: Real> Budget<T> {
+    /// A budget of `iterations` iterations and nothing else.
+    pub fn iterations(iterations: usize) -> Self {
+        Budget {
+            max_iterations: Some(iterations),
+            ..Self::default()
+        }
+    }
+
+    /// A budget of `evaluations` objective evaluations and nothing else.
+    pub fn evaluations(evaluations: usize) -> Self {
+        Budget {
+            max_evaluations: Some(evaluations),
+            ..Self::default()
+        }
+    }
+
+    /// Progress p ∈ [0, 1]: the largest used fraction of the limits that are set.
+    pub fn progress(&self, iterations: usize, evaluations: usize, now: T) -> T {
+        let mut p = T::ZERO;
+        if let Some(m) = self.max_iterations {
+            p = p.max(T::from_usize(iterations) / T::from_usize(m.max(1)));
+        }
+        if let Some(m) = self.max_evaluations {
+            p = p.max(T::from_usize(evaluations) / T::from_usize(m.max(1)));
+        }
+        if let Some(m) = self.max_time {
+            p = p.max(now / m);
+        }
+        p.max(T::ZERO).min(T::ONE)
+    }
+
+    /// Which limit is reached, if any.
+    pub fn exhausted(&self, iterations: usize, evaluations: usize, now: T) -> Option<Termination> {
+        if self.max_iterations.is_some_and(|m| iterations >= m) {
+            Some(Termination::MaxIterations)
+        } else if self.max_evaluations.is_some_and(|m| evaluations >= m) {
+            Some(Termination::MaxEvaluations)
+        } else if self.max_time.is_some_and(|m| now >= m) {
+            Some(Termination::TimeLimit)
+        } else {
+            None
+        }
+    }
+
+    pub(crate) fn validate(&self) -> Result<(), Error> {
+        if self.max_iterations.is_none()
+            && self.max_evaluations.is_none()
+            && self.max_time.is_none()
+        {
+            return Err(Error::InvalidSetting { name: "budget" });
+        }
+        if self
+            .max_time
+            .is_some_and(|t| !(t.is_finite() && t > T::ZERO))
+        {
+            return Err(Error::InvalidSetting { name: "max_time" });
+        }
+        if self
+            .gradient_tolerance
+            .is_some_and(|t| !(t.is_finite() && t >= T::ZERO))
+        {
+            return Err(Error::InvalidSetting {
+                name: "gradient_tolerance",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Why a run ended (an outcome, not an error).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Termination {
+    /// The estimated gradient norm reached the tolerance.
+    Converged,
+    /// The iteration limit was reached.
+    MaxIterations,
+    /// The evaluation limit was reached.
+    MaxEvaluations,
+    /// The caller's clock passed the time limit.
+    TimeLimit,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn linear_schedule_and_progress() {
+        let s = Schedule::Linear {
+            start: 1.5,
+            end: 0.01,
+        };
+        assert_eq!(s.sigma(0.0), 1.5);
+        assert!((s.sigma(1.0) - 0.01).abs() < 1e-15);
+        assert_eq!(s.sigma(2.0), s.sigma(1.0));
+        let b = Budget {
+            max_iterations: Some(10),
+            max_evaluations: Some(1000),
+            ..Budget::default()
+        };
+        assert_eq!(b.progress(5, 100, 0.0), 0.5);
+        assert_eq!(b.progress(1, 800, 0.0), 0.8);
+        assert_eq!(b.exhausted(10, 0, 0.0), Some(Termination::MaxIterations));
+        assert_eq!(b.exhausted(3, 1000, 0.0), Some(Termination::MaxEvaluations));
+        assert_eq!(b.exhausted(3, 10, 0.0), None);
+        assert_eq!(
+            Budget::<f64>::default().validate(),
+            Err(Error::InvalidSetting { name: "budget" })
+        );
+        assert_eq!(
+            Schedule::Linear {
+                start: 1.0,
+                end: 0.0
+            }
+            .validate(),
+            Err(Error::InvalidSigma)
+        );
+    }
+}

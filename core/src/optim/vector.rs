@@ -1,0 +1,86 @@
+//! Small dense vector helpers for the optimisers.
+
+// The curvature-based optimisers (feature `cg`) use all of them; smaller builds some.
+#![cfg_attr(not(feature = "cg"), allow(dead_code))]
+
+use crate::real::Real;
+
+/// xᵀy.
+#[inline]
+pub(crate) fn dot<T: Real>(x: &[T], y: &[T]) -> T {
+    x.iter().zip(y).fold(T::ZERO, |s, (&a, &b)| s + a * b)
+}
+
+/// ‖x‖₂, scaled by max |xᵢ| so that it neither overflows nor underflows.
+pub(crate) fn norm<T: Real>(x: &[T]) -> T {
+    let big = x.iter().fold(T::ZERO, |m, &v| m.max(v.abs()));
+    if big == T::ZERO || !big.is_finite() {
+        return big;
+    }
+    big * x.iter().fold(T::ZERO, |s, &v| s + (v / big).sq()).sqrt()
+}
+
+/// y ← y + a·x.
+#[inline]
+pub(crate) fn axpy<T: Real>(a: T, x: &[T], y: &mut [T]) {
+    for (yi, &xi) in y.iter_mut().zip(x) {
+        *yi += a * xi;
+    }
+}
+
+/// ‖x − y‖₂.
+pub(crate) fn distance<T: Real>(x: &[T], y: &[T]) -> T {
+    let big = x
+        .iter()
+        .zip(y)
+        .fold(T::ZERO, |m, (&a, &b)| m.max((a - b).abs()));
+    if big == T::ZERO || !big.is_finite() {
+        return big;
+    }
+    big * x
+        .iter()
+        .zip(y)
+        .fold(T::ZERO, |s, (&a, &b)| s + ((a - b) / big).sq())
+        .sqrt()
+}
+
+/// The τ ≥ 0 with ‖z + τd‖ = Δ, for ‖z‖ ≤ Δ and d ≠ 0 (the trust-region boundary).
+/// Uses the cancellation-free root of aτ² + bτ + c = 0 with c ≤ 0.
+pub(crate) fn to_boundary<T: Real>(z: &[T], d: &[T], radius: T) -> T {
+    let a = dot(d, d);
+    if a == T::ZERO {
+        return T::ZERO;
+    }
+    let b = T::TWO * dot(z, d);
+    let c = (dot(z, z) - radius.sq()).min(T::ZERO);
+    let disc = (b.sq() - T::from_f64(4.0) * a * c).max(T::ZERO).sqrt();
+    if b <= T::ZERO {
+        (disc - b) / (T::TWO * a)
+    } else {
+        // τ = 2c/(−b − √disc), the same root without subtracting near-equal numbers.
+        let den = -b - disc;
+        if den == T::ZERO {
+            T::ZERO
+        } else {
+            T::TWO * c / den
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn boundary_step_lands_on_the_sphere() {
+        let z = [0.3, -0.2];
+        for d in [[1.0, 0.5], [-1.0, 0.1], [0.0, -2.0]] {
+            let tau = to_boundary(&z, &d, 1.5);
+            let p = [z[0] + tau * d[0], z[1] + tau * d[1]];
+            assert!(tau >= 0.0);
+            assert!((norm(&p) - 1.5).abs() < 1e-12);
+        }
+        assert!((norm(&[3e200f64, 4e200]) / 5e200 - 1.0).abs() < 1e-15);
+        assert!((norm(&[3e-200f64, 4e-200]) / 5e-200 - 1.0).abs() < 1e-15);
+    }
+}

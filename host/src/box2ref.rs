@@ -1,0 +1,185 @@
+//! BOX2-REF: the paper's own BOX2 renderer, reproduced exactly (DESIGN §3).
+//!
+//! A 500×500 single-channel image, pixel (row r, column c). θ = (pₓ, p_y) in pixels, each
+//! clamped to [50, 450]. Before a vertical flip the square is
+//! J(r, c) = clamp(1 − 2·(|(p_y − r)/50|¹⁰ + |(c − pₓ)/50|¹⁰), 0, 1), and the image is
+//! I(r, c) = J(499 − r, c). Loss = mean over all 250 000 pixels of (I_θ − I_θ*)², with
+//! θ* = (150, 150); on the plateau (no overlap) it is 0.0520089.
+//!
+//! The flip permutes rows, so the loss equals the mean of (J_θ − J_θ*)². Only pixels in
+//! the support of either square can differ from zero: J > 0 needs both
+//! |p_y − r| < 50·2^{−1/10} and |c − pₓ| < 50·2^{−1/10} (≈ 46.65 px). An evaluation visits
+//! the two squares' bounding boxes (≤ 94×94 pixels each), not 250 000 pixels; with no
+//! overlap the target's part is a precomputed sum.
+
+use hodr_core::{NoiseSeed, Objective};
+
+/// Image side in pixels.
+pub const SIZE: usize = 500;
+/// The target θ* = (pₓ, p_y).
+pub const TARGET: [f64; 2] = [150.0, 150.0];
+/// The square's half-size parameter, pixels.
+const HALF: f64 = 50.0;
+/// Parameters are clamped to [CLAMP_LO, CLAMP_HI] before drawing.
+const CLAMP_LO: f64 = 50.0;
+const CLAMP_HI: f64 = 450.0;
+
+/// The BOX2-REF objective.
+#[derive(Clone, Debug)]
+pub struct Box2Ref {
+    target: [f64; 2],
+    /// Σ J_θ*² over the image.
+    target_energy: f64,
+}
+
+impl Default for Box2Ref {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The 1-D factor |d/50|¹⁰ of the square's profile.
+#[inline]
+fn tenth(d: f64) -> f64 {
+    let x = (d / HALF).powi(2);
+    let x4 = x * x;
+    x4 * x4 * x
+}
+
+/// Half-width of the support: 50·2^{−1/10}.
+fn support() -> f64 {
+    HALF * 2f64.powf(-0.1)
+}
+
+/// Inclusive pixel range [lo, hi] within 0..SIZE whose distance to `centre` is below
+/// the support half-width.
+fn range(centre: f64) -> (usize, usize) {
+    let s = support();
+    let lo = (centre - s).ceil().max(0.0) as usize;
+    let hi = ((centre + s).floor().max(0.0) as usize).min(SIZE - 1);
+    (lo, hi)
+}
+
+impl Box2Ref {
+    /// The task with θ* = (150, 150).
+    pub fn new() -> Self {
+        let target = TARGET;
+        let mut energy = 0.0;
+        let (r0, r1) = range(target[1]);
+        let (c0, c1) = range(target[0]);
+        for r in r0..=r1 {
+            for c in c0..=c1 {
+                energy += value(target, r, c).powi(2);
+            }
+        }
+        Box2Ref {
+            target,
+            target_energy: energy,
+        }
+    }
+
+    /// The loss at θ (any finite θ; coordinates are clamped as in the paper).
+    pub fn loss(&self, theta: &[f64]) -> f64 {
+        let p = [
+            theta[0].clamp(CLAMP_LO, CLAMP_HI),
+            theta[1].clamp(CLAMP_LO, CLAMP_HI),
+        ];
+        // Σ (J_θ − J*)² = Σ_{box θ} (J_θ − J*)² + Σ_{box* ∖ box θ} J*², summed exactly (no
+        // cancellation against the precomputed energy, so the loss is 0 at θ*).
+        let (r0, r1) = range(p[1]);
+        let (c0, c1) = range(p[0]);
+        let mut sum = 0.0;
+        for r in r0..=r1 {
+            for c in c0..=c1 {
+                sum += (value(p, r, c) - value(self.target, r, c)).powi(2);
+            }
+        }
+        let (t0, t1) = range(self.target[1]);
+        let (u0, u1) = range(self.target[0]);
+        if r1 < t0 || r0 > t1 || c1 < u0 || c0 > u1 {
+            sum += self.target_energy;
+        } else {
+            for r in t0..=t1 {
+                for c in u0..=u1 {
+                    if !(r0..=r1).contains(&r) || !(c0..=c1).contains(&c) {
+                        sum += value(self.target, r, c).powi(2);
+                    }
+                }
+            }
+        }
+        sum / (SIZE * SIZE) as f64
+    }
+
+    /// The full 500×500 image I_θ (with the flip), row-major, for display.
+    pub fn render(&self, theta: &[f64]) -> Vec<f64> {
+        let p = [
+            theta[0].clamp(CLAMP_LO, CLAMP_HI),
+            theta[1].clamp(CLAMP_LO, CLAMP_HI),
+        ];
+        let mut img = vec![0.0; SIZE * SIZE];
+        for r in 0..SIZE {
+            for c in 0..SIZE {
+                img[r * SIZE + c] = value(p, SIZE - 1 - r, c);
+            }
+        }
+        img
+    }
+}
+
+/// J(r, c) for the square at p = (pₓ, p_y).
+#[inline]
+fn value(p: [f64; 2], r: usize, c: usize) -> f64 {
+    (1.0 - 2.0 * (tenth(p[1] - r as f64) + tenth(c as f64 - p[0]))).clamp(0.0, 1.0)
+}
+
+impl Objective<f64> for Box2Ref {
+    fn evaluate(&mut self, theta: &[f64], _seed: NoiseSeed) -> f64 {
+        if theta.len() != 2 || theta.iter().any(|x| !x.is_finite()) {
+            return f64::NAN;
+        }
+        self.loss(theta)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The brute-force loss over all 250 000 pixels of the flipped images.
+    fn brute(theta: [f64; 2]) -> f64 {
+        let t = Box2Ref::new();
+        let (a, b) = (t.render(&theta), t.render(&TARGET));
+        a.iter().zip(&b).map(|(x, y)| (x - y).powi(2)).sum::<f64>() / (SIZE * SIZE) as f64
+    }
+
+    #[test]
+    fn plateau_value_matches_the_paper() {
+        let t = Box2Ref::new();
+        let plateau = t.loss(&[300.0, 320.0]);
+        assert!((plateau - 0.0520089).abs() < 5e-8, "{plateau}");
+        assert_eq!(t.loss(&[300.0, 320.0]), t.loss(&[260.0, 355.0]));
+        assert_eq!(t.loss(&TARGET), 0.0);
+    }
+
+    #[test]
+    fn support_restricted_loss_equals_brute_force() {
+        let t = Box2Ref::new();
+        for theta in [
+            [150.0, 150.0],
+            [171.3, 140.2],
+            [199.0, 120.5],
+            [40.0, 460.0],
+            [240.0, 260.0],
+        ] {
+            let fast = t.loss(&theta);
+            let slow = brute(theta);
+            assert!((fast - slow).abs() < 1e-12, "{theta:?}: {fast} vs {slow}");
+        }
+    }
+
+    #[test]
+    fn non_finite_parameters_give_nan_for_the_estimators_to_report() {
+        let mut t = Box2Ref::new();
+        assert!(t.evaluate(&[f64::NAN, 1.0], 0).is_nan());
+    }
+}

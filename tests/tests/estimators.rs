@@ -1,0 +1,309 @@
+//! Every estimator against closed-form smoothed derivatives (hodr_host::problems).
+//!
+//! Each check repeats an estimate `REPEATS` times from a fixed seed and compares the mean
+//! with the closed form, allowing `Z_TOLERANCE` standard errors (estimated from the
+//! repetitions) plus a floor of 1e-9 relative for elements without variance. With fixed
+//! seeds every test is deterministic. What these checks can resolve is limited by their
+//! standard errors (a few per cent of an element); exact identities (weight × density =
+//! kernel, mixture densities) are checked to rounding in hodr-core's unit tests.
+
+use hodr_core::{Draws, Estimator, GradientMethod, HessianMethod, HvpMethod, Workspace};
+use hodr_host::problems::Problem;
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rand_xoshiro::rand_core::SeedableRng;
+
+/// Allowed deviation of a mean from its expectation, in standard errors.
+const Z_TOLERANCE: f64 = 5.0;
+/// Repetitions per check.
+const REPEATS: usize = 1000;
+/// Smoothing width for all checks.
+const SIGMA: f64 = 0.5;
+/// Antithetic pairs per estimate.
+const PAIRS: usize = 8;
+
+struct Stats {
+    mean: Vec<f64>,
+    se: Vec<f64>,
+}
+
+fn repeat(len: usize, mut one: impl FnMut(&mut [f64])) -> Stats {
+    let (mut sum, mut sum2, mut x) = (vec![0.0; len], vec![0.0; len], vec![0.0; len]);
+    for _ in 0..REPEATS {
+        one(&mut x);
+        for k in 0..len {
+            sum[k] += x[k];
+            sum2[k] += x[k] * x[k];
+        }
+    }
+    let m = REPEATS as f64;
+    let mean: Vec<f64> = sum.iter().map(|s| s / m).collect();
+    let se = (0..len)
+        .map(|k| ((sum2[k] / m - mean[k] * mean[k]).max(0.0) / (m - 1.0)).sqrt())
+        .collect();
+    Stats { mean, se }
+}
+
+fn assert_matches(stats: &Stats, expected: &[f64], label: &str) {
+    let scale = expected.iter().fold(1e-300f64, |m, x| m.max(x.abs()));
+    for (k, (&m, &e)) in stats.mean.iter().zip(expected).enumerate() {
+        let tol = Z_TOLERANCE * stats.se[k] + 1e-9 * scale;
+        assert!(
+            (m - e).abs() <= tol,
+            "{label}: element {k}: mean {m} vs {e} (tolerance {tol})"
+        );
+    }
+}
+
+struct Memory {
+    buffer: Vec<f64>,
+    seeds: Vec<u64>,
+}
+
+impl Memory {
+    fn new(n: usize, rows: usize) -> Self {
+        Memory {
+            buffer: vec![0.0; Workspace::<f64>::buffer_len(n, rows)],
+            seeds: vec![0; rows],
+        }
+    }
+    fn ws(&mut self, n: usize) -> Workspace<'_, f64> {
+        Workspace::new(n, &mut self.buffer, &mut self.seeds).unwrap()
+    }
+}
+
+fn problems(n: usize) -> [Problem; 3] {
+    [
+        Problem::sin_cos(n, 1),
+        Problem::quadratic(n, 2),
+        Problem::step(n, 3, 0.3),
+    ]
+}
+
+const GRADIENTS: [GradientMethod; 3] = [
+    GradientMethod::PerElement,
+    GradientMethod::Aggregate,
+    GradientMethod::Gaussian,
+];
+
+fn check_gradient(p: &Problem, method: GradientMethod, seed: u64) -> Stats {
+    let n = p.dim();
+    let mut mem = Memory::new(n, 16);
+    let mut ws = mem.ws(n);
+    let mut est = Estimator::new(SIGMA, PAIRS, Xoshiro256PlusPlus::seed_from_u64(seed)).unwrap();
+    let mut f = |x: &[f64]| p.value(x);
+    let stats = repeat(n, |g| {
+        let r = est.gradient(method, &mut f, p.theta(), &mut ws, g).unwrap();
+        assert_eq!(r.evaluations, method.evaluations(n, PAIRS));
+    });
+    assert_matches(
+        &stats,
+        &p.gradient(p.theta(), SIGMA),
+        &format!("{method:?} gradient n={n}"),
+    );
+    stats
+}
+
+#[test]
+fn gradients_match_closed_forms() {
+    for n in [1, 3, 10] {
+        for (k, p) in problems(n).iter().enumerate() {
+            for m in GRADIENTS {
+                check_gradient(p, m, 17 + k as u64);
+            }
+        }
+    }
+}
+
+#[test]
+fn fr22_matches_closed_forms_where_it_is_exact() {
+    for n in [1, 3, 10] {
+        for p in [
+            Problem::separable(n, 4),
+            Problem::quadratic(n, 5),
+            Problem::axis_step(n, 6, 0.2),
+        ] {
+            check_gradient(&p, GradientMethod::Fr22, 23);
+        }
+    }
+}
+
+/// Aggregate and per-element sampling estimate the same gradient.
+#[test]
+fn aggregate_and_per_element_agree_in_mean() {
+    for p in problems(3) {
+        let a = check_gradient(&p, GradientMethod::Aggregate, 80);
+        let e = check_gradient(&p, GradientMethod::PerElement, 81);
+        for k in 0..3 {
+            let both = (a.se[k].powi(2) + e.se[k].powi(2)).sqrt();
+            assert!((a.mean[k] - e.mean[k]).abs() <= Z_TOLERANCE * both + 1e-12);
+        }
+    }
+}
+
+#[test]
+fn hessians_match_closed_forms() {
+    for n in [1, 3, 10] {
+        for (k, p) in problems(n).iter().enumerate() {
+            for method in [
+                HessianMethod::PerElement,
+                HessianMethod::Aggregate,
+                HessianMethod::Gaussian,
+            ] {
+                let mut mem = Memory::new(n, 32);
+                let mut ws = mem.ws(n);
+                let mut est = Estimator::new(
+                    SIGMA,
+                    PAIRS,
+                    Xoshiro256PlusPlus::seed_from_u64(31 + k as u64),
+                )
+                .unwrap();
+                let mut f = |x: &[f64]| p.value(x);
+                let stats = repeat(n * n, |h| {
+                    let r = est.hessian(method, &mut f, p.theta(), &mut ws, h).unwrap();
+                    assert_eq!(r.evaluations, method.evaluations(n, PAIRS));
+                    assert_eq!(r.centre_value, Some(p.value(p.theta())));
+                    for i in 0..n {
+                        for j in 0..i {
+                            assert_eq!(h[i * n + j], h[j * n + i]);
+                        }
+                    }
+                });
+                let label = format!("{method:?} Hessian n={n} problem {k}");
+                assert_matches(&stats, &p.hessian(p.theta(), SIGMA), &label);
+            }
+        }
+    }
+}
+
+fn check_hvp(p: &Problem, method: HvpMethod, seed: u64) -> Stats {
+    let n = p.dim();
+    let v = p.direction(7);
+    let mut mem = Memory::new(n, 8);
+    let mut ws = mem.ws(n);
+    let mut est = Estimator::new(SIGMA, PAIRS, Xoshiro256PlusPlus::seed_from_u64(seed)).unwrap();
+    let mut f = |x: &[f64]| p.value(x);
+    let stats = repeat(n, |hv| {
+        let r = est.hvp(method, &mut f, p.theta(), &v, &mut ws, hv).unwrap();
+        assert_eq!(r.evaluations, method.evaluations(n, PAIRS));
+    });
+    let expected = match method {
+        HvpMethod::Kernel => p.hvp(p.theta(), &v, SIGMA),
+        _ => p.hvp_central(p.theta(), &v, SIGMA),
+    };
+    assert_matches(&stats, &expected, &format!("{method:?} HVP n={n}"));
+    stats
+}
+
+#[test]
+fn hvps_match_closed_forms() {
+    for n in [1, 3, 10] {
+        for (k, p) in problems(n).iter().enumerate() {
+            check_hvp(p, HvpMethod::Kernel, 50 + k as u64);
+            for gradient in GRADIENTS {
+                for draws in [Draws::Independent, Draws::Common] {
+                    check_hvp(
+                        p,
+                        HvpMethod::CentralDifference { gradient, draws },
+                        60 + k as u64,
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Common random numbers and independent draws estimate the same thing; on a smooth
+/// objective the common ones have far smaller variance.
+#[test]
+fn common_random_numbers_agree_in_mean_and_cut_variance() {
+    let p = Problem::sin_cos(3, 1);
+    for gradient in GRADIENTS {
+        let ind = check_hvp(
+            &p,
+            HvpMethod::CentralDifference {
+                gradient,
+                draws: Draws::Independent,
+            },
+            70,
+        );
+        let crn = check_hvp(
+            &p,
+            HvpMethod::CentralDifference {
+                gradient,
+                draws: Draws::Common,
+            },
+            71,
+        );
+        for k in 0..3 {
+            let both = (ind.se[k].powi(2) + crn.se[k].powi(2)).sqrt();
+            assert!((ind.mean[k] - crn.mean[k]).abs() <= Z_TOLERANCE * both);
+            assert!(
+                crn.se[k] < 0.2 * ind.se[k],
+                "{gradient:?}: CRN se {} vs independent {}",
+                crn.se[k],
+                ind.se[k]
+            );
+        }
+    }
+}
+
+#[test]
+fn gradient_and_hvp_share_samples() {
+    let p = Problem::sin_cos(3, 1);
+    let v = p.direction(8);
+    let mut mem = Memory::new(3, 8);
+    let mut ws = mem.ws(3);
+    let mut est = Estimator::new(SIGMA, PAIRS, Xoshiro256PlusPlus::seed_from_u64(5)).unwrap();
+    let mut f = |x: &[f64]| p.value(x);
+    let stats = repeat(6, |out| {
+        let (g, h) = out.split_at_mut(3);
+        let r = est
+            .gradient_and_hvp(&mut f, p.theta(), &v, &mut ws, g, h)
+            .unwrap();
+        assert_eq!(r.evaluations, 2 * PAIRS + 1);
+    });
+    let mut expected = p.gradient(p.theta(), SIGMA);
+    expected.extend(p.hvp(p.theta(), &v, SIGMA));
+    assert_matches(&stats, &expected, "gradient_and_hvp");
+}
+
+#[test]
+fn f32_estimates_match_closed_forms() {
+    let p = Problem::sin_cos(3, 1);
+    let theta: Vec<f32> = p.theta().iter().map(|&x| x as f32).collect();
+    let theta64: Vec<f64> = theta.iter().map(|&x| x as f64).collect();
+    let mut buffer = vec![0.0f32; Workspace::<f32>::buffer_len(3, 8)];
+    let mut seeds = vec![0; 8];
+    let mut ws = Workspace::new(3, &mut buffer, &mut seeds).unwrap();
+    let mut f = |x: &[f32]| {
+        let x64: Vec<f64> = x.iter().map(|&v| v as f64).collect();
+        p.value(&x64) as f32
+    };
+    for m in GRADIENTS {
+        let mut est =
+            Estimator::new(SIGMA as f32, PAIRS, Xoshiro256PlusPlus::seed_from_u64(3)).unwrap();
+        let mut g32 = [0.0f32; 3];
+        let stats = repeat(3, |g| {
+            est.gradient(m, &mut f, &theta, &mut ws, &mut g32).unwrap();
+            for k in 0..3 {
+                g[k] = g32[k] as f64;
+            }
+        });
+        assert_matches(
+            &stats,
+            &p.gradient(&theta64, SIGMA),
+            &format!("f32 {m:?} gradient"),
+        );
+    }
+    let mut est =
+        Estimator::new(SIGMA as f32, PAIRS, Xoshiro256PlusPlus::seed_from_u64(4)).unwrap();
+    let mut h32 = [0.0f32; 9];
+    let stats = repeat(9, |h| {
+        est.hessian(HessianMethod::Aggregate, &mut f, &theta, &mut ws, &mut h32)
+            .unwrap();
+        for k in 0..9 {
+            h[k] = h32[k] as f64;
+        }
+    });
+    assert_matches(&stats, &p.hessian(&theta64, SIGMA), "f32 aggregate Hessian");
+}
