@@ -4,7 +4,7 @@
 //! | name | n | what θ is |
 //! |---|---|---|
 //! | [`SHADOW`](Shadow) | 2 | (x, y) of a sphere behind the camera, seen only through its shadow |
-//! | [`MUG`](Mug) | 1 | rotation of a mug about its vertical axis (radians) |
+//! | [`MUG`](Mug) | 1 | rotation of a mug about its vertical axis (units of 0.2 rad) |
 //! | [`CBOX`](Cbox) | 2 | floor position of the small box in a Cornell box |
 //! | [`TEXTURE`](TextureTask) | 1024 | the 32×32 grey texels of a lit plane |
 //! | [`CAUSTIC`](Caustic) | 256 | 16×16 control heights of a glass slab whose caustic must match |
