@@ -18,6 +18,10 @@
 //! point (2), BSDF (2), roulette. Pixels are independent, so the image is bit-identical
 //! at any thread count.
 //!
+//! **Self-intersection.** Rays start 1e-4·(1 + max |coordinate|) off the surface along
+//! the geometric normal, and a ray leaving a plane (or a convex solid outwards) does not
+//! test that object at all ([`Shape::cannot_rehit`]), which also saves the test.
+//!
 //! **Robustness.** A sample whose radiance is not finite is dropped (counted as black)
 //! and pixel values are clamped to the finite `f32` range: no pixel is NaN or infinite.
 //!

@@ -25,8 +25,14 @@ impl Sphere {
     #[inline(always)]
     pub fn hit(&self, ray: &Ray, t_max: f32) -> Option<f32> {
         let oc = ray.origin - self.center;
-        let a = ray.dir.length_squared();
         let half_b = oc.dot(ray.dir);
+        let c = oc.length_squared() - self.radius * self.radius;
+        // Outside and moving away: no root ahead (the common case for rays that pass
+        // behind, e.g. every camera ray of SHADOW).
+        if c > 0.0 && half_b > 0.0 {
+            return None;
+        }
+        let a = ray.dir.length_squared();
         // Discriminant as r² − ‖oc − (oc·d̂)d̂‖², which keeps precision far from the sphere.
         let perp = oc - ray.dir * (half_b / a);
         let disc = a * (self.radius * self.radius - perp.length_squared());
@@ -34,7 +40,6 @@ impl Sphere {
             return None;
         }
         let q = -(half_b + half_b.signum() * disc.sqrt());
-        let c = oc.length_squared() - self.radius * self.radius;
         let (mut t0, mut t1) = (q / a, c / q);
         if t0 > t1 {
             std::mem::swap(&mut t0, &mut t1);
