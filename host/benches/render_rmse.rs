@@ -54,9 +54,13 @@ fn measure(task: &dyn Task3d) {
     .expect("reference");
     let mut film = Film::new(SIZE, SIZE).expect("film");
     for (plan_name, plan) in [("specialised", specialised), ("general", Plan::general())] {
-        for sequence in [Sequence::Kronecker, Sequence::Independent] {
-            // Only the specialised plan is shown with both sequences.
-            if plan_name == "general" && sequence == Sequence::Kronecker {
+        for sequence in [
+            Sequence::Kronecker,
+            Sequence::PaddedR2,
+            Sequence::Independent,
+        ] {
+            // Only the specialised plan is shown with every sequence.
+            if plan_name == "general" && sequence != Sequence::Independent {
                 continue;
             }
             for spp in [4u32, 16, 64] {

@@ -80,15 +80,17 @@ fn small(width: u32, spp: u32, target_spp: u32) -> TaskSettings {
 /// body, where the loss is flat): OurHVPA with the paper's MUG settings (1 pair,
 /// σ 3 → 0.01, trust region 4σ, 1 line-search step, restart every 5) and common random
 /// numbers, 40 iterations on a 32×32, 4-spp objective, brings the angular error from
-/// 3.6–5.9 units (0.7–1.2 rad) below 0.25 units (0.05 rad) for 3 of the 8 fixed seeds
-/// 0–7 (measured: seeds 3, 6, 7; the others stay on or return to the plateau). The
-/// runs are deterministic, so this pins the measured fraction.
+/// 3.6–5.9 units (0.7–1.2 rad) below 0.25 units (0.05 rad) for 4 of the 20 fixed seeds
+/// 0–19 (measured: seeds 0, 8, 11, 16). The others end on the plateau or beyond it: early on the trust
+/// region (4σ = 12 units) lets single noisy steps jump across the narrow basin of θ*.
+/// The runs are deterministic, so this pins the measured fraction; it is low, and a
+/// finding about the optimiser settings rather than a target.
 ///
-/// Ignored by default: it takes ≈ 32 s in a debug build (7 s in release), beyond the
-/// suite's debug budget. Run it with
+/// Ignored by default: it takes ≈ 80 s in a debug build (≈ 17 s in release), beyond
+/// the suite's debug budget. Run it with
 /// `cargo test --release -p hodr-tests --test render_convergence -- --ignored`.
 #[test]
-#[ignore = "≈ 32 s in debug builds; run with --release -- --ignored"]
+#[ignore = "≈ 80 s in debug builds; run with --release -- --ignored"]
 fn mug_converges_from_plateau_starts() {
     let task = tasks::by_name("MUG").unwrap();
     let h = Hyper {
@@ -102,12 +104,12 @@ fn mug_converges_from_plateau_starts() {
         learning_rate: 0.05,
         common_random_numbers: true,
     };
-    let wins = (0..8)
+    let wins = (0..20)
         .filter(|&seed| {
             let (e0, e1) = run(task.as_ref(), small(32, 4, 64), &h, 40, seed);
             eprintln!("MUG seed {seed}: error {e0:.3} → {e1:.4}");
             e1 < 0.25
         })
         .count();
-    assert!(wins >= 3, "MUG: {wins}/8 seeds converged");
+    assert!(wins >= 4, "MUG: {wins}/20 seeds converged");
 }

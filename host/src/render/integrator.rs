@@ -13,7 +13,7 @@
 //! probability q = min(max channel of β, 0.95) and β is divided by q.
 //!
 //! **Determinism.** Sample n of pixel p in a frame with seed s uses the numbers
-//! [`PixelSampler::new`]`(s, p).sample(n)`; dimension 0–1 jitter the pixel (box filter) and
+//! [`PixelSampler::new`]`(s, p, spp).sample(n)`; dimension 0–1 jitter the pixel (box filter) and
 //! each vertex k ≥ 1 owns dimensions 2 + 6(k − 1) … 7 + 6(k − 1): light choice, light
 //! point (2), BSDF (2), roulette. Pixels are independent, so the image is bit-identical
 //! at any thread count.
@@ -106,7 +106,7 @@ fn run<const NEE: bool, const EMIT: bool, const DIRECT_LAST: bool>(
         .for_each(|(y, row)| {
             for (x, out) in row.chunks_exact_mut(3).enumerate() {
                 let pixel = y as u64 * u64::from(width) + x as u64;
-                let sampler = PixelSampler::new(sequence, seed, pixel);
+                let sampler = PixelSampler::new(sequence, seed, pixel, spp);
                 let mut sum = Rgb::ZERO;
                 for n in 0..spp {
                     let stream = sampler.sample(n);
