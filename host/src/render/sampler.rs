@@ -163,7 +163,7 @@ impl SampleStream<'_> {
         };
         // x ≥ 0, so truncation is ⌊x⌋ (and inlines, unlike `floor` without SSE4.1);
         // x − ⌊x⌋ is in [0, 1), but rounding to f32 may give 1.0: clamp below 1.
-        ((x - (x as u64) as f64) as f32).min(1.0 - f32::EPSILON / 2.0)
+        ((x - (x as i64) as f64) as f32).min(1.0 - f32::EPSILON / 2.0)
     }
 
     /// Dimensions `dim` and `dim + 1` as a pair.

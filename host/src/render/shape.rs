@@ -141,9 +141,16 @@ impl Quad {
     #[inline(always)]
     pub fn hit(&self, ray: &Ray, t_max: f32) -> Option<f32> {
         let denom = self.normal.dot(ray.dir);
-        let t = (self.offset - self.normal.dot(ray.origin)) / denom;
-        // Also rejects denom = 0 (t = ±∞ or NaN).
-        if !(t > 0.0 && t < t_max) {
+        let num = self.offset - self.normal.dot(ray.origin);
+        // t = num/denom ∈ (0, t_max) needs equal signs and |num| < t_max·|denom|: most
+        // misses are rejected before the division (whose latency dominates this test).
+        // The sign test also rejects denom = 0 and NaN.
+        let same_sign = num * denom > 0.0;
+        if !same_sign || num.abs() >= t_max * denom.abs() {
+            return None;
+        }
+        let t = num / denom;
+        if t >= t_max {
             return None;
         }
         let (a, b) = self.coords(ray.at(t));
