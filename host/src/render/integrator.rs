@@ -25,7 +25,8 @@
 //! **Robustness.** A sample whose radiance is not finite is dropped (counted as black)
 //! and pixel values are clamped to the finite `f32` range: no pixel is NaN or infinite.
 //!
-//! **Allocation.** Rendering writes into the caller's [`Film`] and allocates nothing.
+//! **Allocation.** Rendering writes into the caller's [`Film`]; the integrator itself
+//! allocates nothing (rayon's scheduler manages its own job queues).
 
 use std::f32::consts::FRAC_1_PI;
 
