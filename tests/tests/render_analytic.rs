@@ -339,5 +339,8 @@ fn shadow_render_is_value_stable() {
             hash = (hash ^ u64::from(byte)).wrapping_mul(0x0100_0000_01b3);
         }
     }
-    assert_eq!(hash, 0xa841_b7a4_d8d0_3e8a, "pinned value changed: {hash:#018x}");
+    assert_eq!(
+        hash, 0xa841_b7a4_d8d0_3e8a,
+        "pinned value changed: {hash:#018x}"
+    );
 }
