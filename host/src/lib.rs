@@ -1,14 +1,16 @@
 //! # hodr-host
 //!
-//! hodr on a host (std): closed-form test problems, the estimator variance study, and
-//! (as they land) the path tracer, the task suite, the report harness and the `hodr`
-//! command line.
+//! hodr on a host (std): the CPU path tracer ([`render`]) and its 3D tasks ([`tasks`]),
+//! the report harness ([`report`]) behind the `hodr` command line, BOX2-REF, closed-form
+//! test problems, and the estimator and optimiser studies ([`variance`], [`runtime`]).
 
 #![deny(missing_docs)]
 
 pub mod box2ref;
 pub mod metrics;
 pub mod problems;
+pub mod render;
 pub mod report;
 pub mod runtime;
+pub mod tasks;
 pub mod variance;

@@ -179,7 +179,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             println!("report written to {}", path.display());
         }
         Command::Tasks => {
-            for t in task::all()? {
+            for t in task::all(false)? {
                 println!("{:<10} n = {:<5} {}", t.name(), t.dim(), t.description());
             }
         }
@@ -189,7 +189,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             spp: _,
             out,
         } => {
-            let t = task::select(std::slice::from_ref(&name))?.remove(0);
+            let t = task::select(std::slice::from_ref(&name), false)?.remove(0);
             let theta = if params.is_empty() {
                 t.optimum()
             } else {
@@ -217,7 +217,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             budget,
             out,
         } => {
-            let t = task::select(std::slice::from_ref(&name))?.remove(0);
+            let t = task::select(std::slice::from_ref(&name), false)?.remove(0);
             let m =
                 Method::from_name(&method).with_context(|| format!("unknown method `{method}`"))?;
             let settings = Settings {

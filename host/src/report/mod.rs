@@ -143,7 +143,7 @@ pub struct Config {
 /// # Errors
 /// Unknown tasks or methods, a task that cannot be set up, unwritable output.
 pub fn report(config: &Config, interrupt: &AtomicBool, progress: bool) -> Result<PathBuf> {
-    let tasks = task::select(&config.tasks)?;
+    let tasks = task::select(&config.tasks, config.settings.quick)?;
     let methods: Vec<Method> = if config.methods.is_empty() {
         Method::all()
     } else {
@@ -246,6 +246,23 @@ fn write_outputs(
         );
         md.push_str(&output::table(&rows));
         md.push('\n');
+        let mut skipped: Vec<&str> = mine
+            .iter()
+            .filter(|r| {
+                r.stopped
+                    .as_deref()
+                    .is_some_and(|s| s.starts_with("skipped"))
+            })
+            .map(|r| r.method.as_str())
+            .collect();
+        skipped.dedup();
+        if !skipped.is_empty() {
+            let _ = writeln!(
+                md,
+                "Skipped (one estimate exceeds the run's budget): {}.\n",
+                skipped.join(", ")
+            );
+        }
         for kind in ErrorKind::BOTH {
             let file = format!("plot_{slug}_{}.png", kind.label());
             plot::error_against_time(&out.join(&file), t.name(), kind, &names, &mine)?;

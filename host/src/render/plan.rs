@@ -1,0 +1,67 @@
+//! Scene specialisation: which integrator stages a scene needs.
+//!
+//! [`Plan::inspect`] looks at a committed scene once and switches off every stage it
+//! cannot use. The integrator is instantiated (monomorphised) per combination of the
+//! three `const` switches, so a switched-off stage costs nothing — not even a branch —
+//! in the per-sample loop; the other two are plain branches that predict perfectly.
+//!
+//! | stage | kept when | saves |
+//! |---|---|---|
+//! | `next_event` (light sampling, shadow rays) | the scene has a light | the shadow ray and light sample per vertex |
+//! | `emission` (emitter lookup and MIS on hit) | the scene has an area emitter | the emitter test per hit |
+//! | `direct_last` (NEE only, no BSDF ray, at the last vertex) | always valid | one ray cast per path |
+//! | `textures` (texture coordinates and fetches) | a material reads a texture | uv computation per hit |
+//! | `bvh` (object hierarchy instead of a list) | more than [`LIST_MAX_OBJECTS`] objects | box tests for small scenes |
+//!
+//! `direct_last`: at the last vertex that may scatter (depth = max − 1), a diffuse vertex
+//! only lights by NEE with full weight and the path ends there; the general plan also
+//! traces a BSDF ray to find emitters by MIS. Both are unbiased; with a max depth of 2
+//! this is the classic direct-lighting integrator with one shadow ray.
+//! [`Plan::general`] is the unspecialised integrator, kept for comparison (benchmarks).
+//!
+//! A scene without any light renders black without tracing a ray.
+
+use super::scene::{LIST_MAX_OBJECTS, Scene};
+
+/// The integrator stages a scene needs; see the module documentation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Plan {
+    /// Sample lights at diffuse vertices (next-event estimation).
+    pub next_event: bool,
+    /// Look up area emission at hits (with MIS weights when `next_event`).
+    pub emission: bool,
+    /// NEE only at the last scattering vertex, without a BSDF ray.
+    pub direct_last: bool,
+    /// Compute texture coordinates and read textures.
+    pub textures: bool,
+    /// Traverse the object hierarchy rather than the object list.
+    pub bvh: bool,
+}
+
+impl Plan {
+    /// Every stage on: the integrator as it would run without inspecting the scene.
+    pub const fn general() -> Plan {
+        Plan {
+            next_event: true,
+            emission: true,
+            direct_last: false,
+            textures: true,
+            bvh: true,
+        }
+    }
+
+    /// The leanest plan that renders `scene` exactly as [`Plan::general`] would (in
+    /// expectation; the per-sample noise differs where `direct_last` applies).
+    pub fn inspect(scene: &Scene) -> Plan {
+        Plan {
+            next_event: !scene.lights().is_empty(),
+            emission: scene
+                .objects()
+                .iter()
+                .any(|o| o.emitter.is_some_and(|e| !e.radiance.is_black())),
+            direct_last: true,
+            textures: scene.uses_textures(),
+            bvh: scene.objects().len() > LIST_MAX_OBJECTS,
+        }
+    }
+}
