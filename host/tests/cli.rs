@@ -42,7 +42,10 @@ fn tasks_lists_every_task() {
     let out = hodr(&["tasks"]);
     assert!(out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
-    for name in ["QUAD", "BOX2-REF", "TRI1D", "BOX2", "BOX10", "SHAPES"] {
+    for name in [
+        "QUAD", "BOX2-REF", "TRI1D", "BOX2", "BOX10", "SHAPES", "SHADOW", "MUG", "CBOX", "TEXTURE",
+        "CAUSTIC",
+    ] {
         assert!(text.contains(name), "{name} missing from {text}");
     }
 }
@@ -84,6 +87,22 @@ fn report_writes_parseable_files() {
 #[test]
 fn render_optimize_and_fit2d_write_images() {
     let dir = scratch("images");
+    let shadow = dir.join("shadow.png");
+    let out = hodr(&[
+        "render",
+        "--task",
+        "shadow",
+        "--spp",
+        "2",
+        "--out",
+        shadow.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(shadow.exists());
     let png = dir.join("box2.png");
     let out = hodr(&["render", "--task", "BOX2", "--out", png.to_str().unwrap()]);
     assert!(

@@ -43,6 +43,14 @@ pub trait Task: Send + Sync {
     /// # Errors
     /// When rendering fails.
     fn image(&self, theta: &[f64]) -> Result<Option<RgbImage>>;
+    /// [`Task::image`] with `spp` samples per pixel where the task is path-traced.
+    ///
+    /// # Errors
+    /// When rendering fails.
+    fn image_with_spp(&self, theta: &[f64], spp: u32) -> Result<Option<RgbImage>> {
+        let _ = spp;
+        self.image(theta)
+    }
 }
 
 /// QUAD, f = 5x₀² + 5x₁² + 7.5x₀x₁, with either start distribution.
