@@ -1,6 +1,6 @@
 //! MUG converges with OurHVPA (NCG + aggregate gradient + aggregate HVP) from plateau
 //! starts, for a stated fraction of fixed seeds. (SHADOW does not, from the DESIGN's
-//! starts: see `host/BENCHMARKS-render.md`.)
+//! starts: see BENCHMARKS.md, section "hodr-host path tracer".)
 //!
 //! The objectives are the tasks' own scenes at a reduced resolution and sample count, so
 //! that the suite stays fast in debug builds; the hyper-parameters are the paper's

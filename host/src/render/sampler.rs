@@ -34,7 +34,7 @@ pub enum Sequence {
     Kronecker,
     /// Randomly shifted and permuted R₂ sequences over the first [`KRONECKER_DIMS`]
     /// dimensions in pairs, independent numbers after that. Default: it gave the lowest
-    /// error at equal samples on SHADOW and CBOX (`host/BENCHMARKS-render.md`).
+    /// error at equal samples on SHADOW and CBOX (BENCHMARKS.md, section "hodr-host path tracer").
     #[default]
     PaddedR2,
 }
