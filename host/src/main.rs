@@ -58,8 +58,8 @@ enum Command {
         /// Parameters, comma-separated (default: the task's θ*).
         #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
         params: Vec<f64>,
-        /// Samples per pixel (path-traced tasks).
-        #[arg(long, default_value_t = 64)]
+        /// Samples per pixel (path-traced tasks), ≥ 1.
+        #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..))]
         spp: u32,
         /// Output PNG.
         #[arg(long)]
@@ -236,7 +236,11 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             if let Some(why) = &r.stopped {
                 eprintln!("stopped early: {why}");
             }
-            println!("θ = {:?}", r.theta);
+            if r.theta.len() <= 16 {
+                println!("θ = {:?}", r.theta);
+            } else {
+                println!("θ = {:?} … ({} parameters)", &r.theta[..8], r.theta.len());
+            }
             let path = out.unwrap_or_else(|| {
                 PathBuf::from(format!("optimize_{}.png", t.name().to_ascii_lowercase()))
             });
