@@ -175,6 +175,17 @@ fn bad_input_gives_one_line_and_nonzero_exit() {
             "/tmp/x.png",
         ],
         &["report", "--set", "pairs=many"],
+        &[
+            "render",
+            "--task",
+            "shadow",
+            "--spp",
+            "0",
+            "--out",
+            "/tmp/x.png",
+        ],
+        &["report", "--no-such-flag"],
+        &["no-such-command"],
     ] {
         let out = hodr(args);
         assert!(!out.status.success(), "{args:?} should fail");
