@@ -54,9 +54,6 @@
 #![no_std]
 #![deny(missing_docs)]
 
-#[cfg(test)]
-extern crate std;
-
 mod error;
 pub mod estimate;
 pub mod kernel;

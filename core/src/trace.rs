@@ -131,8 +131,12 @@ mod tests {
         }
         assert_eq!(t.first().unwrap().iteration, 0);
         assert_eq!(t.latest().unwrap().iteration, 9);
-        let kept: std::vec::Vec<usize> = t.iter().map(|p| p.iteration).collect();
+        let mut kept = [0usize; 3];
+        for (slot, p) in kept.iter_mut().zip(t.iter()) {
+            *slot = p.iteration;
+        }
         assert_eq!(kept, [7, 8, 9]);
+        assert_eq!(t.iter().count(), 3);
         assert_eq!(t.recorded(), 10);
     }
 }

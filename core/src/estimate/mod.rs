@@ -536,5 +536,20 @@ pub(crate) fn add_rank_one<T: Real>(out: &mut [T], n: usize, t: &[T], s: T) {
     }
 }
 
-#[cfg(test)]
-mod tests;
+#[cfg(all(test, feature = "hessian"))]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn upper_triangle_numbering() {
+        for n in [1, 2, 3, 7, 64, 1024] {
+            let mut c = 0;
+            for i in 0..n {
+                for j in i..n {
+                    assert_eq!(upper_triangle(c, n), (i, j), "n={n} c={c}");
+                    c += 1;
+                }
+            }
+        }
+    }
+}
