@@ -8,7 +8,7 @@ use crate::error::Error;
 use crate::estimate::HessianMethod;
 #[cfg(feature = "cg")]
 use crate::estimate::HvpMethod;
-use crate::estimate::{Estimator, GradientMethod};
+use crate::estimate::{Estimator, GradientMethod, Report};
 use crate::objective::Objective;
 use crate::real::Real;
 use crate::workspace::Workspace;
@@ -34,6 +34,13 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         }
     }
 
+    /// Counts an estimate's evaluations and keeps its loss estimate: f(θ) when the
+    /// estimate evaluated it, else the mean of its samples.
+    fn record(&mut self, r: &Report<T>) {
+        self.evaluations += r.evaluations;
+        self.loss = r.centre_value.or(r.mean_value).or(self.loss);
+    }
+
     #[cfg(any(feature = "hessian", feature = "cg"))]
     pub fn sigma(&self) -> T {
         self.estimator.sigma()
@@ -49,8 +56,7 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         let r = self
             .estimator
             .gradient(method, self.objective, theta, self.ws, out)?;
-        self.evaluations += r.evaluations;
-        self.loss = r.mean_value.or(self.loss);
+        self.record(&r);
         Ok(())
     }
 
@@ -66,8 +72,7 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         let r = self
             .estimator
             .hvp(method, self.objective, theta, v, self.ws, out)?;
-        self.evaluations += r.evaluations;
-        self.loss = r.mean_value.or(self.loss);
+        self.record(&r);
         Ok(())
     }
 
@@ -83,8 +88,7 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         let r = self
             .estimator
             .gradient_and_hvp(self.objective, theta, v, self.ws, grad, hv)?;
-        self.evaluations += r.evaluations;
-        self.loss = r.centre_value.or(self.loss);
+        self.record(&r);
         Ok(())
     }
 
@@ -99,8 +103,7 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         let r = self
             .estimator
             .hessian(method, self.objective, theta, self.ws, out)?;
-        self.evaluations += r.evaluations;
-        self.loss = r.centre_value.or(self.loss);
+        self.record(&r);
         Ok(())
     }
 }
