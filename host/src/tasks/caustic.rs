@@ -106,10 +106,9 @@ impl Task3d for Caustic {
 
     fn settings(&self) -> TaskSettings {
         TaskSettings {
-            objective_resolution: (64, 64),
             objective_spp: 16,
             target_spp: 1024,
-            image_resolution: (128, 128),
+            ..TaskSettings::STANDARD
         }
     }
 

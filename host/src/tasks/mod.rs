@@ -54,6 +54,17 @@ pub struct TaskSettings {
     pub image_resolution: (u32, u32),
 }
 
+impl TaskSettings {
+    /// What most tasks use: 64×64 objective images at 4 spp, a 256-spp target, 128×128
+    /// viewing images.
+    pub const STANDARD: TaskSettings = TaskSettings {
+        objective_resolution: (64, 64),
+        objective_spp: 4,
+        target_spp: 256,
+        image_resolution: (128, 128),
+    };
+}
+
 /// A scene whose parameters θ can be set in place.
 pub trait ParametricScene: Send + Sync {
     /// The scene, committed for the last θ set.

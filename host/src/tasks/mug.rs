@@ -80,12 +80,7 @@ impl Task3d for Mug {
     }
 
     fn settings(&self) -> TaskSettings {
-        TaskSettings {
-            objective_resolution: (64, 64),
-            objective_spp: 4,
-            target_spp: 256,
-            image_resolution: (128, 128),
-        }
+        TaskSettings::STANDARD
     }
 
     fn parameter_error(&self, theta: &[f64]) -> f64 {

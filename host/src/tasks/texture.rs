@@ -93,12 +93,7 @@ impl Task3d for TextureTask {
     }
 
     fn settings(&self) -> TaskSettings {
-        TaskSettings {
-            objective_resolution: (64, 64),
-            objective_spp: 4,
-            target_spp: 256,
-            image_resolution: (128, 128),
-        }
+        TaskSettings::STANDARD
     }
 
     fn scene(&self) -> Result<Box<dyn ParametricScene>, RenderError> {
