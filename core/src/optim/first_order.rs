@@ -39,12 +39,8 @@ impl<T: Real> GradientDescent<T> {
         let g = &mut buf[..theta.len()];
         oracle.gradient(self.gradient, theta, g)?;
         let gn = norm(g);
-        if tolerance.is_some_and(|t| gn <= t) {
-            return Ok(Outcome {
-                gradient_norm: gn,
-                converged: true,
-                ..Outcome::default()
-            });
+        if let Some(done) = Outcome::converged(gn, tolerance) {
+            return Ok(done);
         }
         for (x, &gi) in theta.iter_mut().zip(g.iter()) {
             *x -= self.learning_rate * gi;
@@ -117,12 +113,8 @@ impl<T: Real> Adam<T> {
         let v = &mut rest[..n];
         oracle.gradient(self.gradient, theta, g)?;
         let gradient_norm = norm(g);
-        if tolerance.is_some_and(|t| gradient_norm <= t) {
-            return Ok(Outcome {
-                gradient_norm,
-                converged: true,
-                ..Outcome::default()
-            });
+        if let Some(done) = Outcome::converged(gradient_norm, tolerance) {
+            return Ok(done);
         }
         powers.0 *= self.beta1;
         powers.1 *= self.beta2;

@@ -153,6 +153,18 @@ pub(crate) struct Outcome<T> {
     pub converged: bool,
 }
 
+impl<T: Real> Outcome<T> {
+    /// The outcome of an iteration that stops at its gradient estimate because
+    /// ‖ĝ‖ ≤ `tolerance`; `None` when there is no tolerance or ‖ĝ‖ is above it.
+    fn converged(gradient_norm: T, tolerance: Option<T>) -> Option<Self> {
+        tolerance.filter(|&t| gradient_norm <= t).map(|_| Outcome {
+            gradient_norm,
+            converged: true,
+            ..Outcome::default()
+        })
+    }
+}
+
 impl<T: Real> Default for Outcome<T> {
     fn default() -> Self {
         Outcome {

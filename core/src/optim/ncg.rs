@@ -123,12 +123,8 @@ impl<T: Real> Ncg<T> {
         oracle.gradient(self.gradient, theta, g)?;
         let rr = dot(g, g);
         let gradient_norm = norm(g);
-        if tolerance.is_some_and(|t| gradient_norm <= t) {
-            return Ok(Outcome {
-                gradient_norm,
-                converged: true,
-                ..Outcome::default()
-            });
+        if let Some(done) = Outcome::converged(gradient_norm, tolerance) {
+            return Ok(done);
         }
 
         // Direction: Fletcher–Reeves update, or restart.

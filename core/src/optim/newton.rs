@@ -51,12 +51,8 @@ impl<T: Real> Newton<T> {
         let l = &mut rest[..n * n];
         oracle.gradient(self.gradient, theta, g)?;
         let gradient_norm = norm(g);
-        if tolerance.is_some_and(|t| gradient_norm <= t) {
-            return Ok(Outcome {
-                gradient_norm,
-                converged: true,
-                ..Outcome::default()
-            });
+        if let Some(done) = Outcome::converged(gradient_norm, tolerance) {
+            return Ok(done);
         }
         oracle.hessian(self.hessian, theta, h)?;
         for (pi, &gi) in p.iter_mut().zip(g.iter()) {

@@ -85,14 +85,13 @@ impl<T: Real> NewtonCg<T> {
 
         oracle.gradient(self.gradient, theta, g)?;
         let gradient_norm = norm(g);
+        if let Some(done) = Outcome::converged(gradient_norm, tolerance) {
+            return Ok(done);
+        }
         let mut outcome = Outcome {
             gradient_norm,
             ..Outcome::default()
         };
-        if tolerance.is_some_and(|t| gradient_norm <= t) {
-            outcome.converged = true;
-            return Ok(outcome);
-        }
         if gradient_norm == T::ZERO || !gradient_norm.is_finite() {
             return Ok(outcome);
         }
