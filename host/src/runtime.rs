@@ -30,6 +30,7 @@ use rand_xoshiro::rand_core::SeedableRng;
 
 use crate::box2ref::{self, Box2Ref};
 use crate::metrics::{REDUCTIONS, Sample, first_reaching, format_seconds, median};
+use crate::report::task::{box2ref_hyper, quad_hyper};
 
 /// A benchmark problem with a known optimum.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -92,29 +93,14 @@ impl Problem {
     }
 
     fn hyper(&self, preset: Preset, crn: bool) -> Hyper<f64> {
-        let fr22 = preset == Preset::Fr22;
         match self {
             Problem::QuadNear | Problem::QuadFar => Hyper {
-                pairs: 4,
-                sigma_start: 1.0,
-                sigma_end: 0.05,
-                trust_radius: 50.0,
-                line_search_iterations: 5,
-                line_search_tolerance: 1e-3,
-                recompute: 5,
-                learning_rate: 0.5,
                 common_random_numbers: crn,
+                ..quad_hyper()
             },
             Problem::Box2Ref => Hyper {
-                pairs: 6,
-                sigma_start: 100.0,
-                sigma_end: if fr22 { 0.1 } else { 0.01 },
-                trust_radius: 2.0,
-                line_search_iterations: 2,
-                line_search_tolerance: 1e-3,
-                recompute: 10,
-                learning_rate: if fr22 { 0.3 } else { 0.5 },
                 common_random_numbers: crn,
+                ..box2ref_hyper(preset)
             },
             Problem::Stiff(_) => Hyper {
                 pairs: 4,

@@ -5,24 +5,14 @@
 use hodr_core::optim::preset::{Hyper, Preset};
 use hodr_core::optim::{Budget, Optimiser};
 use hodr_core::{Estimator, Workspace};
+use hodr_host::report::task::{quad, quad_hyper};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 
-fn quad(x: &[f64]) -> f64 {
-    5.0 * x[0] * x[0] + 5.0 * x[1] * x[1] + 7.5 * x[0] * x[1]
-}
-
 fn hyper() -> Hyper<f64> {
     Hyper {
-        pairs: 4,
-        sigma_start: 1.0,
-        sigma_end: 0.05,
-        trust_radius: 50.0,
-        line_search_iterations: 5,
-        line_search_tolerance: 1e-3,
-        recompute: 5,
-        learning_rate: 0.5,
         common_random_numbers: true,
+        ..quad_hyper()
     }
 }
 

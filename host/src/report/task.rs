@@ -53,6 +53,40 @@ pub trait Task: Send + Sync {
     }
 }
 
+/// The paper's QUAD hyper-parameters (DESIGN §3): 4 pairs, σ 1 → 0.05, Δ = 50,
+/// 5 line-search steps, recompute 5; Adam η = 0.5; independent HVP draws.
+pub fn quad_hyper() -> Hyper<f64> {
+    Hyper {
+        pairs: 4,
+        sigma_start: 1.0,
+        sigma_end: 0.05,
+        trust_radius: 50.0,
+        line_search_iterations: 5,
+        line_search_tolerance: 1e-3,
+        recompute: 5,
+        learning_rate: 0.5,
+        common_random_numbers: false,
+    }
+}
+
+/// The paper's BOX2 hyper-parameters for BOX2-REF (DESIGN §3): 6 pairs, σ 100 → 0.01 px
+/// (FR22: → 0.1), Δ = 2, 2 line-search steps, tolerance 1e-3, recompute 10; Adam
+/// η = 0.5 (FR22: 0.3).
+pub fn box2ref_hyper(preset: Preset) -> Hyper<f64> {
+    let fr22 = preset == Preset::Fr22;
+    Hyper {
+        pairs: 6,
+        sigma_start: 100.0,
+        sigma_end: if fr22 { 0.1 } else { 0.01 },
+        trust_radius: 2.0,
+        line_search_iterations: 2,
+        line_search_tolerance: 1e-3,
+        recompute: 10,
+        learning_rate: if fr22 { 0.3 } else { 0.5 },
+        common_random_numbers: false,
+    }
+}
+
 /// QUAD, f = 5x₀² + 5x₁² + 7.5x₀x₁, with either start distribution.
 pub struct Quad {
     far: bool,
@@ -72,7 +106,7 @@ fn uniform(seed: u64, salt: u64) -> impl FnMut() -> f64 {
 }
 
 /// The QUAD objective.
-pub(crate) fn quad(x: &[f64]) -> f64 {
+pub fn quad(x: &[f64]) -> f64 {
     5.0 * x[0] * x[0] + 5.0 * x[1] * x[1] + 7.5 * x[0] * x[1]
 }
 
@@ -103,17 +137,7 @@ impl Task for Quad {
         }
     }
     fn hyper(&self, _preset: Preset) -> Hyper<f64> {
-        Hyper {
-            pairs: 4,
-            sigma_start: 1.0,
-            sigma_end: 0.05,
-            trust_radius: 50.0,
-            line_search_iterations: 5,
-            line_search_tolerance: 1e-3,
-            recompute: 5,
-            learning_rate: 0.5,
-            common_random_numbers: false,
-        }
+        quad_hyper()
     }
     fn budget(&self, quick: bool) -> usize {
         match (self.far, quick) {
@@ -153,18 +177,7 @@ impl Task for Box2RefTask {
         vec![210.0 + 150.0 * u(), 210.0 + 150.0 * u()]
     }
     fn hyper(&self, preset: Preset) -> Hyper<f64> {
-        let fr22 = preset == Preset::Fr22;
-        Hyper {
-            pairs: 6,
-            sigma_start: 100.0,
-            sigma_end: if fr22 { 0.1 } else { 0.01 },
-            trust_radius: 2.0,
-            line_search_iterations: 2,
-            line_search_tolerance: 1e-3,
-            recompute: 10,
-            learning_rate: if fr22 { 0.3 } else { 0.5 },
-            common_random_numbers: false,
-        }
+        box2ref_hyper(preset)
     }
     fn budget(&self, quick: bool) -> usize {
         if quick { 1500 } else { 4000 }
