@@ -54,6 +54,8 @@
 #![no_std]
 #![deny(missing_docs)]
 
+#[cfg(any(feature = "hessian", feature = "regression"))]
+mod cholesky;
 mod error;
 pub mod estimate;
 pub mod kernel;

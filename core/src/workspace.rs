@@ -4,6 +4,9 @@
 //! on a host (n = 1024 and more, chosen at run time), `static` or stack arrays on a
 //! microcontroller, or a [`FixedWorkspace`] for small n known at compile time.
 //!
+//! Least-squares ([`crate::GradientMethod::Regression`]) estimates also need an n×n
+//! moment matrix; a caller who wants them passes [`Workspace::moments_len`] more floats.
+//!
 //! The batch capacity `rows` is how many objective evaluations are prepared and handed
 //! to [`crate::Objective::evaluate_batch`] at once. Estimates do not depend on it: points
 //! are drawn in the same order whatever the capacity, so a bigger workspace only lets a
@@ -30,6 +33,10 @@ pub struct Workspace<'a, T> {
     // same in every build; only the HVP estimators read it.
     #[cfg_attr(not(feature = "hvp"), allow(dead_code))]
     pub(crate) scratch: &'a mut [T],
+    /// The moment region of the regression estimators: empty, or
+    /// [`Workspace::moments_len`] floats (an n×n matrix and an n-vector).
+    #[cfg_attr(not(feature = "regression"), allow(dead_code))]
+    pub(crate) moments: &'a mut [T],
 }
 
 /// The part of a workspace that holds one batch of evaluations.
@@ -71,8 +78,16 @@ impl<'a, T: Real> Workspace<'a, T> {
         dim * (rows + rows / 2 + SCRATCH_VECTORS) + rows
     }
 
+    /// Floats of the optional moment region that least-squares estimates need:
+    /// `dim² + dim` (the n×n sample moment matrix Σttᵀ and one n-vector).
+    pub const fn moments_len(dim: usize) -> usize {
+        dim * dim + dim
+    }
+
     /// A workspace for dimension `dim` carved from one buffer. The batch capacity is
-    /// `seeds.len()` evaluations; any excess in `buffer` is left unused.
+    /// `seeds.len()` evaluations. An excess of at least [`Workspace::moments_len`] floats
+    /// beyond [`Workspace::buffer_len`] becomes the moment region (so least-squares
+    /// estimates are possible); any other excess is left unused.
     ///
     /// # Errors
     /// [`Error::WorkspaceTooSmall`] when `seeds.len() < MIN_ROWS` or `buffer` is shorter
@@ -101,7 +116,13 @@ impl<'a, T: Real> Workspace<'a, T> {
         let (points, rest) = buffer.split_at_mut(rows * dim);
         let (offsets, rest) = rest.split_at_mut(rows / 2 * dim);
         let (values, rest) = rest.split_at_mut(rows);
-        let (scratch, _) = rest.split_at_mut(SCRATCH_VECTORS * dim);
+        let (scratch, rest) = rest.split_at_mut(SCRATCH_VECTORS * dim);
+        let moments_len = Self::moments_len(dim);
+        let moments = if rest.len() >= moments_len {
+            &mut rest[..moments_len]
+        } else {
+            &mut []
+        };
         Ok(Workspace {
             dim,
             batch: BatchBuffers {
@@ -114,6 +135,7 @@ impl<'a, T: Real> Workspace<'a, T> {
                 value_count: 0,
             },
             scratch,
+            moments,
         })
     }
 
@@ -139,7 +161,8 @@ impl<'a, T: Real> Workspace<'a, T> {
 }
 
 /// Inline storage for a workspace of compile-time dimension `N` and batch capacity `R`
-/// (`R ≥ MIN_ROWS`). Memory: `(2R + 3)·N + R` floats and `R` seeds.
+/// (`R ≥ MIN_ROWS`). Memory: `(2R + 3)·N + R` floats and `R` seeds. It has no moment
+/// region: for least-squares estimates, carve a [`Workspace`] from a buffer instead.
 ///
 /// ```
 /// use hodr_core::FixedWorkspace;
@@ -189,6 +212,7 @@ impl<T: Real, const N: usize, const R: usize> FixedWorkspace<T, N, R> {
                 value_count: 0,
             },
             scratch: self.scratch.as_flattened_mut(),
+            moments: &mut [],
         }
     }
 }

@@ -13,6 +13,7 @@
 //! | [`GradientMethod::PerElement`] | element i: tᵢ ~ p_G, rest N₁ | 2nP |
 //! | [`GradientMethod::Aggregate`] | mixture of the n element densities | 2P |
 //! | [`GradientMethod::Gaussian`] | N(0, I) | 2P |
+//! | [`GradientMethod::Regression`] | N(0, I), least-squares fit | 2P (P ≥ n + 2) |
 //! | [`HessianMethod::PerElement`] | element (i, j), i ≤ j: p_D or p_G×p_G | n(n+1)P + 1 |
 //! | [`HessianMethod::Aggregate`] | mixture of the n(n+1)/2 element densities | 2P + 1 |
 //! | [`HessianMethod::Gaussian`] | N(0, I) | 2P + 1 |
@@ -31,6 +32,8 @@ mod per_element;
 mod aggregate;
 #[cfg(feature = "hvp")]
 mod hvp;
+#[cfg(feature = "regression")]
+mod regression;
 
 use rand_core::Rng;
 
@@ -58,9 +61,27 @@ pub enum GradientMethod {
     Aggregate,
     /// Plain Gaussian ("Stein") sampling (DESIGN §1.4): τ ~ N(0, σ²I), weight −τₑ/σ².
     Gaussian,
+    /// Least squares on Gaussian samples: ĝ = (Σ ttᵀ)⁻¹ Σ t·(f(θ+σt) − f(θ−σt))/(2σ),
+    /// t ~ N(0, I) — the Gaussian estimator with E[ttᵀ] = I as a control variate. Exact
+    /// for quadratics; consistent for ∇f̄ (bias O(1/P)). Needs P ≥ n + 2 pairs
+    /// ([`GradientMethod::min_pairs`]) and a workspace with a moment region
+    /// ([`Workspace::moments_len`]).
+    #[cfg(feature = "regression")]
+    Regression,
 }
 
 impl GradientMethod {
+    /// The fewest pairs an estimate in dimension `n` accepts (1 except for
+    /// [`GradientMethod::Regression`]: n + 2).
+    #[cfg_attr(not(feature = "regression"), allow(unused_variables))]
+    pub fn min_pairs(self, n: usize) -> usize {
+        match self {
+            #[cfg(feature = "regression")]
+            GradientMethod::Regression => regression::min_pairs(n),
+            _ => 1,
+        }
+    }
+
     /// Objective evaluations for one estimate in dimension `n` with `pairs` pairs.
     pub fn evaluations(self, n: usize, pairs: usize) -> usize {
         match self {
@@ -226,8 +247,10 @@ impl<T: Real, R: Rng> Estimator<T, R> {
     /// # Errors
     /// [`Error::DimensionMismatch`] if `theta` or `grad` is not of the workspace's length;
     /// [`Error::NonFiniteInput`] for a non-finite θ; [`Error::NonFiniteObjective`] (the
-    /// point stays in the workspace); [`Error::NonFiniteEstimate`] on overflow. On error
-    /// `grad` holds no meaningful values.
+    /// point stays in the workspace); [`Error::NonFiniteEstimate`] on overflow. For
+    /// [`GradientMethod::Regression`]: [`Error::InvalidSetting`] (`pairs`) below
+    /// [`GradientMethod::min_pairs`], [`Error::WorkspaceTooSmall`] without a moment
+    /// region. On error `grad` holds no meaningful values.
     pub fn gradient<O: Objective<T> + ?Sized>(
         &mut self,
         method: GradientMethod,
@@ -457,6 +480,23 @@ impl<T: Real, R: Rng> Estimator<T, R> {
             GradientMethod::Gaussian => {
                 let mut scheme = gaussian::Gradient::new(self.pairs, sign, acc);
                 driver::run(&mut scheme, objective, &placement, rng, batch, n)
+            }
+            #[cfg(feature = "regression")]
+            GradientMethod::Regression => {
+                if self.pairs < method.min_pairs(n) {
+                    return Err(Error::InvalidSetting { name: "pairs" });
+                }
+                let needed = Workspace::<T>::moments_len(n);
+                if ws.moments.len() < needed {
+                    return Err(Error::WorkspaceTooSmall {
+                        needed,
+                        available: ws.moments.len(),
+                    });
+                }
+                let mut scheme = regression::Gradient::new(n, self.pairs, ws.moments);
+                let evaluations = driver::run(&mut scheme, objective, &placement, rng, batch, n)?;
+                scheme.finish(sign, acc)?;
+                Ok(evaluations)
             }
         }
     }

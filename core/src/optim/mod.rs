@@ -16,8 +16,6 @@
 //! σ follows a [`Schedule`] over the [`Budget`]'s progress. Memory is the caller's: θ and
 //! one buffer of [`Method::buffer_len`] floats.
 
-#[cfg(feature = "hessian")]
-mod cholesky;
 mod first_order;
 #[cfg(feature = "cg")]
 mod ncg;

@@ -7,10 +7,10 @@
 
 use rand_core::Rng;
 
-use super::cholesky::{factor_shifted, solve};
 use super::oracle::Oracle;
 use super::vector::norm;
 use super::{Outcome, check_positive};
+use crate::cholesky::{factor_shifted, solve};
 use crate::error::Error;
 use crate::estimate::{GradientMethod, HessianMethod};
 use crate::objective::Objective;

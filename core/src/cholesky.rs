@@ -1,23 +1,27 @@
-//! Cholesky factorisation with a growing diagonal shift, for Newton steps on estimated
-//! (noisy, possibly indefinite) Hessians.
+//! Cholesky factorisation: plain, for the regression estimators' sample moment matrix,
+//! and with a growing diagonal shift, for Newton steps on estimated (noisy, possibly
+//! indefinite) Hessians.
 
 use crate::real::Real;
 
 /// Most shifts tried before giving up; λ grows ×10 per try, so 40 tries span 40 decades.
+#[cfg(feature = "hessian")]
 pub const MAX_SHIFTS: usize = 40;
 
 /// Relative eigenvalue floor: A + λI is accepted only if A + λI − δI is positive
 /// definite, δ = `FLOOR`·‖A‖_F, so no eigenvalue of the system solved is below δ. An
 /// estimated Hessian whose softest direction is noise would otherwise be shifted to the
 /// edge of singularity and send the step to the trust boundary.
+#[cfg(feature = "hessian")]
 pub const FLOOR: f64 = 1e-2;
 
 /// Factors A + λI = LLᵀ into `l` (row-major n×n, lower triangle) for the smallest λ in
 /// {0, λ₀, 10λ₀, 100λ₀, …} with A + (λ − δ)I positive definite (see [`FLOOR`]),
 /// λ₀ = δ + 1e-6·‖A‖_F (or 1e-6 for A = 0). `a` is read-only. Returns λ, or `None`
 /// after [`MAX_SHIFTS`] tries.
+#[cfg(feature = "hessian")]
 pub(crate) fn factor_shifted<T: Real>(a: &[T], l: &mut [T], n: usize) -> Option<T> {
-    let frobenius = super::vector::norm(&a[..n * n]);
+    let frobenius = crate::optim::vector::norm(&a[..n * n]);
     if !frobenius.is_finite() {
         return None;
     }
@@ -45,8 +49,20 @@ pub(crate) fn factor_shifted<T: Real>(a: &[T], l: &mut [T], n: usize) -> Option<
     None
 }
 
-/// A + λI = LLᵀ; false if a pivot is not positive and finite.
+/// A + λI = LLᵀ into `l` (lower triangle of a row-major n×n matrix); false if a pivot is
+/// not positive and finite.
+#[cfg(feature = "hessian")]
 fn factor<T: Real>(a: &[T], l: &mut [T], n: usize, lambda: T) -> bool {
+    for i in 0..n {
+        l[i * n..i * n + i + 1].copy_from_slice(&a[i * n..i * n + i + 1]);
+    }
+    factor_in_place(l, n, lambda)
+}
+
+/// A + λI = LLᵀ in place: reads the lower triangle of the row-major n×n `a` (the upper
+/// one is ignored) and overwrites it with L. False if a pivot is not positive and finite
+/// (then `a` holds no meaningful values).
+pub(crate) fn factor_in_place<T: Real>(a: &mut [T], n: usize, lambda: T) -> bool {
     for i in 0..n {
         for j in 0..=i {
             let mut s = a[i * n + j];
@@ -54,15 +70,15 @@ fn factor<T: Real>(a: &[T], l: &mut [T], n: usize, lambda: T) -> bool {
                 s += lambda;
             }
             for k in 0..j {
-                s -= l[i * n + k] * l[j * n + k];
+                s -= a[i * n + k] * a[j * n + k];
             }
             if i == j {
                 if !(s > T::ZERO && s.is_finite()) {
                     return false;
                 }
-                l[i * n + i] = s.sqrt();
+                a[i * n + i] = s.sqrt();
             } else {
-                l[i * n + j] = s / l[j * n + j];
+                a[i * n + j] = s / a[j * n + j];
             }
         }
     }
@@ -87,7 +103,7 @@ pub(crate) fn solve<T: Real>(l: &[T], n: usize, x: &mut [T]) {
     }
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "hessian"))]
 mod tests {
     use super::*;
 
