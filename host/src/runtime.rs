@@ -186,7 +186,7 @@ pub fn run(problem: Problem, preset: Preset, seed: u64, crn: bool) -> Vec<Sample
         &mut buffer,
     )
     .expect("valid settings");
-    let (mut wb, mut seeds) = (vec![0.0; Workspace::<f64>::buffer_len(2, 64)], vec![0; 64]);
+    let (mut wb, mut seeds) = (vec![0.0; method.workspace_len(2, 64)], vec![0; 64]);
     let mut ws = Workspace::new(2, &mut wb, &mut seeds).expect("valid sizes");
     let mut objective: Box<dyn Objective<f64>> = match problem {
         Problem::QuadNear | Problem::QuadFar => Box::new(Quadratic::quad()),

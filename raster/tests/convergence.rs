@@ -29,7 +29,7 @@ fn run(task: &Task, seed: u64, iterations: usize) -> Vec<f64> {
     let start_loss = objective.loss(&theta).unwrap();
     let n = theta.len();
     let rows = 64;
-    let mut buffer = vec![0.0; Workspace::<f64>::buffer_len(n, rows)];
+    let mut buffer = vec![0.0; method.workspace_len(n, rows)];
     let mut seeds = vec![0; rows];
     let mut ws = Workspace::new(n, &mut buffer, &mut seeds).unwrap();
     let estimator = Estimator::new(

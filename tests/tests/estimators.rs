@@ -325,7 +325,7 @@ fn f32_estimates_match_closed_forms() {
 fn regression_is_exact_on_quadratics() {
     for n in [1, 3, 10] {
         let p = Problem::quadratic(n, 2);
-        let pairs = GradientMethod::Regression.min_pairs(n);
+        let pairs = 1;
         let mut mem = Memory::with_moments(n, 8);
         let mut ws = mem.ws(n);
         let mut est = Estimator::new(SIGMA, pairs, Xoshiro256PlusPlus::seed_from_u64(9)).unwrap();
@@ -348,7 +348,7 @@ fn regression_is_exact_on_quadratics() {
                     &mut g,
                 )
                 .unwrap();
-            assert_eq!(r.evaluations, 2 * pairs);
+            assert_eq!(r.evaluations, 2 * (2 * n + 2));
             for k in 0..n {
                 assert!(
                     (g[k] - g_true[k]).abs() <= 1e-9 * scale(&g_true),
@@ -410,46 +410,24 @@ fn regression_gradient_matches_closed_forms() {
     }
 }
 
+/// The fit draws at least 2n + 2 pairs, and needs the workspace's moment region.
 #[test]
-fn regression_needs_pairs_and_a_moment_region() {
+fn regression_draws_enough_pairs_and_needs_a_moment_region() {
     let p = Problem::quadratic(3, 2);
     let mut f = |x: &[f64]| p.value(x);
     let mut g = [0.0; 3];
-    let mut est = Estimator::new(SIGMA, 4, Xoshiro256PlusPlus::seed_from_u64(1)).unwrap();
-    let mut mem = Memory::with_moments(3, 8);
-    assert_eq!(
-        est.gradient(
-            GradientMethod::Regression,
-            &mut f,
-            p.theta(),
-            &mut mem.ws(3),
-            &mut g
-        ),
-        Err(hodr_core::Error::InvalidSetting { name: "pairs" })
-    );
-    let mut est = Estimator::new(SIGMA, 5, Xoshiro256PlusPlus::seed_from_u64(1)).unwrap();
+    let m = GradientMethod::Regression;
+    assert_eq!((m.evaluations(3, 1), m.evaluations(3, 20)), (16, 40));
+    let mut est = Estimator::new(SIGMA, 1, Xoshiro256PlusPlus::seed_from_u64(1)).unwrap();
     let mut plain = Memory::new(3, 8);
     assert_eq!(
-        est.gradient(
-            GradientMethod::Regression,
-            &mut f,
-            p.theta(),
-            &mut plain.ws(3),
-            &mut g
-        ),
+        est.gradient(m, &mut f, p.theta(), &mut plain.ws(3), &mut g),
         Err(hodr_core::Error::WorkspaceTooSmall {
             needed: 12,
             available: 0
         })
     );
-    assert!(
-        est.gradient(
-            GradientMethod::Regression,
-            &mut f,
-            p.theta(),
-            &mut mem.ws(3),
-            &mut g
-        )
-        .is_ok()
-    );
+    let mut mem = Memory::with_moments(3, 8);
+    let r = est.gradient(m, &mut f, p.theta(), &mut mem.ws(3), &mut g);
+    assert_eq!(r.map(|r| r.evaluations), Ok(16));
 }

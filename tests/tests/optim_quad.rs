@@ -37,7 +37,7 @@ fn run(preset: Preset, start: [f64; 2], iterations: usize, seed: u64) -> f64 {
         &mut buffer,
     )
     .unwrap();
-    let (mut wb, mut seeds) = (vec![0.0; Workspace::<f64>::buffer_len(2, 64)], vec![0; 64]);
+    let (mut wb, mut seeds) = (vec![0.0; method.workspace_len(2, 64)], vec![0; 64]);
     let mut ws = Workspace::new(2, &mut wb, &mut seeds).unwrap();
     let mut f = quad;
     opt.run(

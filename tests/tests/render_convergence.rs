@@ -43,7 +43,7 @@ fn run(
         &mut buffer,
     )
     .unwrap();
-    let (mut wb, mut seeds) = (vec![0.0; Workspace::<f64>::buffer_len(n, 64)], vec![0; 64]);
+    let (mut wb, mut seeds) = (vec![0.0; method.workspace_len(n, 64)], vec![0; 64]);
     let mut ws = Workspace::new(n, &mut wb, &mut seeds).unwrap();
     opt.run(
         &mut objective,

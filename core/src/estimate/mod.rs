@@ -13,7 +13,7 @@
 //! | [`GradientMethod::PerElement`] | element i: tᵢ ~ p_G, rest N₁ | 2nP |
 //! | [`GradientMethod::Aggregate`] | mixture of the n element densities | 2P |
 //! | [`GradientMethod::Gaussian`] | N(0, I) | 2P |
-//! | [`GradientMethod::Regression`] | N(0, I), least-squares fit | 2P (P ≥ n + 2) |
+//! | [`GradientMethod::Regression`] | N(0, I), least-squares fit | 2·max(P, 2n + 2) |
 //! | [`HessianMethod::PerElement`] | element (i, j), i ≤ j: p_D or p_G×p_G | n(n+1)P + 1 |
 //! | [`HessianMethod::Aggregate`] | mixture of the n(n+1)/2 element densities | 2P + 1 |
 //! | [`HessianMethod::Gaussian`] | N(0, I) | 2P + 1 |
@@ -63,29 +63,20 @@ pub enum GradientMethod {
     Gaussian,
     /// Least squares on Gaussian samples: ĝ = (Σ ttᵀ)⁻¹ Σ t·(f(θ+σt) − f(θ−σt))/(2σ),
     /// t ~ N(0, I) — the Gaussian estimator with E[ttᵀ] = I as a control variate. Exact
-    /// for quadratics; consistent for ∇f̄ (bias O(1/P)). Needs P ≥ n + 2 pairs
-    /// ([`GradientMethod::min_pairs`]) and a workspace with a moment region
-    /// ([`Workspace::moments_len`]).
+    /// for quadratics; consistent for ∇f̄ (bias O(1/P)). Draws max(P, 2n + 2) pairs (a
+    /// well-conditioned fit needs about twice as many samples as unknowns) and needs a
+    /// workspace with a moment region ([`Workspace::moments_len`]).
     #[cfg(feature = "regression")]
     Regression,
 }
 
 impl GradientMethod {
-    /// The fewest pairs an estimate in dimension `n` accepts (1 except for
-    /// [`GradientMethod::Regression`]: n + 2).
-    #[cfg_attr(not(feature = "regression"), allow(unused_variables))]
-    pub fn min_pairs(self, n: usize) -> usize {
-        match self {
-            #[cfg(feature = "regression")]
-            GradientMethod::Regression => regression::min_pairs(n),
-            _ => 1,
-        }
-    }
-
     /// Objective evaluations for one estimate in dimension `n` with `pairs` pairs.
     pub fn evaluations(self, n: usize, pairs: usize) -> usize {
         match self {
             GradientMethod::PerElement => 2 * n * pairs,
+            #[cfg(feature = "regression")]
+            GradientMethod::Regression => 2 * regression::pairs(n, pairs),
             _ => 2 * pairs,
         }
     }
@@ -247,9 +238,8 @@ impl<T: Real, R: Rng> Estimator<T, R> {
     /// # Errors
     /// [`Error::DimensionMismatch`] if `theta` or `grad` is not of the workspace's length;
     /// [`Error::NonFiniteInput`] for a non-finite θ; [`Error::NonFiniteObjective`] (the
-    /// point stays in the workspace); [`Error::NonFiniteEstimate`] on overflow. For
-    /// [`GradientMethod::Regression`]: [`Error::InvalidSetting`] (`pairs`) below
-    /// [`GradientMethod::min_pairs`], [`Error::WorkspaceTooSmall`] without a moment
+    /// point stays in the workspace); [`Error::NonFiniteEstimate`] on overflow;
+    /// [`Error::WorkspaceTooSmall`] for [`GradientMethod::Regression`] without a moment
     /// region. On error `grad` holds no meaningful values.
     pub fn gradient<O: Objective<T> + ?Sized>(
         &mut self,
@@ -483,9 +473,6 @@ impl<T: Real, R: Rng> Estimator<T, R> {
             }
             #[cfg(feature = "regression")]
             GradientMethod::Regression => {
-                if self.pairs < method.min_pairs(n) {
-                    return Err(Error::InvalidSetting { name: "pairs" });
-                }
                 let needed = Workspace::<T>::moments_len(n);
                 if ws.moments.len() < needed {
                     return Err(Error::WorkspaceTooSmall {

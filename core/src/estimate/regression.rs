@@ -14,8 +14,10 @@
 //! the known E[ttᵀ] = I used as a control variate.
 //!
 //! Costs beyond the Gaussian estimator: O(n²) per sample for Σttᵀ and one O(n³/6)
-//! Cholesky solve per estimate, in the workspace's moment region. It needs P ≥ n + 2
-//! pairs, the fewest for which E[(Σttᵀ)⁻¹] is finite.
+//! Cholesky solve per estimate, in the workspace's moment region. It draws
+//! max(P, 2n + 2) pairs: E[(Σttᵀ)⁻¹] is finite only from n + 2 samples on, and with
+//! about twice as many samples as unknowns the fit amplifies the noise that is not
+//! linear in t by P/(P − n − 1) ≈ 2 at most, in mean.
 //!
 //! With a central-difference HVP under common random numbers, the same regression is
 //! applied to the differenced values, so on a quadratic Ĥv = ∇²f̄·v exactly.
@@ -28,15 +30,18 @@ use crate::error::Error;
 use crate::real::Real;
 use crate::sample::place;
 
-/// The fewest pairs a least-squares estimate in dimension `n` accepts.
-pub(super) fn min_pairs(n: usize) -> usize {
-    n + 2
+/// Pairs drawn in dimension `n` when the caller asks for `pairs`: max(P, 2n + 2).
+pub(super) fn pairs(n: usize, pairs: usize) -> usize {
+    pairs.max(2 * n + 2)
 }
 
 /// Accumulates Σ tₖ(−oddₖ) and the lower triangle of Σ tₖtₖᵀ.
 pub(super) struct Gradient<'o, T> {
     n: usize,
+    /// P as the caller scales the sum (it divides by σP).
     pairs: usize,
+    /// Pairs drawn, [`pairs`]`(n, P)`.
+    drawn: usize,
     sum: &'o mut [T],
     moments: &'o mut [T],
 }
@@ -51,13 +56,14 @@ impl<'o, T: Real> Gradient<'o, T> {
         Gradient {
             n,
             pairs,
+            drawn: self::pairs(n, pairs),
             sum,
             moments,
         }
     }
 
     /// Adds `sign`·P·(Σttᵀ)⁻¹ Σ t(−odd) to `acc`: the fitted gradient times σP, the scale
-    /// of the other gradient sums (the caller divides by σP).
+    /// of the other gradient sums (the caller divides by σP, P the pairs it asked for).
     ///
     /// # Errors
     /// [`Error::NonFiniteEstimate`] if Σttᵀ is not numerically positive definite.
@@ -76,7 +82,7 @@ impl<'o, T: Real> Gradient<'o, T> {
 
 impl<T: Real> Scheme<T> for Gradient<'_, T> {
     fn groups(&self) -> usize {
-        self.pairs
+        self.drawn
     }
 
     fn draw<R: Rng + ?Sized>(&mut self, _group: usize, rng: &mut R, t: &mut [T]) {

@@ -22,7 +22,12 @@ mod ncg;
 #[cfg(feature = "hessian")]
 mod newton;
 mod oracle;
-#[cfg(all(feature = "hessian", feature = "aggregate", feature = "cg"))]
+#[cfg(all(
+    feature = "hessian",
+    feature = "aggregate",
+    feature = "cg",
+    feature = "regression"
+))]
 pub mod preset;
 mod schedule;
 #[cfg(feature = "cg")]
@@ -44,6 +49,10 @@ pub use steihaug::NewtonCg;
 
 use crate::error::Error;
 use crate::estimate::Estimator;
+#[cfg(feature = "regression")]
+use crate::estimate::GradientMethod;
+#[cfg(all(feature = "regression", feature = "cg"))]
+use crate::estimate::HvpMethod;
 use crate::objective::Objective;
 use crate::real::Real;
 use crate::workspace::Workspace;
@@ -80,8 +89,46 @@ impl<T: Real> Method<T> {
             #[cfg(feature = "cg")]
             Method::Ncg(m) => m.buffer_len(n),
             #[cfg(feature = "cg")]
-            Method::NewtonCg(_) => NewtonCg::<T>::buffer_len(n),
+            Method::NewtonCg(m) => m.buffer_len(n),
         }
+    }
+
+    /// Length of the workspace buffer ([`Workspace::new`]) this method's estimates need
+    /// in dimension `dim` with batch capacity `rows`: [`Workspace::buffer_len`], plus
+    /// [`Workspace::moments_len`] when one of its gradient estimators is
+    /// least-squares.
+    pub fn workspace_len(&self, dim: usize, rows: usize) -> usize {
+        let base = Workspace::<T>::buffer_len(dim, rows);
+        if self.fits_least_squares() {
+            base + Workspace::<T>::moments_len(dim)
+        } else {
+            base
+        }
+    }
+
+    /// True when a gradient estimator of this method (direct or differenced for HVPs)
+    /// is [`GradientMethod::Regression`].
+    fn fits_least_squares(&self) -> bool {
+        #[cfg(feature = "regression")]
+        {
+            let fits = |g: GradientMethod| g == GradientMethod::Regression;
+            #[cfg(feature = "cg")]
+            let hvp_fits = |h: HvpMethod| matches!(h, HvpMethod::CentralDifference { gradient, .. } if fits(gradient));
+            match self {
+                Method::GradientDescent(m) => fits(m.gradient),
+                Method::Adam(m) => fits(m.gradient),
+                #[cfg(feature = "hessian")]
+                Method::Newton(m) => fits(m.gradient),
+                #[cfg(feature = "cg")]
+                Method::Ncg(m) => {
+                    fits(m.gradient) || matches!(m.curvature, Curvature::Hvp(h) if hvp_fits(h))
+                }
+                #[cfg(feature = "cg")]
+                Method::NewtonCg(m) => fits(m.gradient) || hvp_fits(m.hvp),
+            }
+        }
+        #[cfg(not(feature = "regression"))]
+        false
     }
 
     /// True when every estimate of an iteration reuses the same samples.

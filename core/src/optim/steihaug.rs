@@ -34,8 +34,9 @@ pub struct NewtonCg<T> {
     pub hvp: HvpMethod,
     /// Δ: steps are at most Δ·σ long.
     pub trust_radius: T,
-    /// Inner CG steps per iteration (≥ 1; each one HVP). Presets use 3: with noisy HVPs,
-    /// longer inner runs lose conjugacy and wander to the boundary.
+    /// Inner CG steps per iteration (≥ 1; each one HVP), capped at 2n (exact CG ends
+    /// within n steps; the rest allows for rounding). Presets with fresh noisy HVPs use
+    /// 3: longer inner runs lose conjugacy and wander to the boundary.
     pub max_inner: usize,
     /// Inner CG stops when ‖r‖ ≤ this × ‖ĝ‖. Default in presets: 0.1.
     pub inner_tolerance: T,
@@ -47,6 +48,15 @@ pub struct NewtonCg<T> {
     /// matrix M, which cancels from the Newton step on quadratics. Fresh samples come
     /// with each new iteration.
     pub reuse_samples: bool,
+    /// Keep the inner residuals mutually orthogonal, as they are in exact arithmetic:
+    /// each new residual is Gram–Schmidt-orthogonalised against normalised copies of the
+    /// earlier ones. Finite-precision CG loses this on ill-conditioned systems and then
+    /// needs many times n steps (measured on the stability suite's quadratic, n = 50,
+    /// κ = 1e8: ≈ 400 steps to 1e-2 relative error without, 50 to 1e-15 with). Worth it
+    /// only when the HVPs are exact enough to resolve that accuracy (least-squares
+    /// estimates with reused samples). Costs n·min(max_inner + 1, n) buffer floats and
+    /// O(jn) per inner step j.
+    pub reorthogonalize: bool,
 }
 
 impl<T: Real> NewtonCg<T> {
@@ -63,9 +73,18 @@ impl<T: Real> NewtonCg<T> {
         Ok(())
     }
 
-    /// Buffer floats needed: ĝ, p, r, d, Ĥd.
-    pub(crate) fn buffer_len(n: usize) -> usize {
-        5 * n
+    /// Buffer floats needed: ĝ, p, r, d, Ĥd, and the orthonormal residual basis.
+    pub(crate) fn buffer_len(&self, n: usize) -> usize {
+        5 * n + n * self.basis_capacity(n)
+    }
+
+    /// Residuals kept for reorthogonalisation: at most n can be orthogonal and nonzero.
+    fn basis_capacity(&self, n: usize) -> usize {
+        if self.reorthogonalize {
+            (self.max_inner + 1).min(n)
+        } else {
+            0
+        }
     }
 
     pub(crate) fn step<R: Rng + Clone, O: Objective<T> + ?Sized>(
@@ -81,7 +100,9 @@ impl<T: Real> NewtonCg<T> {
         let (p, rest) = rest.split_at_mut(n);
         let (r, rest) = rest.split_at_mut(n);
         let (d, rest) = rest.split_at_mut(n);
-        let hd = &mut rest[..n];
+        let (hd, rest) = rest.split_at_mut(n);
+        let basis = &mut rest[..n * self.basis_capacity(n)];
+        let mut kept = 0;
 
         oracle.gradient(self.gradient, theta, g)?;
         let gradient_norm = norm(g);
@@ -102,7 +123,7 @@ impl<T: Real> NewtonCg<T> {
             *di = -gi;
         }
         let mut rr = dot(r, r);
-        for j in 0..self.max_inner {
+        for j in 0..self.max_inner.min(2 * n) {
             oracle.hvp(self.hvp, theta, d, hd)?;
             let kappa = dot(d, hd);
             let dd = dot(d, d);
@@ -135,7 +156,11 @@ impl<T: Real> NewtonCg<T> {
             }
             axpy(alpha, d, p);
             axpy(alpha, hd, r);
+            for q in basis[..kept * n].chunks_exact(n) {
+                axpy(-dot(q, r), q, r);
+            }
             let rr_new = dot(r, r);
+            keep(basis, &mut kept, r, rr_new);
             if rr_new.sqrt() <= self.inner_tolerance * gradient_norm {
                 break;
             }
@@ -151,4 +176,18 @@ impl<T: Real> NewtonCg<T> {
         outcome.step_length = norm(p);
         Ok(outcome)
     }
+}
+
+/// Appends r/‖r‖ (`rr` = ‖r‖²) to the `kept` vectors of `basis`, if there is room and
+/// r ≠ 0.
+fn keep<T: Real>(basis: &mut [T], kept: &mut usize, r: &[T], rr: T) {
+    let n = r.len();
+    if (*kept + 1) * n > basis.len() || !(rr > T::ZERO && rr.is_finite()) {
+        return;
+    }
+    let scale = T::ONE / rr.sqrt();
+    for (q, &ri) in basis[*kept * n..(*kept + 1) * n].iter_mut().zip(r) {
+        *q = scale * ri;
+    }
+    *kept += 1;
 }

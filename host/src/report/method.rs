@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use anyhow::Result;
 use hodr_core::optim::preset::Preset;
 use hodr_core::optim::{Budget, Optimiser};
-use hodr_core::{Estimator, Workspace};
+use hodr_core::{Estimator, GradientMethod, Workspace};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 use serde::Serialize;
@@ -56,8 +56,8 @@ impl Method {
     }
 }
 
-/// Objective evaluations of a preset's first estimate, when its per-element sampling
-/// makes that grow with n (0 otherwise): runs whose first estimate alone exceeds the
+/// Objective evaluations of a preset's first estimate, when its per-element sampling or
+/// least-squares fit makes that grow with n (0 otherwise): runs whose first estimate alone exceeds the
 /// budget are skipped rather than run for hours (the per-element Hessian at n = 1024
 /// needs 10⁶ evaluations).
 fn first_estimate_cost(
@@ -68,6 +68,7 @@ fn first_estimate_cost(
     match preset {
         Preset::OurH | Preset::OurHNewton => n * (n + 1) * h.pairs + 1,
         Preset::OurG | Preset::OurHvp => 2 * n * h.pairs,
+        Preset::NewtonCgRegression => GradientMethod::Regression.evaluations(n, h.pairs),
         _ => 0,
     }
 }
@@ -198,10 +199,7 @@ pub fn run_observed(
                 &mut buffer,
             )?;
             let rows = 64;
-            let (mut wb, mut seeds) = (
-                vec![0.0; Workspace::<f64>::buffer_len(n, rows)],
-                vec![0; rows],
-            );
+            let (mut wb, mut seeds) = (vec![0.0; m.workspace_len(n, rows)], vec![0; rows]);
             let mut ws = Workspace::new(n, &mut wb, &mut seeds)?;
             let mut elapsed = Duration::ZERO;
             loop {
