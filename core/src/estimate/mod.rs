@@ -62,7 +62,7 @@ pub enum GradientMethod {
     /// Plain Gaussian ("Stein") sampling (DESIGN §1.4): τ ~ N(0, σ²I), weight −τₑ/σ².
     Gaussian,
     /// Least squares on Gaussian samples: ĝ = (Σ ttᵀ)⁻¹ Σ t·(f(θ+σt) − f(θ−σt))/(2σ),
-    /// t ~ N(0, I) — the Gaussian estimator with E[ttᵀ] = I as a control variate. Exact
+    /// t ~ N(0, I) — the Gaussian estimator with E(ttᵀ) = I as a control variate. Exact
     /// for quadratics; consistent for ∇f̄ (bias O(1/P)). Draws max(P, 2n + 2) pairs (a
     /// well-conditioned fit needs about twice as many samples as unknowns) and needs a
     /// workspace with a moment region ([`Workspace::moments_len`]).

@@ -11,7 +11,7 @@
 //! samples — antithetic pairs cancel the even terms — and, since M → I, it converges to
 //! the smoothed gradient ∇f̄ as P grows, like the Gaussian estimator; for finite P it is
 //! a ratio estimator, biased by O(1/P). Equivalently it is the Gaussian estimator with
-//! the known E[ttᵀ] = I used as a control variate.
+//! the known E(ttᵀ) = I used as a control variate.
 //!
 //! Costs beyond the Gaussian estimator: O(n²) per sample for Σttᵀ and one O(n³/6)
 //! Cholesky solve per estimate, in the workspace's moment region. It draws
