@@ -7,22 +7,21 @@
 //! (DESIGN §3) with the iteration budgets stated per test.
 
 use hodr_core::optim::preset::{Hyper, Preset};
-use hodr_core::optim::{Budget, Optimiser};
+use hodr_core::optim::{Budget, Method, NegativeCurvature, Optimiser};
 use hodr_core::{Estimator, Workspace};
 use hodr_host::tasks::{self, Task3d, TaskObjective, TaskSettings};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 
-/// Starting and final parameter error of one OurHVPA run.
+/// Starting and final parameter error of one run of `method` (σ schedule of `h`).
 fn run(
     task: &dyn Task3d,
     settings: TaskSettings,
+    method: Method<f64>,
     h: &Hyper<f64>,
     iterations: usize,
     seed: u64,
 ) -> (f64, f64) {
-    let preset = Preset::OurHvpa;
-    let method = preset.method(h);
     let n = task.dimension();
     let mut theta = task.start(seed);
     let start_error = task.parameter_error(&theta);
@@ -36,7 +35,7 @@ fn run(
     .unwrap();
     let mut opt = Optimiser::new(
         method,
-        preset.schedule(h),
+        Preset::OurHvpa.schedule(h),
         Budget::iterations(iterations),
         estimator,
         &mut theta,
@@ -103,10 +102,56 @@ fn mug_converges_from_plateau_starts() {
     };
     let wins = (0..20)
         .filter(|&seed| {
-            let (e0, e1) = run(task.as_ref(), small(32, 4, 64), &h, 40, seed);
+            let method = Preset::OurHvpa.method(&h);
+            let (e0, e1) = run(task.as_ref(), small(32, 4, 64), method, &h, 40, seed);
             eprintln!("MUG seed {seed}: error {e0:.3} → {e1:.4}");
             e1 < 0.25
         })
         .count();
     assert!(wins >= 4, "MUG: {wins}/20 seeds converged");
+}
+
+/// SHADOW explore.
+#[test]
+#[ignore]
+fn shadow_explore() {
+    let task = tasks::by_name("SHADOW").unwrap();
+    let env = |k: &str, d: f64| std::env::var(k).map(|v| v.parse().unwrap()).unwrap_or(d);
+    let h = Hyper {
+        pairs: env("PAIRS", 1.0) as usize,
+        sigma_start: 0.5,
+        sigma_end: 0.01,
+        trust_radius: 3.0,
+        line_search_iterations: env("LS", 10.0) as usize,
+        line_search_tolerance: 1e-3,
+        recompute: 5,
+        learning_rate: 0.1,
+        common_random_numbers: env("CRN", 1.0) > 0.5,
+    };
+    let preset = Preset::from_name(&std::env::var("PRESET").unwrap_or("OurHVPA".into())).unwrap();
+    let mut method = preset.method(&h);
+    if env("FALLBACK", 0.0) > 0.5 {
+        match &mut method {
+            Method::Ncg(m) => m.negative_curvature = NegativeCurvature::Fallback,
+            Method::NewtonCg(m) => m.negative_curvature = NegativeCurvature::Fallback,
+            _ => {}
+        }
+    }
+    let w = env("W", 32.0) as u32;
+    let spp = env("SPP", 4.0) as u32;
+    let iters = env("IT", 40.0) as usize;
+    let seeds = env("SEEDS", 10.0) as u64;
+    let t0 = std::time::Instant::now();
+    let wins = (0..seeds)
+        .filter(|&seed| {
+            let (e0, e1) = run(task.as_ref(), small(w, spp, 64), method, &h, iters, seed);
+            eprintln!("SHADOW seed {seed}: error {e0:.3} → {e1:.4}");
+            e1 < 0.05
+        })
+        .count();
+    eprintln!(
+        "{} wins {wins}/{seeds} in {:?}",
+        preset.name(),
+        t0.elapsed()
+    );
 }

@@ -1,5 +1,6 @@
 //! The estimators as seen by an optimiser: one place that counts evaluations and keeps
-//! the latest loss estimate.
+//! the latest loss estimate. It also compares candidate points by their objective values
+//! (the two-sided negative-curvature step, [`super::NegativeCurvature::TwoSided`]).
 
 use rand_core::Rng;
 
@@ -9,8 +10,12 @@ use crate::estimate::HessianMethod;
 #[cfg(feature = "cg")]
 use crate::estimate::HvpMethod;
 use crate::estimate::{Estimator, GradientMethod, Report};
+#[cfg(feature = "cg")]
+use crate::objective::Batch;
 use crate::objective::Objective;
 use crate::real::Real;
+#[cfg(feature = "cg")]
+use crate::workspace::MIN_ROWS;
 use crate::workspace::Workspace;
 
 pub(crate) struct Oracle<'a, 'w, T, R, O: ?Sized> {
@@ -105,5 +110,59 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
             .hessian(method, self.objective, theta, self.ws, out)?;
         self.record(&r);
         Ok(())
+    }
+
+    /// The index of the lowest of `K` candidate points by objective value, each the mean
+    /// of f over P noise seeds (P = the estimator's pairs) that all candidates share:
+    /// with common random numbers the renderer noise the candidates have in common
+    /// cancels from their differences. `place(k, x)` writes candidate k into x (length
+    /// n). Ties go to the earlier candidate. Costs K·P evaluations, counted here.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteObjective`] (the point stays in the workspace).
+    #[cfg(feature = "cg")]
+    pub fn lowest<const K: usize>(
+        &mut self,
+        mut place: impl FnMut(usize, &mut [T]),
+    ) -> Result<usize, Error> {
+        const { assert!(K >= 1 && K <= MIN_ROWS) };
+        let n = self.ws.dim;
+        let rows = self.ws.rows();
+        let seeds = self.estimator.pairs();
+        let mut sums = [T::ZERO; K];
+        let b = &mut self.ws.batch;
+        let mut done = 0;
+        while done < seeds {
+            let groups = (rows / K).min(seeds - done);
+            for g in 0..groups {
+                let seed = self.estimator.rng_mut().next_u64();
+                for k in 0..K {
+                    let row = g * K + k;
+                    place(k, &mut b.points[row * n..(row + 1) * n]);
+                    b.seeds[row] = seed;
+                }
+            }
+            let used = groups * K;
+            let batch = Batch::new(&b.points[..used * n], &b.seeds[..used], n)?;
+            self.objective.evaluate_batch(&batch, &mut b.values[..used]);
+            if let Some(row) = b.values[..used].iter().position(|v| !v.is_finite()) {
+                b.failed = Some(row);
+                return Err(Error::NonFiniteObjective {
+                    sample: done * K + row,
+                });
+            }
+            for (row, &v) in b.values[..used].iter().enumerate() {
+                sums[row % K] += v;
+            }
+            self.evaluations += used;
+            done += groups;
+        }
+        let mut best = 0;
+        for k in 1..K {
+            if sums[k] < sums[best] {
+                best = k;
+            }
+        }
+        Ok(best)
     }
 }

@@ -16,7 +16,7 @@
 //! (as its code does); [`Hyper::common_random_numbers`] switches them to common random
 //! numbers. Our additions always use common random numbers.
 
-use super::{Adam, Curvature, Method, Ncg, Newton, NewtonCg, Schedule};
+use super::{Adam, Curvature, Method, Ncg, NegativeCurvature, Newton, NewtonCg, Schedule};
 use crate::estimate::{Draws, GradientMethod, HessianMethod, HvpMethod};
 use crate::real::Real;
 
@@ -127,6 +127,7 @@ impl Preset {
                 line_search_tolerance: h.line_search_tolerance,
                 recompute: h.recompute,
                 reuse_samples: false,
+                negative_curvature: NegativeCurvature::TwoSided,
             })
         };
         let newton_cg = |gradient, hvp| {
@@ -137,6 +138,7 @@ impl Preset {
                 max_inner: 3,
                 inner_tolerance: T::from_f64(0.1),
                 reuse_samples: false,
+                negative_curvature: NegativeCurvature::TwoSided,
             })
         };
         match self {
@@ -177,6 +179,7 @@ impl Preset {
                 max_inner: 3,
                 inner_tolerance: T::from_f64(0.1),
                 reuse_samples: true,
+                negative_curvature: NegativeCurvature::TwoSided,
             }),
         }
     }

@@ -11,7 +11,10 @@
 //! often than the smoothed loss does. Here, negative curvature after the first inner
 //! step keeps the CG iterate reached so far; at the first inner step it takes the
 //! gradient-descent-like step −ĝ/κ̄, κ̄ the running mean of the positive curvatures this
-//! run has measured (one σ along −ĝ before any is known), capped at Δ·σ. The radius
+//! run has measured (one σ along −ĝ before any is known), capped at Δ·σ. With
+//! [`NegativeCurvature::TwoSided`] the step so kept (the CG iterate p, or the
+//! gradient-like step) competes with the two points where the line p + τd meets the
+//! boundary, τ > 0 and τ < 0, and the objective picks the lowest of the three. The radius
 //! follows σ rather than an actual-versus-predicted ratio test, since the loss itself is
 //! only known up to noise.
 
@@ -19,7 +22,7 @@ use rand_core::Rng;
 
 use super::oracle::Oracle;
 use super::vector::{axpy, dot, norm, to_boundary};
-use super::{Outcome, check_positive};
+use super::{NegativeCurvature, Outcome, check_positive};
 use crate::error::Error;
 use crate::estimate::{GradientMethod, HvpMethod};
 use crate::objective::Objective;
@@ -47,6 +50,8 @@ pub struct NewtonCg<T> {
     /// matrix M, which cancels from the Newton step on quadratics. Fresh samples come
     /// with each new iteration.
     pub reuse_samples: bool,
+    /// The step where dᵀĤd ≤ 0. Presets: [`NegativeCurvature::TwoSided`].
+    pub negative_curvature: NegativeCurvature,
 }
 
 impl<T: Real> NewtonCg<T> {
@@ -109,14 +114,39 @@ impl<T: Real> NewtonCg<T> {
             outcome.curvature = Some(kappa / dd);
             if !(kappa > T::ZERO && kappa.is_finite()) {
                 outcome.fallback = true;
-                if j == 0 {
-                    // d = −ĝ here; a gradient step of the length the data can justify.
+                // The kept step is p + τ₀d: p itself after the first inner step; at the
+                // first (p = 0, d = −ĝ) a gradient step of the length the data can justify.
+                let kept = if j == 0 {
                     let length = match *mean_curvature {
                         Some(k) => gradient_norm / k,
                         None => oracle.sigma(),
                     };
-                    axpy(length.min(radius) / gradient_norm, d, p);
-                }
+                    length.min(radius) / gradient_norm
+                } else {
+                    T::ZERO
+                };
+                let tau = if self.negative_curvature == NegativeCurvature::TwoSided {
+                    // ‖p + τd‖ = Δ has one root of each sign (‖p‖ < Δ); their product
+                    // is (‖p‖² − Δ²)/‖d‖².
+                    let ahead = to_boundary(p, d, radius);
+                    let behind = if ahead > T::ZERO {
+                        (dot(p, p) - radius.sq()) / (dd * ahead)
+                    } else {
+                        T::ZERO
+                    };
+                    let candidates = [kept, ahead, behind];
+                    let (origin, p): (&[T], &[T]) = (theta, p);
+                    let best = oracle.lowest::<3>(|k, x| {
+                        for (((xi, &o), &pi), &di) in x.iter_mut().zip(origin).zip(p).zip(d.iter())
+                        {
+                            *xi = o + pi + candidates[k] * di;
+                        }
+                    })?;
+                    candidates[best]
+                } else {
+                    kept
+                };
+                axpy(tau, d, p);
                 break;
             }
             let rayleigh = kappa / dd;
