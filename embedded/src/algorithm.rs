@@ -65,7 +65,7 @@ impl Algorithm {
                 line_search_tolerance: s.line_search_tolerance,
                 recompute: s.recompute,
                 reuse_samples: false,
-                negative_curvature: NegativeCurvature::TwoSided,
+                negative_curvature: NegativeCurvature::Fallback,
             }),
             #[cfg(feature = "hessian")]
             Algorithm::OurH => hodr_core::optim::preset::Preset::OurH.method(&s.hyper()),

@@ -68,7 +68,7 @@ pub struct Ncg<T> {
     /// matrix M, which cancels from the Newton step on quadratics. Fresh samples come
     /// with each new iteration.
     pub reuse_samples: bool,
-    /// The step where dᵀĤd ≤ 0. Presets: [`NegativeCurvature::TwoSided`].
+    /// The step where dᵀĤd ≤ 0. Presets: [`NegativeCurvature::Fallback`].
     pub negative_curvature: NegativeCurvature,
 }
 

@@ -112,11 +112,11 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         Ok(())
     }
 
-    /// The index of the lowest of `K` candidate points by objective value, each the mean
-    /// of f over P noise seeds (P = the estimator's pairs) that all candidates share:
-    /// with common random numbers the renderer noise the candidates have in common
-    /// cancels from their differences. `place(k, x)` writes candidate k into x (length
-    /// n). Ties go to the earlier candidate. Costs K·P evaluations, counted here.
+    /// The index of the lowest of `K` candidate points by objective value, all evaluated
+    /// with one fresh noise seed (common random numbers: the renderer noise the
+    /// candidates share cancels from their differences, and no offsets are drawn, so
+    /// what is compared is f itself, not f̄). `place(k, x)` writes candidate k into x
+    /// (length n). Ties go to the earlier candidate. Costs K evaluations, counted here.
     ///
     /// # Errors
     /// [`Error::NonFiniteObjective`] (the point stays in the workspace).
@@ -127,39 +127,23 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     ) -> Result<usize, Error> {
         const { assert!(K >= 1 && K <= MIN_ROWS) };
         let n = self.ws.dim;
-        let rows = self.ws.rows();
-        let seeds = self.estimator.pairs();
-        let mut sums = [T::ZERO; K];
+        let seed = self.estimator.rng_mut().next_u64();
         let b = &mut self.ws.batch;
-        let mut done = 0;
-        while done < seeds {
-            let groups = (rows / K).min(seeds - done);
-            for g in 0..groups {
-                let seed = self.estimator.rng_mut().next_u64();
-                for k in 0..K {
-                    let row = g * K + k;
-                    place(k, &mut b.points[row * n..(row + 1) * n]);
-                    b.seeds[row] = seed;
-                }
-            }
-            let used = groups * K;
-            let batch = Batch::new(&b.points[..used * n], &b.seeds[..used], n)?;
-            self.objective.evaluate_batch(&batch, &mut b.values[..used]);
-            if let Some(row) = b.values[..used].iter().position(|v| !v.is_finite()) {
-                b.failed = Some(row);
-                return Err(Error::NonFiniteObjective {
-                    sample: done * K + row,
-                });
-            }
-            for (row, &v) in b.values[..used].iter().enumerate() {
-                sums[row % K] += v;
-            }
-            self.evaluations += used;
-            done += groups;
+        for k in 0..K {
+            place(k, &mut b.points[k * n..(k + 1) * n]);
+            b.seeds[k] = seed;
+        }
+        let batch = Batch::new(&b.points[..K * n], &b.seeds[..K], n)?;
+        self.objective.evaluate_batch(&batch, &mut b.values[..K]);
+        self.evaluations += K;
+        let values = &b.values[..K];
+        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+            b.failed = Some(k);
+            return Err(Error::NonFiniteObjective { sample: k });
         }
         let mut best = 0;
         for k in 1..K {
-            if sums[k] < sums[best] {
+            if values[k] < values[best] {
                 best = k;
             }
         }

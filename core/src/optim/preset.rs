@@ -127,7 +127,7 @@ impl Preset {
                 line_search_tolerance: h.line_search_tolerance,
                 recompute: h.recompute,
                 reuse_samples: false,
-                negative_curvature: NegativeCurvature::TwoSided,
+                negative_curvature: NegativeCurvature::Fallback,
             })
         };
         let newton_cg = |gradient, hvp| {
@@ -138,7 +138,7 @@ impl Preset {
                 max_inner: 3,
                 inner_tolerance: T::from_f64(0.1),
                 reuse_samples: false,
-                negative_curvature: NegativeCurvature::TwoSided,
+                negative_curvature: NegativeCurvature::Fallback,
             })
         };
         match self {
@@ -179,7 +179,7 @@ impl Preset {
                 max_inner: 3,
                 inner_tolerance: T::from_f64(0.1),
                 reuse_samples: true,
-                negative_curvature: NegativeCurvature::TwoSided,
+                negative_curvature: NegativeCurvature::Fallback,
             }),
         }
     }
