@@ -9,7 +9,7 @@ use hodr_core::GradientMethod;
 use hodr_core::HvpMethod;
 use hodr_core::optim::{Adam, Method, Schedule};
 #[cfg(feature = "ncg")]
-use hodr_core::optim::{Curvature, Ncg};
+use hodr_core::optim::{Curvature, Ncg, NegativeCurvature};
 
 use crate::problem::Settings;
 
@@ -65,6 +65,7 @@ impl Algorithm {
                 line_search_tolerance: s.line_search_tolerance,
                 recompute: s.recompute,
                 reuse_samples: false,
+                negative_curvature: NegativeCurvature::Fallback,
             }),
             #[cfg(feature = "hessian")]
             Algorithm::OurH => hodr_core::optim::preset::Preset::OurH.method(&s.hyper()),

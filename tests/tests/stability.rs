@@ -428,3 +428,49 @@ fn non_finite_objective_stops_with_the_iteration_and_keeps_parameters() {
         assert!(format!("{failed}").contains(&format!("iteration {}", failed.iteration)));
     }
 }
+
+/// x⁴/4 − x²/2 + x/10 + y²: from x = 0.2, on the ridge between two wells, the gradient
+/// points to the shallow well (x ≈ 0.95, f ≈ −0.15) and the curvature along it is
+/// negative. With the two-sided negative-curvature step NCG and Newton-CG reach the deep
+/// well (x ≈ −1.05, f ≈ −0.35). (So does OurHVPA's fallback with this seed and σ: the
+/// test pins the two-sided path, not a contrast.)
+#[test]
+fn two_sided_negative_curvature_step_finds_the_deeper_side() {
+    use hodr_core::optim::{Method, NegativeCurvature};
+    for preset in [Preset::OurHvpa, Preset::NewtonCgAggregate] {
+        {
+            let nc = NegativeCurvature::TwoSided;
+            let h = hyper::<f64>(0.5, 2.0);
+            let mut method = preset.method(&h);
+            match &mut method {
+                Method::Ncg(m) => m.negative_curvature = nc,
+                Method::NewtonCg(m) => m.negative_curvature = nc,
+                _ => unreachable!(),
+            }
+            let mut f =
+                |t: &[f64]| t[0].powi(4) / 4.0 - t[0] * t[0] / 2.0 + t[0] / 10.0 + t[1] * t[1];
+            let mut theta = vec![0.2, 0.0];
+            let mut buffer = vec![0.0; method.buffer_len(2)];
+            let est = Estimator::new(
+                h.sigma_start,
+                h.pairs,
+                Xoshiro256PlusPlus::seed_from_u64(11),
+            )
+            .unwrap();
+            let mut opt = Optimiser::new(
+                method,
+                preset.schedule(&h),
+                Budget::iterations(30),
+                est,
+                &mut theta,
+                &mut buffer,
+            )
+            .unwrap();
+            let (mut wb, mut seeds) = (vec![0.0; Workspace::<f64>::buffer_len(2, 16)], vec![0; 16]);
+            let mut ws = Workspace::new(2, &mut wb, &mut seeds).unwrap();
+            opt.run(&mut f, &mut ws, || 0.0, |_, _| {}).unwrap();
+            let x = opt.theta()[0];
+            assert!(x < -0.8, "{} {nc:?}: ended at x = {x}", preset.name());
+        }
+    }
+}

@@ -156,6 +156,30 @@ impl<T: Real> Method<T> {
     }
 }
 
+/// What NCG and Newton-CG do where the estimated curvature dᵀĤd along their direction is
+/// not positive, so that the quadratic model has no minimiser along ±d.
+#[cfg(feature = "cg")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum NegativeCurvature {
+    /// Take the method's gradient-descent-like fallback step (see [`Ncg`], [`NewtonCg`]).
+    Fallback,
+    /// Evaluate the objective at three candidates with one shared noise seed (common
+    /// random numbers) — the fallback step, and the two points where the line along d
+    /// meets the trust boundary Δ·σ on either side — and move to the lowest (ties: the
+    /// fallback).
+    ///
+    /// At a ridge of f̄ the model is unbounded below both ways and its linear term ĝᵀd,
+    /// small and noisy there, only weakly prefers one side; the fallback follows that
+    /// preference. The objective itself decides between the sides instead, as a
+    /// trust-region method's acceptance test would, and the fallback stays a candidate,
+    /// so noise-made negative curvature can only move the iterate to the boundary where f
+    /// is measured lower there. The comparison uses f, not f̄: f̄ is what the iteration
+    /// models, f is what the run minimises (the schedule takes σ → 0), and at the
+    /// boundary (≥ 1σ away) f̄ blurs both candidates toward the same value. Costs 3
+    /// evaluations per non-positive curvature.
+    TwoSided,
+}
+
 /// What one iteration did.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StepReport<T> {

@@ -19,13 +19,15 @@
 //! curvatures dᵀĤd/dᵀd this run has measured — a step the data so far can justify —
 //! or a step of one σ before any curvature is known; it is capped at Δ·σ like every
 //! step, and zero when ĝᵀd = 0. (The authors' code divides by 1 instead, which moves
-//! |ĝ|²·|d| — up to 50σ — and throws QUAD iterates far from the optimum.)
+//! |ĝ|²·|d| — up to 50σ — and throws QUAD iterates far from the optimum.) With
+//! [`NegativeCurvature::TwoSided`] that step competes with the two trust-boundary
+//! steps α = ±Δσ/‖d‖, and the objective picks the lowest of the three.
 
 use rand_core::Rng;
 
 use super::oracle::Oracle;
 use super::vector::{dot, norm};
-use super::{Outcome, check_positive};
+use super::{NegativeCurvature, Outcome, check_positive};
 use crate::error::Error;
 #[cfg(feature = "hessian")]
 use crate::estimate::HessianMethod;
@@ -66,6 +68,8 @@ pub struct Ncg<T> {
     /// matrix M, which cancels from the Newton step on quadratics. Fresh samples come
     /// with each new iteration.
     pub reuse_samples: bool,
+    /// The step where dᵀĤd ≤ 0. Presets: [`NegativeCurvature::Fallback`].
+    pub negative_curvature: NegativeCurvature,
 }
 
 /// NCG's memory between iterations.
@@ -174,7 +178,8 @@ impl<T: Real> Ncg<T> {
             outcome.curvature = Some(dhd / dd);
             let radius = self.trust_radius * oracle.sigma();
             let cap = radius / d_norm;
-            let alpha = if dhd > T::ZERO && dhd.is_finite() {
+            let positive = dhd > T::ZERO && dhd.is_finite();
+            let alpha = if positive {
                 let kappa = dhd / dd;
                 state.mean_curvature = Some(match state.mean_curvature {
                     Some(m) => T::HALF * (m + kappa),
@@ -188,7 +193,17 @@ impl<T: Real> Ncg<T> {
                     None => -gd.sign() * oracle.sigma() / d_norm,
                 }
             };
-            let alpha = alpha.max(-cap).min(cap);
+            let mut alpha = alpha.max(-cap).min(cap);
+            if !positive && self.negative_curvature == NegativeCurvature::TwoSided {
+                let candidates = [alpha, cap, -cap];
+                let origin: &[T] = theta;
+                let best = oracle.lowest::<3>(|k, x| {
+                    for ((xi, &o), &di) in x.iter_mut().zip(origin).zip(d.iter()) {
+                        *xi = o + candidates[k] * di;
+                    }
+                })?;
+                alpha = candidates[best];
+            }
             for (x, &di) in theta.iter_mut().zip(d.iter()) {
                 *x += alpha * di;
             }

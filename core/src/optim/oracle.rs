@@ -1,5 +1,6 @@
 //! The estimators as seen by an optimiser: one place that counts evaluations and keeps
-//! the latest loss estimate.
+//! the latest loss estimate. It also compares candidate points by their objective values
+//! (the two-sided negative-curvature step, [`super::NegativeCurvature::TwoSided`]).
 
 use rand_core::Rng;
 
@@ -9,8 +10,12 @@ use crate::estimate::HessianMethod;
 #[cfg(feature = "cg")]
 use crate::estimate::HvpMethod;
 use crate::estimate::{Estimator, GradientMethod, Report};
+#[cfg(feature = "cg")]
+use crate::objective::Batch;
 use crate::objective::Objective;
 use crate::real::Real;
+#[cfg(feature = "cg")]
+use crate::workspace::MIN_ROWS;
 use crate::workspace::Workspace;
 
 pub(crate) struct Oracle<'a, 'w, T, R, O: ?Sized> {
@@ -105,5 +110,43 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
             .hessian(method, self.objective, theta, self.ws, out)?;
         self.record(&r);
         Ok(())
+    }
+
+    /// The index of the lowest of `K` candidate points by objective value, all evaluated
+    /// with one fresh noise seed (common random numbers: the renderer noise the
+    /// candidates share cancels from their differences, and no offsets are drawn, so
+    /// what is compared is f itself, not f̄). `place(k, x)` writes candidate k into x
+    /// (length n). Ties go to the earlier candidate. Costs K evaluations, counted here.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteObjective`] (the point stays in the workspace).
+    #[cfg(feature = "cg")]
+    pub fn lowest<const K: usize>(
+        &mut self,
+        mut place: impl FnMut(usize, &mut [T]),
+    ) -> Result<usize, Error> {
+        const { assert!(K >= 1 && K <= MIN_ROWS) };
+        let n = self.ws.dim;
+        let seed = self.estimator.rng_mut().next_u64();
+        let b = &mut self.ws.batch;
+        for k in 0..K {
+            place(k, &mut b.points[k * n..(k + 1) * n]);
+            b.seeds[k] = seed;
+        }
+        let batch = Batch::new(&b.points[..K * n], &b.seeds[..K], n)?;
+        self.objective.evaluate_batch(&batch, &mut b.values[..K]);
+        self.evaluations += K;
+        let values = &b.values[..K];
+        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+            b.failed = Some(k);
+            return Err(Error::NonFiniteObjective { sample: k });
+        }
+        let mut best = 0;
+        for k in 1..K {
+            if values[k] < values[best] {
+                best = k;
+            }
+        }
+        Ok(best)
     }
 }

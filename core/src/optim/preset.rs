@@ -17,7 +17,7 @@
 //! (as its code does); [`Hyper::common_random_numbers`] switches them to common random
 //! numbers. Our additions always use common random numbers.
 
-use super::{Adam, Curvature, Method, Ncg, Newton, NewtonCg, Schedule};
+use super::{Adam, Curvature, Method, Ncg, NegativeCurvature, Newton, NewtonCg, Schedule};
 use crate::estimate::{Draws, GradientMethod, HessianMethod, HvpMethod};
 use crate::real::Real;
 
@@ -145,6 +145,7 @@ impl Preset {
                 line_search_tolerance: h.line_search_tolerance,
                 recompute: h.recompute,
                 reuse_samples: false,
+                negative_curvature: NegativeCurvature::Fallback,
             })
         };
         let newton_cg = |gradient, hvp| {
@@ -156,6 +157,7 @@ impl Preset {
                 inner_tolerance: T::from_f64(0.1),
                 reuse_samples: false,
                 reorthogonalize: false,
+                negative_curvature: NegativeCurvature::Fallback,
             })
         };
         // Newton-CG on one sample set per iteration, CRN central-difference HVPs of the
@@ -172,6 +174,7 @@ impl Preset {
                 inner_tolerance: T::from_f64(inner_tolerance),
                 reuse_samples: true,
                 reorthogonalize,
+                negative_curvature: NegativeCurvature::Fallback,
             })
         };
         match self {

@@ -11,7 +11,10 @@
 //! often than the smoothed loss does. Here, negative curvature after the first inner
 //! step keeps the CG iterate reached so far; at the first inner step it takes the
 //! gradient-descent-like step −ĝ/κ̄, κ̄ the running mean of the positive curvatures this
-//! run has measured (one σ along −ĝ before any is known), capped at Δ·σ. The radius
+//! run has measured (one σ along −ĝ before any is known), capped at Δ·σ. With
+//! [`NegativeCurvature::TwoSided`] the step so kept (the CG iterate p, or the
+//! gradient-like step) competes with the two points where the line p + τd meets the
+//! boundary, τ > 0 and τ < 0, and the objective picks the lowest of the three. The radius
 //! follows σ rather than an actual-versus-predicted ratio test, since the loss itself is
 //! only known up to noise.
 
@@ -19,7 +22,7 @@ use rand_core::Rng;
 
 use super::oracle::Oracle;
 use super::vector::{axpy, dot, norm, to_boundary};
-use super::{Outcome, check_positive};
+use super::{NegativeCurvature, Outcome, check_positive};
 use crate::error::Error;
 use crate::estimate::{GradientMethod, HvpMethod};
 use crate::objective::Objective;
@@ -57,6 +60,8 @@ pub struct NewtonCg<T> {
     /// estimates with reused samples). Costs n·min(max_inner + 1, n) buffer floats and
     /// O(jn) per inner step j.
     pub reorthogonalize: bool,
+    /// The step where dᵀĤd ≤ 0. Presets: [`NegativeCurvature::Fallback`].
+    pub negative_curvature: NegativeCurvature,
 }
 
 impl<T: Real> NewtonCg<T> {
@@ -102,7 +107,7 @@ impl<T: Real> NewtonCg<T> {
         let (d, rest) = rest.split_at_mut(n);
         let (hd, rest) = rest.split_at_mut(n);
         let basis = &mut rest[..n * self.basis_capacity(n)];
-        let mut kept = 0;
+        let mut basis_len = 0;
 
         oracle.gradient(self.gradient, theta, g)?;
         let gradient_norm = norm(g);
@@ -123,6 +128,7 @@ impl<T: Real> NewtonCg<T> {
             *di = -gi;
         }
         let mut rr = dot(r, r);
+        keep(basis, &mut basis_len, r, rr);
         for j in 0..self.max_inner.min(2 * n) {
             oracle.hvp(self.hvp, theta, d, hd)?;
             let kappa = dot(d, hd);
@@ -130,14 +136,39 @@ impl<T: Real> NewtonCg<T> {
             outcome.curvature = Some(kappa / dd);
             if !(kappa > T::ZERO && kappa.is_finite()) {
                 outcome.fallback = true;
-                if j == 0 {
-                    // d = −ĝ here; a gradient step of the length the data can justify.
+                // The kept step is p + τ₀d: p itself after the first inner step; at the
+                // first (p = 0, d = −ĝ) a gradient step of the length the data can justify.
+                let kept = if j == 0 {
                     let length = match *mean_curvature {
                         Some(k) => gradient_norm / k,
                         None => oracle.sigma(),
                     };
-                    axpy(length.min(radius) / gradient_norm, d, p);
-                }
+                    length.min(radius) / gradient_norm
+                } else {
+                    T::ZERO
+                };
+                let tau = if self.negative_curvature == NegativeCurvature::TwoSided {
+                    // ‖p + τd‖ = Δ has one root of each sign (‖p‖ < Δ); their product
+                    // is (‖p‖² − Δ²)/‖d‖².
+                    let ahead = to_boundary(p, d, radius);
+                    let behind = if ahead > T::ZERO {
+                        (dot(p, p) - radius.sq()) / (dd * ahead)
+                    } else {
+                        T::ZERO
+                    };
+                    let candidates = [kept, ahead, behind];
+                    let (origin, p): (&[T], &[T]) = (theta, p);
+                    let best = oracle.lowest::<3>(|k, x| {
+                        for (((xi, &o), &pi), &di) in x.iter_mut().zip(origin).zip(p).zip(d.iter())
+                        {
+                            *xi = o + pi + candidates[k] * di;
+                        }
+                    })?;
+                    candidates[best]
+                } else {
+                    kept
+                };
+                axpy(tau, d, p);
                 break;
             }
             let rayleigh = kappa / dd;
@@ -156,11 +187,11 @@ impl<T: Real> NewtonCg<T> {
             }
             axpy(alpha, d, p);
             axpy(alpha, hd, r);
-            for q in basis[..kept * n].chunks_exact(n) {
+            for q in basis[..basis_len * n].chunks_exact(n) {
                 axpy(-dot(q, r), q, r);
             }
             let rr_new = dot(r, r);
-            keep(basis, &mut kept, r, rr_new);
+            keep(basis, &mut basis_len, r, rr_new);
             if rr_new.sqrt() <= self.inner_tolerance * gradient_norm {
                 break;
             }
@@ -178,16 +209,16 @@ impl<T: Real> NewtonCg<T> {
     }
 }
 
-/// Appends r/‖r‖ (`rr` = ‖r‖²) to the `kept` vectors of `basis`, if there is room and
-/// r ≠ 0.
-fn keep<T: Real>(basis: &mut [T], kept: &mut usize, r: &[T], rr: T) {
+/// Appends r/‖r‖ (`rr` = ‖r‖²) to the first `len` vectors of `basis`, if there is room
+/// and r ≠ 0.
+fn keep<T: Real>(basis: &mut [T], len: &mut usize, r: &[T], rr: T) {
     let n = r.len();
-    if (*kept + 1) * n > basis.len() || !(rr > T::ZERO && rr.is_finite()) {
+    if (*len + 1) * n > basis.len() || !(rr > T::ZERO && rr.is_finite()) {
         return;
     }
     let scale = T::ONE / rr.sqrt();
-    for (q, &ri) in basis[*kept * n..(*kept + 1) * n].iter_mut().zip(r) {
+    for (q, &ri) in basis[*len * n..(*len + 1) * n].iter_mut().zip(r) {
         *q = scale * ri;
     }
-    *kept += 1;
+    *len += 1;
 }
