@@ -121,42 +121,50 @@ impl Objective<f64> for Stiff {
     }
 }
 
+/// The stiff cases: n ∈ {2, 50}, κ ∈ {1e2, 1e4, 1e6, 1e8}, each with its start at
+/// distance 1 from the optimum along (1, …, 1).
+fn stiff_cases() -> impl Iterator<Item = (usize, f64, Stiff, Vec<f64>)> {
+    [2, 50].into_iter().flat_map(|n| {
+        [1e2, 1e4, 1e6, 1e8].into_iter().map(move |kappa| {
+            let f = Stiff::new(n, kappa);
+            let start = f
+                .optimum
+                .iter()
+                .map(|x| x + 1.0 / (n as f64).sqrt())
+                .collect();
+            (n, kappa, f, start)
+        })
+    })
+}
+
 /// Condition numbers 1e2…1e8 in 2 and 50 dimensions with the noise-limited presets:
 /// parameters stay finite, and NewtonCG-A's error stays within ten times its start.
 /// (Their isotropic estimator noise makes the attainable error grow with κ; the preset
 /// that reaches 1e-6 is NewtonCG-LS, `newton_cg_ls_solves_stiff_quadratics`.)
 #[test]
 fn stiff_quadratics_stay_finite_and_do_not_diverge() {
-    for n in [2, 50] {
-        for kappa in [1e2, 1e4, 1e6, 1e8] {
-            let mut f = Stiff::new(n, kappa);
-            let start: Vec<f64> = f
-                .optimum
-                .iter()
-                .map(|x| x + 1.0 / (n as f64).sqrt())
-                .collect();
-            let d0 = dist(&start, &f.optimum);
-            for preset in [Preset::NewtonCgAggregate, Preset::OurHvpa] {
-                let h = hyper::<f64>(0.5, 10.0);
-                let optimum = f.optimum.clone();
-                let mut worst = 0.0f64;
-                let (theta, result) = optimise(preset, &h, &mut f, &start, 30, |t| {
-                    worst = worst.max(dist(t, &optimum))
-                });
-                result.unwrap();
-                assert!(finite(&theta), "{} n={n} κ={kappa:e}", preset.name());
-                let d = dist(&theta, &f.optimum);
-                assert!(worst.is_finite(), "{} n={n} κ={kappa:e}", preset.name());
-                // NCG with independent-looking noise can wander on stiff problems (measured:
-                // OurHVPA at n = 50, κ = 1e4 ends 14× farther than it started); Newton-CG
-                // with one sample set per iteration stays within its start's scale.
-                if preset == Preset::NewtonCgAggregate {
-                    assert!(
-                        d <= 10.0 * d0,
-                        "{} n={n} κ={kappa:e}: {d} from {d0}",
-                        preset.name()
-                    );
-                }
+    for (n, kappa, mut f, start) in stiff_cases() {
+        let d0 = dist(&start, &f.optimum);
+        for preset in [Preset::NewtonCgAggregate, Preset::OurHvpa] {
+            let h = hyper::<f64>(0.5, 10.0);
+            let optimum = f.optimum.clone();
+            let mut worst = 0.0f64;
+            let (theta, result) = optimise(preset, &h, &mut f, &start, 30, |t| {
+                worst = worst.max(dist(t, &optimum))
+            });
+            result.unwrap();
+            assert!(finite(&theta), "{} n={n} κ={kappa:e}", preset.name());
+            let d = dist(&theta, &f.optimum);
+            assert!(worst.is_finite(), "{} n={n} κ={kappa:e}", preset.name());
+            // NCG with independent-looking noise can wander on stiff problems (measured:
+            // OurHVPA at n = 50, κ = 1e4 ends 14× farther than it started); Newton-CG
+            // with one sample set per iteration stays within its start's scale.
+            if preset == Preset::NewtonCgAggregate {
+                assert!(
+                    d <= 10.0 * d0,
+                    "{} n={n} κ={kappa:e}: {d} from {d0}",
+                    preset.name()
+                );
             }
         }
     }
@@ -209,19 +217,11 @@ fn iterations_to<O: Objective<f64>>(
 /// are exact on quadratics, so only the inner CG's truncation and rounding remain.
 #[test]
 fn newton_cg_ls_solves_stiff_quadratics() {
-    for n in [2, 50] {
-        for kappa in [1e2, 1e4, 1e6, 1e8] {
-            let mut f = Stiff::new(n, kappa);
-            let start: Vec<f64> = f
-                .optimum
-                .iter()
-                .map(|x| x + 1.0 / (n as f64).sqrt())
-                .collect();
-            let optimum = f.optimum.clone();
-            let reached = iterations_to(&mut f, &start, &optimum, 1e-6, 30);
-            eprintln!("n = {n}, κ = {kappa:e}: (iterations, evaluations) = {reached:?}");
-            assert!(reached.is_some(), "n={n} κ={kappa:e}");
-        }
+    for (n, kappa, mut f, start) in stiff_cases() {
+        let optimum = f.optimum.clone();
+        let reached = iterations_to(&mut f, &start, &optimum, 1e-6, 30);
+        eprintln!("n = {n}, κ = {kappa:e}: (iterations, evaluations) = {reached:?}");
+        assert!(reached.is_some(), "n={n} κ={kappa:e}");
     }
 }
 
