@@ -51,6 +51,7 @@ impl Settings {
             recompute: self.recompute,
             learning_rate: self.learning_rate,
             common_random_numbers: false,
+            negative_curvature: hodr_core::optim::NegativeCurvature::Fallback,
         }
     }
 }

@@ -41,7 +41,8 @@ enum Command {
         #[arg(long)]
         budget: Option<usize>,
         /// Hyper-parameter override for every task, key=value (repeatable): pairs,
-        /// sigma_start, sigma_end, trust_radius, ls_iters, recompute, lr, crn.
+        /// sigma_start, sigma_end, trust_radius, ls_iters, recompute, lr, crn,
+        /// negative_curvature (fallback | two-sided).
         #[arg(long = "set")]
         set: Vec<String>,
         /// Output directory.
@@ -79,6 +80,9 @@ enum Command {
         /// Objective evaluations (default: the task's budget).
         #[arg(long)]
         budget: Option<usize>,
+        /// Hyper-parameter override, key=value (repeatable), as for `report`.
+        #[arg(long = "set")]
+        set: Vec<String>,
         /// Where to write the result image (tasks with images).
         #[arg(long)]
         out: Option<PathBuf>,
@@ -150,6 +154,15 @@ fn main() -> ExitCode {
     }
 }
 
+/// The hyper-parameter overrides of `--set key=value` arguments.
+fn overrides(set: &[String]) -> Result<Overrides> {
+    let mut overrides = Overrides::default();
+    for s in set {
+        overrides.set(s)?;
+    }
+    Ok(overrides)
+}
+
 fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
     let command = cli.command.unwrap_or(Command::Report {
         tasks: Vec::new(),
@@ -170,10 +183,6 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             set,
             out,
         } => {
-            let mut overrides = Overrides::default();
-            for s in &set {
-                overrides.set(s)?;
-            }
             let config = Config {
                 tasks,
                 methods,
@@ -181,7 +190,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
                 settings: Settings {
                     quick,
                     budget,
-                    overrides,
+                    overrides: overrides(&set)?,
                 },
                 out,
             };
@@ -228,6 +237,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             method,
             seed,
             budget,
+            set,
             out,
         } => {
             let t = task::select(std::slice::from_ref(&name), false)?.remove(0);
@@ -236,7 +246,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             let settings = Settings {
                 quick: false,
                 budget,
-                overrides: Overrides::default(),
+                overrides: overrides(&set)?,
             };
             let mut k = 0usize;
             let r = report::run_observed(t.as_ref(), m, seed, &settings, interrupt, &mut |p| {

@@ -23,7 +23,7 @@ use std::fmt::Write as _;
 use std::time::Instant;
 
 use hodr_core::optim::preset::{Hyper, Preset};
-use hodr_core::optim::{Budget, Optimiser};
+use hodr_core::optim::{Budget, NegativeCurvature, Optimiser};
 use hodr_core::{Estimator, Objective, Real, Workspace};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
@@ -112,6 +112,7 @@ impl Problem {
                 recompute: 5,
                 learning_rate: 0.05,
                 common_random_numbers: crn,
+                negative_curvature: NegativeCurvature::Fallback,
             },
         }
     }

@@ -120,6 +120,8 @@ fn render_optimize_and_fit2d_write_images() {
         "OurHVPA",
         "--budget",
         "300",
+        "--set",
+        "negative_curvature=two-sided",
         "--out",
         res.to_str().unwrap(),
     ]);
@@ -175,6 +177,13 @@ fn bad_input_gives_one_line_and_nonzero_exit() {
             "/tmp/x.png",
         ],
         &["report", "--set", "pairs=many"],
+        &[
+            "optimize",
+            "--task",
+            "quad",
+            "--set",
+            "negative_curvature=sideways",
+        ],
         &[
             "render",
             "--task",

@@ -36,6 +36,7 @@
 //! touches its target. [`Settings`] carries the paper's hyper-parameters for BOX2,
 //! adapted ones for BOX10 (see its constant) and ours for TRI1D and SHAPES.
 
+use hodr_core::optim::NegativeCurvature;
 use hodr_core::optim::preset::Hyper;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::{Rng, SeedableRng};
@@ -87,6 +88,7 @@ impl Settings {
             recompute: self.recompute,
             learning_rate: self.adam_learning_rate,
             common_random_numbers: false,
+            negative_curvature: NegativeCurvature::Fallback,
         }
     }
 }

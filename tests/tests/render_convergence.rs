@@ -100,6 +100,7 @@ fn mug_converges_from_plateau_starts() {
         recompute: 5,
         learning_rate: 0.05,
         common_random_numbers: true,
+        negative_curvature: NegativeCurvature::Fallback,
     };
     let wins = (0..20)
         .filter(|&seed| {
@@ -125,6 +126,7 @@ fn shadow_method(pairs: usize, ls: usize, nc: NegativeCurvature) -> (Method<f64>
         recompute: 5,
         learning_rate: 0.1,
         common_random_numbers: true,
+        negative_curvature: NegativeCurvature::Fallback,
     };
     let mut method = Preset::OurHvpa.method(&h);
     if let Method::Ncg(m) = &mut method {

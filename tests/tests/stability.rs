@@ -3,7 +3,7 @@
 //! never a panic.
 
 use hodr_core::optim::preset::{Hyper, Preset};
-use hodr_core::optim::{Budget, Failed, Optimiser};
+use hodr_core::optim::{Budget, Failed, NegativeCurvature, Optimiser};
 use hodr_core::{Error, Estimator, Objective, Real, Workspace};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
@@ -19,6 +19,7 @@ fn hyper<T: Real>(sigma: f64, trust: f64) -> Hyper<T> {
         recompute: 5,
         learning_rate: T::from_f64(0.1 * sigma),
         common_random_numbers: true,
+        negative_curvature: NegativeCurvature::Fallback,
     }
 }
 

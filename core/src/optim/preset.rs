@@ -44,6 +44,9 @@ pub struct Hyper<T> {
     /// Central-difference HVPs of the paper's presets with common random numbers.
     /// Default: `false` (the paper's choice).
     pub common_random_numbers: bool,
+    /// The step NCG and Newton-CG take where the estimated curvature is not positive.
+    /// Default: [`NegativeCurvature::Fallback`].
+    pub negative_curvature: NegativeCurvature,
 }
 
 /// A named method.
@@ -145,7 +148,7 @@ impl Preset {
                 line_search_tolerance: h.line_search_tolerance,
                 recompute: h.recompute,
                 reuse_samples: false,
-                negative_curvature: NegativeCurvature::Fallback,
+                negative_curvature: h.negative_curvature,
             })
         };
         let newton_cg = |gradient, hvp| {
@@ -157,7 +160,7 @@ impl Preset {
                 inner_tolerance: T::from_f64(0.1),
                 reuse_samples: false,
                 reorthogonalize: false,
-                negative_curvature: NegativeCurvature::Fallback,
+                negative_curvature: h.negative_curvature,
             })
         };
         // Newton-CG on one sample set per iteration, CRN central-difference HVPs of the
@@ -174,7 +177,7 @@ impl Preset {
                 inner_tolerance: T::from_f64(inner_tolerance),
                 reuse_samples: true,
                 reorthogonalize,
-                negative_curvature: NegativeCurvature::Fallback,
+                negative_curvature: h.negative_curvature,
             })
         };
         match self {

@@ -26,6 +26,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::{Context, Result, bail};
+use hodr_core::optim::NegativeCurvature;
 use hodr_core::optim::preset::Hyper;
 use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
@@ -52,6 +53,31 @@ pub struct Overrides {
     pub learning_rate: Option<f64>,
     /// Common random numbers for the paper's HVP presets.
     pub common_random_numbers: Option<bool>,
+    /// The step of NCG and Newton-CG at non-positive curvature.
+    #[serde(serialize_with = "serialize_negative_curvature")]
+    pub negative_curvature: Option<NegativeCurvature>,
+}
+
+/// `--set negative_curvature=` names, both ways.
+const NEGATIVE_CURVATURE_NAMES: [(&str, NegativeCurvature); 2] = [
+    ("fallback", NegativeCurvature::Fallback),
+    ("two-sided", NegativeCurvature::TwoSided),
+];
+
+fn serialize_negative_curvature<S: serde::Serializer>(
+    value: &Option<NegativeCurvature>,
+    serializer: S,
+) -> std::result::Result<S::Ok, S::Error> {
+    let name = value.and_then(|v| {
+        NEGATIVE_CURVATURE_NAMES
+            .iter()
+            .find(|(_, c)| *c == v)
+            .map(|(n, _)| *n)
+    });
+    match name {
+        Some(n) => serializer.serialize_some(n),
+        None => serializer.serialize_none(),
+    }
 }
 
 impl Overrides {
@@ -81,6 +107,9 @@ impl Overrides {
         if let Some(v) = self.common_random_numbers {
             h.common_random_numbers = v;
         }
+        if let Some(v) = self.negative_curvature {
+            h.negative_curvature = v;
+        }
         h
     }
 
@@ -104,8 +133,16 @@ impl Overrides {
             "recompute" => self.recompute = Some(value.parse().with_context(bad)?),
             "lr" | "learning_rate" => self.learning_rate = Some(value.parse().with_context(bad)?),
             "crn" => self.common_random_numbers = Some(value.parse().with_context(bad)?),
+            "negative_curvature" => {
+                let named = NEGATIVE_CURVATURE_NAMES
+                    .iter()
+                    .find(|(n, _)| *n == value.trim())
+                    .map(|(_, c)| *c);
+                self.negative_curvature =
+                    Some(named.with_context(|| format!("{} (fallback or two-sided)", bad()))?);
+            }
             other => bail!(
-                "unknown hyper-parameter `{other}` (pairs, sigma_start, sigma_end, trust_radius, ls_iters, recompute, lr, crn)"
+                "unknown hyper-parameter `{other}` (pairs, sigma_start, sigma_end, trust_radius, ls_iters, recompute, lr, crn, negative_curvature)"
             ),
         }
         Ok(())

@@ -2,6 +2,7 @@
 //! (hodr-raster) and, as they land, 3D path-traced ones.
 
 use anyhow::{Context, Result};
+use hodr_core::optim::NegativeCurvature;
 use hodr_core::optim::preset::{Hyper, Preset};
 use hodr_core::{Objective, Real};
 use image::{GrayImage, RgbImage};
@@ -66,6 +67,7 @@ pub fn quad_hyper() -> Hyper<f64> {
         recompute: 5,
         learning_rate: 0.5,
         common_random_numbers: false,
+        negative_curvature: NegativeCurvature::Fallback,
     }
 }
 
@@ -84,6 +86,7 @@ pub fn box2ref_hyper(preset: Preset) -> Hyper<f64> {
         recompute: 10,
         learning_rate: if fr22 { 0.3 } else { 0.5 },
         common_random_numbers: false,
+        negative_curvature: NegativeCurvature::Fallback,
     }
 }
 
@@ -339,6 +342,7 @@ impl Task for PathTask {
             recompute,
             learning_rate: lr,
             common_random_numbers: false,
+            negative_curvature: NegativeCurvature::Fallback,
         }
     }
     fn budget(&self, quick: bool) -> usize {
