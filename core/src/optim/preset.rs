@@ -151,34 +151,28 @@ impl Preset {
                 negative_curvature: h.negative_curvature,
             })
         };
-        let newton_cg = |gradient, hvp| {
-            Method::NewtonCg(NewtonCg {
-                gradient,
-                hvp,
-                trust_radius: h.trust_radius,
-                max_inner: 3,
-                inner_tolerance: T::from_f64(0.1),
-                reuse_samples: false,
-                reorthogonalize: false,
-                negative_curvature: h.negative_curvature,
-            })
+        // Newton-CG with fresh samples per estimate and three inner steps.
+        let newton_cg = |gradient, hvp| NewtonCg {
+            gradient,
+            hvp,
+            trust_radius: h.trust_radius,
+            max_inner: 3,
+            inner_tolerance: T::from_f64(0.1),
+            reuse_samples: false,
+            reorthogonalize: false,
+            negative_curvature: h.negative_curvature,
         };
         // Newton-CG on one sample set per iteration, CRN central-difference HVPs of the
         // same gradient estimator.
-        let reusing = |gradient, max_inner, inner_tolerance, reorthogonalize| {
-            Method::NewtonCg(NewtonCg {
+        let reusing = |gradient| NewtonCg {
+            reuse_samples: true,
+            ..newton_cg(
                 gradient,
-                hvp: HvpMethod::CentralDifference {
+                HvpMethod::CentralDifference {
                     gradient,
                     draws: Draws::Common,
                 },
-                trust_radius: h.trust_radius,
-                max_inner,
-                inner_tolerance: T::from_f64(inner_tolerance),
-                reuse_samples: true,
-                reorthogonalize,
-                negative_curvature: h.negative_curvature,
-            })
+            )
         };
         match self {
             Preset::Fr22 => Method::Adam(Adam::new(GradientMethod::Fr22, h.learning_rate)),
@@ -207,14 +201,16 @@ impl Preset {
                 }),
             ),
             Preset::NcgKernel => ncg(GradientMethod::Gaussian, Curvature::Hvp(HvpMethod::Kernel)),
-            Preset::NewtonCgKernel => newton_cg(GradientMethod::Gaussian, HvpMethod::Kernel),
-            Preset::NewtonCgAggregate => reusing(GradientMethod::Aggregate, 3, 0.1, false),
-            Preset::NewtonCgRegression => reusing(
-                GradientMethod::Regression,
-                REGRESSION_INNER_STEPS,
-                REGRESSION_INNER_TOLERANCE,
-                true,
-            ),
+            Preset::NewtonCgKernel => {
+                Method::NewtonCg(newton_cg(GradientMethod::Gaussian, HvpMethod::Kernel))
+            }
+            Preset::NewtonCgAggregate => Method::NewtonCg(reusing(GradientMethod::Aggregate)),
+            Preset::NewtonCgRegression => Method::NewtonCg(NewtonCg {
+                max_inner: REGRESSION_INNER_STEPS,
+                inner_tolerance: T::from_f64(REGRESSION_INNER_TOLERANCE),
+                reorthogonalize: true,
+                ..reusing(GradientMethod::Regression)
+            }),
         }
     }
 
