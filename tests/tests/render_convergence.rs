@@ -126,13 +126,9 @@ fn shadow_method(pairs: usize, ls: usize, nc: NegativeCurvature) -> (Method<f64>
         recompute: 5,
         learning_rate: 0.1,
         common_random_numbers: true,
-        negative_curvature: NegativeCurvature::Fallback,
+        negative_curvature: nc,
     };
-    let mut method = Preset::OurHvpa.method(&h);
-    if let Method::Ncg(m) = &mut method {
-        m.negative_curvature = nc;
-    }
-    (method, h)
+    (Preset::OurHvpa.method(&h), h)
 }
 
 /// SHADOW from the DESIGN's starts ((0.55, 0.55) ± 0.1, on a mesa of the loss whose
