@@ -2,7 +2,8 @@
 //! SHADOW and CBOX at 128×128 (θ = θ*), as a Markdown table.
 //!
 //! `cargo bench -p hodr-host --bench render_rmse` (all cores; set `RAYON_NUM_THREADS`
-//! to pin the thread count, `RENDER_TASKS=SHADOW` to measure one task). Each
+//! to pin the thread count, `RENDER_TASKS=SHADOW` to measure one task,
+//! `RENDER_SEQUENCES=PaddedSobol` to measure one sequence with the specialised plan). Each
 //! configuration renders once to warm up, then at least `MIN_REPEATS` times and for at
 //! least `MIN_SECONDS`. Reported: the fastest wall time of a frame (the machine is
 //! shared, and the fastest run is the least disturbed one), samples per second from it,
@@ -38,6 +39,7 @@ fn main() {
 }
 
 fn measure(task: &dyn Task3d) {
+    let sequences = std::env::var("RENDER_SEQUENCES").unwrap_or_default();
     let mut scene = task.scene().expect("task scene");
     scene
         .set_params(&task.true_params())
@@ -57,10 +59,16 @@ fn measure(task: &dyn Task3d) {
         for sequence in [
             Sequence::Kronecker,
             Sequence::PaddedR2,
+            Sequence::PaddedSobol,
             Sequence::Independent,
         ] {
             // Only the specialised plan is shown with every sequence.
             if plan_name == "general" && sequence != Sequence::Independent {
+                continue;
+            }
+            if !sequences.is_empty()
+                && (plan_name == "general" || !sequences.contains(&format!("{sequence:?}")))
+            {
                 continue;
             }
             for spp in [4u32, 16, 64] {

@@ -312,15 +312,18 @@ fn no_pixel_is_ever_nan() {
 }
 
 /// The specialised plan and the general one (MIS at every vertex, BVH traversal,
-/// texture coordinates) estimate the same image: CBOX means agree per channel.
+/// texture coordinates) estimate the same image: CBOX means agree per channel. At 256
+/// spp a 16×16 render's mean has a relative spread of ≈ 0.4 % over frame seeds
+/// (measured over 8 seeds at 64 spp: 0.8 %), so the 2 % tolerance is ≈ 3.5 standard
+/// deviations of the difference of two renders.
 #[test]
 fn specialised_and_general_plans_agree() {
     let task = hodr_host::tasks::by_name("CBOX").unwrap();
     let scene = task.scene().unwrap();
     let mut a = Film::new(16, 16).unwrap();
     let mut b = Film::new(16, 16).unwrap();
-    render_with_plan(scene.scene(), &scene.scene().plan(), &mut a, 64, 1).unwrap();
-    render_with_plan(scene.scene(), &Plan::general(), &mut b, 64, 2).unwrap();
+    render_with_plan(scene.scene(), &scene.scene().plan(), &mut a, 256, 1).unwrap();
+    render_with_plan(scene.scene(), &Plan::general(), &mut b, 256, 2).unwrap();
     for (ma, mb) in mean(&a).into_iter().zip(mean(&b)) {
         assert_close(ma, mb, MC_REL, "plan means");
     }
@@ -340,7 +343,7 @@ fn shadow_render_is_value_stable() {
         }
     }
     assert_eq!(
-        hash, 0xa841_b7a4_d8d0_3e8a,
+        hash, 0x392f_d34d_b96e_a025,
         "pinned value changed: {hash:#018x}"
     );
 }

@@ -80,8 +80,9 @@ fn small(width: u32, spp: u32, target_spp: u32) -> TaskSettings {
 /// body, where the loss is flat): OurHVPA with the paper's MUG settings (1 pair,
 /// σ 3 → 0.01, trust region 4σ, 1 line-search step, restart every 5) and common random
 /// numbers, 40 iterations on a 32×32, 4-spp objective, brings the angular error from
-/// 3.6–5.9 units (0.7–1.2 rad) below 0.25 units (0.05 rad) for 4 of the 20 fixed seeds
-/// 0–19 (measured: seeds 0, 8, 11, 16). The others end on the plateau or beyond it: early on the trust
+/// 3.6–5.9 units (0.7–1.2 rad) below 0.25 units (0.05 rad) for 7 of the 20 fixed seeds
+/// 0–19 (measured with the default `PaddedSobol` sequence: seeds 2, 3, 5, 10, 13, 16, 18;
+/// 4 of 20 with the earlier `PaddedR2`). The others end on the plateau or beyond it: early on the trust
 /// region (4σ = 12 units) lets single noisy steps jump across the narrow basin of θ*.
 /// The runs are deterministic, so this pins the measured fraction; it is low, and a
 /// finding about the optimiser settings rather than a target.
@@ -136,8 +137,9 @@ fn shadow_method(pairs: usize, ls: usize, nc: NegativeCurvature) -> (Method<f64>
 /// direction the smoothed gradient points *away* from): NCG with the aggregate gradient
 /// and CRN HVP (OurHVPA's estimators), σ 0.5 → 0.01, trust region 3σ, and the two-sided
 /// negative-curvature step, 16 pairs, 3 line-search steps, 20 iterations on a 24×24,
-/// 2-spp objective, ends within 0.05 of θ* for 4 of the 8 fixed seeds 0–7 (measured:
-/// seeds 0, 3, 4, 7). With the gradient-like fallback instead (the presets'), 0 of 8;
+/// 2-spp objective, ends within 0.05 of θ* for 3 of the 8 fixed seeds 0–7 (measured:
+/// seeds 3, 5, 7; over seeds 0–19, 4 of 20 with either padded sequence, `PaddedSobol` or
+/// `PaddedR2`). With the gradient-like fallback instead (the presets'), 0 of 8;
 /// with 1 pair (the paper's), 0 of 8 either way: the one-pair gradient's direction is
 /// nearly random at the start, and the two-sided step needs d near the diagonal.
 ///
@@ -153,7 +155,7 @@ fn shadow_converges_with_two_sided_negative_curvature_steps() {
             e1 < 0.05
         })
         .count();
-    assert!(wins >= 4, "SHADOW: {wins}/8 seeds converged");
+    assert!(wins >= 3, "SHADOW: {wins}/8 seeds converged");
 }
 
 /// SHADOW sweep for BENCHMARKS.md (ignored): OurHVPA's NCG on SHADOW with the settings

@@ -13,10 +13,12 @@
 //! probability q = min(max channel of β, 0.95) and β is divided by q.
 //!
 //! **Determinism.** Sample n of pixel p in a frame with seed s uses the numbers
-//! [`PixelSampler::new`]`(s, p, spp).sample(n)`; dimension 0–1 jitter the pixel (box filter) and
-//! each vertex k ≥ 1 owns dimensions 2 + 6(k − 1) … 7 + 6(k − 1): light choice, light
-//! point (2), BSDF (2), roulette. Pixels are independent, so the image is bit-identical
-//! at any thread count.
+//! [`PixelSampler::new`]`(s, p, spp).sample(n)`; dimensions 0–1 jitter the pixel (box
+//! filter) and each vertex k ≥ 1 owns dimensions b … b + 5, b = 2 + 6(k − 1): the light
+//! point (b, b + 1), the BSDF direction (b + 2, b + 3), the light choice (b + 4) and
+//! roulette (b + 5). The 2-D integrands start at even dimensions, so at the first vertex
+//! each is one of the padded sequences' 2-D point sets. Pixels are independent, so the
+//! image is bit-identical at any thread count.
 //!
 //! **Self-intersection.** Rays start 1e-4·(1 + max |coordinate|) off the surface along
 //! the geometric normal, and a ray leaving a plane (or a convex solid outwards) does not
@@ -42,8 +44,12 @@ use super::sampler::{PixelSampler, SampleStream};
 use super::scene::{NO_OBJECT, Scene};
 use super::shape::Shape;
 
-/// Dimensions each path vertex owns in the sample stream.
+/// Dimensions each path vertex owns in the sample stream, and their offsets.
 const DIMS_PER_VERTEX: usize = 6;
+const DIM_LIGHT_POINT: usize = 0;
+const DIM_BSDF: usize = 2;
+const DIM_LIGHT_CHOICE: usize = 4;
+const DIM_ROULETTE: usize = 5;
 /// Survival probability cap for Russian roulette.
 const MAX_SURVIVAL: f32 = 0.95;
 
@@ -212,7 +218,8 @@ fn trace<const NEE: bool, const EMIT: bool, const DIRECT_LAST: bool>(
                 if last {
                     break;
                 }
-                let (wi, pdf) = sample_cosine(ns, stream.get(base + 3), stream.get(base + 4));
+                let (u1, u2) = stream.get2(base + DIM_BSDF);
+                let (wi, pdf) = sample_cosine(ns, u1, u2);
                 if wi.dot(ng) <= 0.0 || pdf <= 0.0 {
                     break;
                 }
@@ -231,7 +238,7 @@ fn trace<const NEE: bool, const EMIT: bool, const DIRECT_LAST: bool>(
                 ray = Ray::new(spawn(surface.p, ng), wi);
             }
             Material::Dielectric { ior } => {
-                let s = sample_dielectric(wo, surface.ns, ior, stream.get(base + 3));
+                let s = sample_dielectric(wo, surface.ns, ior, stream.get(base + DIM_BSDF));
                 beta *= s.weight;
                 specular = true;
                 let side = if s.wi.dot(surface.ng) >= 0.0 {
@@ -250,7 +257,7 @@ fn trace<const NEE: bool, const EMIT: bool, const DIRECT_LAST: bool>(
         if depth >= roulette {
             let q = beta.max_component().min(MAX_SURVIVAL);
             // q is never NaN: β is finite (non-finite samples are dropped later anyway).
-            if stream.get(base + 5) >= q {
+            if stream.get(base + DIM_ROULETTE) >= q {
                 break;
             }
             beta *= 1.0 / q;
@@ -292,14 +299,14 @@ fn direct(
     let light = if count == 1 {
         lights[0]
     } else {
-        lights[((stream.get(base) * count as f32) as usize).min(count - 1)]
+        lights[((stream.get(base + DIM_LIGHT_CHOICE) * count as f32) as usize).min(count - 1)]
     };
     let pick = 1.0 / count as f32;
     let origin = spawn(p, ng);
     match light {
         Light::Area { object, area } => {
             let emitter_object = &scene.objects()[object as usize];
-            let (u1, u2) = stream.get2(base + 1);
+            let (u1, u2) = stream.get2(base + DIM_LIGHT_POINT);
             let (y, ny) = sample_area(&emitter_object.shape, u1, u2);
             let d = y - origin;
             let dist2 = d.length_squared();

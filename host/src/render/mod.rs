@@ -12,7 +12,8 @@
 //! * [`material`]: Lambert, mirror, dielectric; [`texture`]: image textures;
 //!   [`light`]: area emitters, point lights, light sampling;
 //! * [`camera`]: the pinhole camera; [`film`]: linear RGB images, PNG output;
-//! * [`sampler`]: counter-based uniform numbers; [`scene`]: the scene and ray queries;
+//! * [`sampler`]: counter-based uniform numbers ([`sobol`]: scrambled Sobol pairs);
+//!   [`scene`]: the scene and ray queries;
 //!   [`plan`]: scene specialisation; [`integrator`]: the path tracer.
 //!
 //! Units: lengths are scene units, angles radians unless a name says degrees, radiance
@@ -61,6 +62,7 @@ pub mod procedural;
 pub mod sampler;
 pub mod scene;
 pub mod shape;
+pub mod sobol;
 pub mod texture;
 pub mod transform;
 

@@ -20,9 +20,15 @@
 //!   per-pixel random mask m_p below the next power of two ≥ spp (a permutation of the
 //!   pixel's samples when spp is a power of two). Every 2-D projection is then a
 //!   well-spread R₂ set, and different pairs are decorrelated ("padding").
+//! * [`Sequence::PaddedSobol`]: the same four pairs, each the 2-D Sobol sequence with
+//!   Owen scrambling, its samples in a per-pixel Owen-scrambled order (see
+//!   [`super::sobol`]). For spp = 2^k each pair's points form a (0, k, 2)-net: stratified
+//!   in every elementary box of area 1/spp, not only in a square grid.
 //!
 //! The hash is SplitMix64's finaliser (Steele, Lea & Flood 2014), applied once per
 //! coordinate; the top 24 bits make an `f32` in [0, 1).
+
+use super::sobol;
 
 /// Which low-discrepancy construction drives the first dimensions of each sample.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -33,10 +39,14 @@ pub enum Sequence {
     /// dimensions, independent numbers after that.
     Kronecker,
     /// Randomly shifted and permuted R₂ sequences over the first [`KRONECKER_DIMS`]
-    /// dimensions in pairs, independent numbers after that. Default: it gave the lowest
-    /// error at equal samples on SHADOW and CBOX (BENCHMARKS.md, section "hodr-host path tracer").
-    #[default]
+    /// dimensions in pairs, independent numbers after that.
     PaddedR2,
+    /// Owen-scrambled, shuffled 2-D Sobol points over the first [`KRONECKER_DIMS`]
+    /// dimensions in pairs, independent numbers after that. Default: it gave the lowest
+    /// error at equal samples on SHADOW and CBOX (BENCHMARKS.md, section "hodr-host path
+    /// tracer").
+    #[default]
+    PaddedSobol,
 }
 
 /// Dimensions covered by the Kronecker sequence (d of R_d): the two pixel coordinates
@@ -91,6 +101,11 @@ pub struct PixelSampler {
     shifts: [f64; KRONECKER_DIMS],
     /// [`Sequence::PaddedR2`]: the index mask of each dimension pair.
     masks: [u32; KRONECKER_DIMS / 2],
+    /// [`Sequence::PaddedSobol`]: per dimension pair, the seeds of the index shuffle
+    /// and of the two coordinates' scrambles.
+    owen: [[u32; 3]; KRONECKER_DIMS / 2],
+    /// [`Sequence::PaddedSobol`]: log₂ of the shuffled block, ⌈log₂ spp⌉.
+    bits: u32,
 }
 
 impl PixelSampler {
@@ -101,7 +116,7 @@ impl PixelSampler {
         let pixel_key = mix64(mix64(seed) ^ pixel);
         let mut shifts = [0.0; KRONECKER_DIMS];
         let mut masks = [0u32; KRONECKER_DIMS / 2];
-        if sequence != Sequence::Independent {
+        if matches!(sequence, Sequence::Kronecker | Sequence::PaddedR2) {
             for (dim, s) in shifts.iter_mut().enumerate() {
                 *s = (mix64(pixel_key ^ salt(dim)) >> 11) as f64 * (1.0 / 9_007_199_254_740_992.0);
             }
@@ -113,11 +128,21 @@ impl PixelSampler {
                 *m = (mix64(pixel_key ^ salt(KRONECKER_DIMS + pair)) as u32) & range;
             }
         }
+        let mut owen = [[0u32; 3]; KRONECKER_DIMS / 2];
+        if sequence == Sequence::PaddedSobol {
+            for (pair, seeds) in owen.iter_mut().enumerate() {
+                let a = mix64(pixel_key ^ salt(2 * KRONECKER_DIMS + pair));
+                let b = mix64(a);
+                *seeds = [a as u32, (a >> 32) as u32, b as u32];
+            }
+        }
         PixelSampler {
             sequence,
             pixel_key,
             shifts,
             masks,
+            owen,
+            bits: spp.max(1).next_power_of_two().trailing_zeros(),
         }
     }
 
@@ -151,6 +176,10 @@ impl SampleStream<'_> {
     /// The uniform number in [0, 1) of dimension `dim`.
     #[inline]
     pub fn get(&self, dim: usize) -> f32 {
+        if self.pixel.sequence == Sequence::PaddedSobol && dim < KRONECKER_DIMS {
+            let (x, y) = self.sobol_pair(dim / 2);
+            return if dim.is_multiple_of(2) { x } else { y };
+        }
         let x = match self.pixel.sequence {
             Sequence::Kronecker if dim < KRONECKER_DIMS => {
                 self.pixel.shifts[dim] + f64::from(self.index) * R8_ALPHA[dim]
@@ -166,11 +195,33 @@ impl SampleStream<'_> {
         ((x - (x as i64) as f64) as f32).min(1.0 - f32::EPSILON / 2.0)
     }
 
-    /// Dimensions `dim` and `dim + 1` as a pair.
+    /// Dimensions `dim` and `dim + 1` as a pair. Pairs that start at an even dimension
+    /// below [`KRONECKER_DIMS`] are the 2-D point sets of the padded sequences.
     #[inline]
     pub fn get2(&self, dim: usize) -> (f32, f32) {
+        if self.pixel.sequence == Sequence::PaddedSobol
+            && dim < KRONECKER_DIMS
+            && dim.is_multiple_of(2)
+        {
+            return self.sobol_pair(dim / 2);
+        }
         (self.get(dim), self.get(dim + 1))
     }
+
+    /// [`Sequence::PaddedSobol`]: this sample's point of dimension pair `pair`.
+    #[inline]
+    fn sobol_pair(&self, pair: usize) -> (f32, f32) {
+        let [shuffle_seed, x_seed, y_seed] = self.pixel.owen[pair];
+        let index = sobol::shuffle(self.index, self.pixel.bits, shuffle_seed);
+        let (x, y) = sobol::point(index, (x_seed, y_seed));
+        (unit_f32_from_u32(x), unit_f32_from_u32(y))
+    }
+}
+
+/// The top 24 bits of a 32-bit fraction as an `f32` in [0, 1).
+#[inline]
+fn unit_f32_from_u32(bits: u32) -> f32 {
+    (bits >> 8) as f32 * (1.0 / 16_777_216.0)
 }
 
 #[cfg(test)]
@@ -218,6 +269,7 @@ mod tests {
             Sequence::Independent,
             Sequence::Kronecker,
             Sequence::PaddedR2,
+            Sequence::PaddedSobol,
         ] {
             let mut sum = 0.0f64;
             let count = 4096;

@@ -41,7 +41,7 @@ use crate::render::{
 /// (`hodr_core::optim::NegativeCurvature::TwoSided`: at dᵀĤd ≤ 0 the objective picks
 /// between the fallback step and the trust-boundary points along ±d) does, once the
 /// gradient's direction is reliable: with 16 pairs, 3 line-search steps, 20 iterations
-/// at 24×24, 2 spp, 4 of 8 seeds end within 0.05 of θ* (0 of 8 with the fallback); with
+/// at 24×24, 2 spp, 4 of 20 seeds end within 0.05 of θ* (0 of 8 with the fallback); with
 /// the paper's single pair, 0 of 10 either way. Reproduce with
 /// `cargo test -p hodr-tests --test render_convergence shadow` (and the ignored
 /// `shadow_sweep`, see BENCHMARKS.md).
