@@ -155,7 +155,7 @@ impl Scene {
         self.depth = depth;
     }
 
-    /// Sets the sample sequence (default [`Sequence::PaddedR2`]).
+    /// Sets the sample sequence (default [`Sequence::PaddedSobol`]).
     pub fn set_sequence(&mut self, sequence: Sequence) {
         self.sequence = sequence;
     }
