@@ -174,7 +174,7 @@ pub struct SampleStream<'a> {
 
 impl SampleStream<'_> {
     /// The uniform number in [0, 1) of dimension `dim`.
-    #[inline]
+    #[inline(always)]
     pub fn get(&self, dim: usize) -> f32 {
         if self.pixel.sequence == Sequence::PaddedSobol && dim < KRONECKER_DIMS {
             let (x, y) = self.sobol_pair(dim / 2);
@@ -197,7 +197,7 @@ impl SampleStream<'_> {
 
     /// Dimensions `dim` and `dim + 1` as a pair. Pairs that start at an even dimension
     /// below [`KRONECKER_DIMS`] are the 2-D point sets of the padded sequences.
-    #[inline]
+    #[inline(always)]
     pub fn get2(&self, dim: usize) -> (f32, f32) {
         if self.pixel.sequence == Sequence::PaddedSobol
             && dim < KRONECKER_DIMS
@@ -209,7 +209,7 @@ impl SampleStream<'_> {
     }
 
     /// [`Sequence::PaddedSobol`]: this sample's point of dimension pair `pair`.
-    #[inline]
+    #[inline(always)]
     fn sobol_pair(&self, pair: usize) -> (f32, f32) {
         let [shuffle_seed, x_seed, y_seed] = self.pixel.owen[pair];
         let index = sobol::shuffle(self.index, self.pixel.bits, shuffle_seed);

@@ -20,7 +20,9 @@
 //!
 //! Everything works on the bit-reversed form of the coordinates, where the van der
 //! Corput coordinate is the index itself and Sobol's second coordinate is an XOR of
-//! reversed direction numbers, so each coordinate costs one reversal at the end.
+//! reversed direction numbers (tabulated for indices below 256), so each coordinate
+//! costs one reversal at the end. Index shuffles of up to 256 samples reverse through a
+//! byte table: x86-64 has no bit-reversal instruction.
 
 /// Bit-reversed direction numbers of Sobol's second dimension: entry i is m_{i+1}
 /// (the rows of Pascal's triangle mod 2, which are palindromes: reversing the i + 1
@@ -50,6 +52,44 @@ fn scramble_reversed(mut x: u32, seed: u32) -> u32 {
     x
 }
 
+/// Each byte value with its bits in reverse order.
+const REVERSED_BYTES: [u8; 256] = reversed_bytes();
+
+const fn reversed_bytes() -> [u8; 256] {
+    let mut t = [0u8; 256];
+    let mut i = 0;
+    while i < 256 {
+        t[i] = (i as u8).reverse_bits();
+        i += 1;
+    }
+    t
+}
+
+/// Sobol's second coordinate, bit-reversed, of every index below 256.
+const SECOND_BELOW_256: [u32; 256] = second_below_256();
+
+const fn second_below_256() -> [u32; 256] {
+    let mut t = [0u32; 256];
+    let mut i = 1;
+    while i < 256 {
+        // Index i differs from i with its lowest set bit cleared by that bit's direction.
+        let low = (i as u32).trailing_zeros() as usize;
+        t[i] = t[i & (i - 1)] ^ DIRECTIONS[low];
+        i += 1;
+    }
+    t
+}
+
+/// The low `bits` bits of `x` in reverse order (bit i to bit `bits` − 1 − i).
+#[inline(always)]
+fn reverse_low(x: u32, bits: u32) -> u32 {
+    if bits <= 8 {
+        u32::from(REVERSED_BYTES[(x & 0xFF) as usize]) >> (8 - bits)
+    } else {
+        x.reverse_bits() >> (32 - bits)
+    }
+}
+
 /// A permutation of the sample indices: the low `bits` bits of `n` (the pixel's
 /// 2^bits samples) are Owen-scrambled as a `bits`-digit fraction, higher bits are kept.
 /// For spp = 2^bits this permutes 0…spp − 1.
@@ -59,10 +99,10 @@ pub fn shuffle(n: u32, bits: u32, seed: u32) -> u32 {
         return n;
     }
     let low = n & (u32::MAX >> (32 - bits));
-    // The digits of `low`, most significant first, from bit 0 of the reversed form up;
-    // the scrambled fraction's top `bits` bits depend only on them.
-    let reversed = (low << (32 - bits)).reverse_bits();
-    let permuted = scramble_reversed(reversed, seed).reverse_bits() >> (32 - bits);
+    // The digits of `low`, most significant first, from bit 0 up (the reversed form);
+    // the scrambled value's low `bits` bits depend only on them, and reversed back they
+    // are the permuted index.
+    let permuted = reverse_low(scramble_reversed(reverse_low(low, bits), seed), bits);
     (n ^ low) | permuted
 }
 
@@ -70,11 +110,11 @@ pub fn shuffle(n: u32, bits: u32, seed: u32) -> u32 {
 /// seed, as 32-bit fractions (value / 2³²).
 #[inline(always)]
 pub fn point(index: u32, seeds: (u32, u32)) -> (u32, u32) {
-    let mut y = 0u32;
-    let mut bits = index;
-    while bits != 0 {
-        y ^= DIRECTIONS[bits.trailing_zeros() as usize];
-        bits &= bits - 1;
+    let mut y = SECOND_BELOW_256[(index & 0xFF) as usize];
+    let mut high = index & !0xFF;
+    while high != 0 {
+        y ^= DIRECTIONS[high.trailing_zeros() as usize];
+        high &= high - 1;
     }
     (
         scramble_reversed(index, seeds.0).reverse_bits(),
@@ -103,6 +143,28 @@ mod tests {
         }
     }
 
+    /// The tables agree with their definitions: the Sobol table with the XOR of
+    /// direction numbers, the byte reversal with `reverse_bits` for every width.
+    #[test]
+    fn tables_match_definitions() {
+        for n in 0..256u32 {
+            let direct = (0..8)
+                .filter(|i| n >> i & 1 == 1)
+                .fold(0, |y, i| y ^ DIRECTIONS[i]);
+            assert_eq!(SECOND_BELOW_256[n as usize], direct, "n = {n}");
+        }
+        for bits in 1..=32u32 {
+            for x in [0u32, 1, 0x5A, 0xFF, 0x1234_5678, u32::MAX] {
+                let x = if bits < 32 { x & ((1 << bits) - 1) } else { x };
+                assert_eq!(
+                    reverse_low(x, bits),
+                    x.reverse_bits() >> (32 - bits),
+                    "{bits}"
+                );
+            }
+        }
+    }
+
     /// Bit j of a scrambled reversed fraction depends only on bits ≤ j: changing bit j
     /// of the input never changes bits below j of the output (nested scrambling).
     #[test]
@@ -121,7 +183,7 @@ mod tests {
 
     #[test]
     fn shuffle_permutes_each_power_of_two_block() {
-        for bits in 0..8u32 {
+        for bits in 0..12u32 {
             for seed in [0u32, 1, 0xDEAD_BEEF] {
                 let spp = 1u32 << bits;
                 let mut seen: Vec<u32> = (0..spp).map(|n| shuffle(n, bits, seed)).collect();
