@@ -47,9 +47,12 @@
 //! * [`Objective`], [`Workspace`], [`Error`].
 //!
 //! ## Features
-//! The minimal build (no default features) has the gradient estimators with gradient
-//! descent and Adam. `hessian` (Hessians, Newton), `hvp`, `aggregate` and `cg` (NCG,
-//! Newton-CG; implies `hvp`) add the rest; all are on by default.
+//! The minimal build (no default features) has the FR22 gradient with gradient descent
+//! and Adam. `per-element`, `gaussian`, `aggregate` and `regression` add the other
+//! gradient estimators; `hessian` (Hessians, Newton), `hvp` and `cg` (NCG, Newton-CG;
+//! implies `hvp`) the second-order methods; all are on by default. Each estimator is an
+//! enum variant chosen at run time, so a variant that is compiled in is linked whether a
+//! program uses it or not: leaving features out is how a firmware sheds the code.
 
 #![no_std]
 #![deny(missing_docs)]

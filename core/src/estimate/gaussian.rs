@@ -10,18 +10,21 @@ use super::driver::{Pair, Scheme};
 use crate::real::Real;
 use crate::sample::place;
 
+#[cfg(feature = "gaussian")]
 pub(super) struct Gradient<'o, T> {
     pairs: usize,
     sign: T,
     out: &'o mut [T],
 }
 
+#[cfg(feature = "gaussian")]
 impl<'o, T: Real> Gradient<'o, T> {
     pub(super) fn new(pairs: usize, sign: T, out: &'o mut [T]) -> Self {
         Gradient { pairs, sign, out }
     }
 }
 
+#[cfg(feature = "gaussian")]
 impl<T: Real> Scheme<T> for Gradient<'_, T> {
     fn groups(&self) -> usize {
         self.pairs

@@ -25,7 +25,9 @@
 
 mod driver;
 mod fr22;
+#[cfg(any(feature = "gaussian", feature = "hessian", feature = "hvp"))]
 mod gaussian;
+#[cfg(any(feature = "per-element", feature = "hessian"))]
 mod per_element;
 
 #[cfg(feature = "aggregate")]
@@ -53,6 +55,7 @@ pub enum GradientMethod {
     Fr22,
     /// Per-element importance sampling (DESIGN §1.2): P pairs per element, tᵢ ~ p_G,
     /// other coordinates N₁, weight −sign(τᵢ)·Z.
+    #[cfg(feature = "per-element")]
     PerElement,
     /// Aggregate importance sampling (DESIGN §1.3): each pair serves every element; the
     /// differentiated coordinate cycles through the elements from a random start, and
@@ -60,6 +63,7 @@ pub enum GradientMethod {
     #[cfg(feature = "aggregate")]
     Aggregate,
     /// Plain Gaussian ("Stein") sampling (DESIGN §1.4): τ ~ N(0, σ²I), weight −τₑ/σ².
+    #[cfg(feature = "gaussian")]
     Gaussian,
     /// Least squares on Gaussian samples: ĝ = (Σ ttᵀ)⁻¹ Σ t·(f(θ+σt) − f(θ−σt))/(2σ),
     /// t ~ N(0, I) — the Gaussian estimator with E(ttᵀ) = I as a control variate. Exact
@@ -72,8 +76,13 @@ pub enum GradientMethod {
 
 impl GradientMethod {
     /// Objective evaluations for one estimate in dimension `n` with `pairs` pairs.
+    #[cfg_attr(
+        not(any(feature = "per-element", feature = "regression")),
+        allow(unused_variables)
+    )]
     pub fn evaluations(self, n: usize, pairs: usize) -> usize {
         match self {
+            #[cfg(feature = "per-element")]
             GradientMethod::PerElement => 2 * n * pairs,
             #[cfg(feature = "regression")]
             GradientMethod::Regression => 2 * regression::pairs(n, pairs),
@@ -103,6 +112,10 @@ pub enum HessianMethod {
 impl HessianMethod {
     /// Objective evaluations for one estimate in dimension `n` with `pairs` pairs
     /// (including the control-variate evaluation of f(θ)).
+    #[cfg_attr(
+        not(any(feature = "per-element", feature = "regression")),
+        allow(unused_variables)
+    )]
     pub fn evaluations(self, n: usize, pairs: usize) -> usize {
         match self {
             HessianMethod::PerElement => n * (n + 1) * pairs + 1,
@@ -144,6 +157,10 @@ pub enum HvpMethod {
 #[cfg(feature = "hvp")]
 impl HvpMethod {
     /// Objective evaluations for one estimate in dimension `n` with `pairs` pairs.
+    #[cfg_attr(
+        not(any(feature = "per-element", feature = "regression")),
+        allow(unused_variables)
+    )]
     pub fn evaluations(self, n: usize, pairs: usize) -> usize {
         match self {
             HvpMethod::CentralDifference { gradient, .. } => 2 * gradient.evaluations(n, pairs),
@@ -458,6 +475,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
                 let mut scheme = fr22::Gradient::new(self.pairs, sign, acc);
                 driver::run(&mut scheme, objective, &placement, rng, batch, n)
             }
+            #[cfg(feature = "per-element")]
             GradientMethod::PerElement => {
                 let mut scheme = per_element::Gradient::new(n, self.pairs, sign, acc);
                 driver::run(&mut scheme, objective, &placement, rng, batch, n)
@@ -467,6 +485,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
                 let mut scheme = aggregate::Gradient::new(n, self.pairs, sign, acc, rng);
                 driver::run(&mut scheme, objective, &placement, rng, batch, n)
             }
+            #[cfg(feature = "gaussian")]
             GradientMethod::Gaussian => {
                 let mut scheme = gaussian::Gradient::new(self.pairs, sign, acc);
                 driver::run(&mut scheme, objective, &placement, rng, batch, n)

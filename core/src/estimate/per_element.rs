@@ -12,10 +12,12 @@
 use rand_core::Rng;
 
 use super::driver::{Pair, Scheme};
+#[cfg(feature = "per-element")]
 use crate::kernel::gradient_element_weight;
 use crate::real::Real;
 use crate::sample::place;
 
+#[cfg(feature = "per-element")]
 pub(super) struct Gradient<'o, T> {
     n: usize,
     pairs: usize,
@@ -23,6 +25,7 @@ pub(super) struct Gradient<'o, T> {
     out: &'o mut [T],
 }
 
+#[cfg(feature = "per-element")]
 impl<'o, T: Real> Gradient<'o, T> {
     pub(super) fn new(n: usize, pairs: usize, sign: T, out: &'o mut [T]) -> Self {
         Gradient {
@@ -34,6 +37,7 @@ impl<'o, T: Real> Gradient<'o, T> {
     }
 }
 
+#[cfg(feature = "per-element")]
 impl<T: Real> Scheme<T> for Gradient<'_, T> {
     fn groups(&self) -> usize {
         self.n * self.pairs

@@ -26,7 +26,9 @@ mod oracle;
     feature = "hessian",
     feature = "aggregate",
     feature = "cg",
-    feature = "regression"
+    feature = "regression",
+    feature = "per-element",
+    feature = "gaussian"
 ))]
 pub mod preset;
 mod schedule;

@@ -218,8 +218,11 @@ impl<T: Real> Ncg<T> {
 
     /// True when the gradient and the HVP can come from one shared sample set.
     fn shares_samples(&self) -> bool {
-        self.gradient == GradientMethod::Gaussian
-            && self.curvature == Curvature::Hvp(HvpMethod::Kernel)
+        #[cfg(feature = "gaussian")]
+        let gaussian = self.gradient == GradientMethod::Gaussian;
+        #[cfg(not(feature = "gaussian"))]
+        let gaussian = false;
+        gaussian && self.curvature == Curvature::Hvp(HvpMethod::Kernel)
     }
 
     /// Ĥd into `hd`, using `hess` (n² floats) for Hessian curvature.
