@@ -7,7 +7,7 @@
 //!
 //! Three sequences are offered ([`Sequence`]):
 //! * [`Sequence::Independent`]: each number is a 64-bit hash of its four coordinates;
-//! * [`Sequence::Kronecker`]: the first [`KRONECKER_DIMS`] dimensions follow the R_d
+//! * [`Sequence::Kronecker`]: the first [`SEQUENCE_DIMS`] dimensions follow the R_d
 //!   Kronecker sequence x_n = frac(s + n·α) (Roberts 2018, α_i = φ_d^−(i+1), φ_d the real
 //!   root of x^(d+1) = x + 1) with a per-pixel random shift s (Cranley–Patterson
 //!   rotation); later dimensions are hashed as above. Each point is still uniform on the
@@ -35,13 +35,13 @@ use super::sobol;
 pub enum Sequence {
     /// Independent uniform numbers (plain Monte Carlo).
     Independent,
-    /// Randomly shifted R_d Kronecker sequence over the first [`KRONECKER_DIMS`]
+    /// Randomly shifted R_d Kronecker sequence over the first [`SEQUENCE_DIMS`]
     /// dimensions, independent numbers after that.
     Kronecker,
-    /// Randomly shifted and permuted R₂ sequences over the first [`KRONECKER_DIMS`]
+    /// Randomly shifted and permuted R₂ sequences over the first [`SEQUENCE_DIMS`]
     /// dimensions in pairs, independent numbers after that.
     PaddedR2,
-    /// Owen-scrambled, shuffled 2-D Sobol points over the first [`KRONECKER_DIMS`]
+    /// Owen-scrambled, shuffled 2-D Sobol points over the first [`SEQUENCE_DIMS`]
     /// dimensions in pairs, independent numbers after that. Default: it gave the lowest
     /// error at equal samples on SHADOW and CBOX (BENCHMARKS.md, section "hodr-host path
     /// tracer").
@@ -49,13 +49,14 @@ pub enum Sequence {
     PaddedSobol,
 }
 
-/// Dimensions covered by the Kronecker sequence (d of R_d): the two pixel coordinates
-/// and the six numbers of the first path vertex.
-pub const KRONECKER_DIMS: usize = 8;
+/// Dimensions covered by the low-discrepancy sequences (d of R_d for
+/// [`Sequence::Kronecker`], four 2-D pairs for the padded ones): the two pixel
+/// coordinates and the six numbers of the first path vertex.
+pub const SEQUENCE_DIMS: usize = 8;
 
 /// α_i = φ₈^−(i+1) mod 1, φ₈ = 1.085070245491451… the real root of x⁹ = x + 1
 /// (checked by a unit test).
-const R8_ALPHA: [f64; KRONECKER_DIMS] = [
+const R8_ALPHA: [f64; SEQUENCE_DIMS] = [
     0.921_599_319_633_982_9,
     0.849_345_305_949_820_2,
     0.782_756_056_097_671_3,
@@ -98,12 +99,12 @@ pub struct PixelSampler {
     /// Hash of (frame seed, pixel).
     pixel_key: u64,
     /// Cranley–Patterson shifts s of the Kronecker dimensions.
-    shifts: [f64; KRONECKER_DIMS],
+    shifts: [f64; SEQUENCE_DIMS],
     /// [`Sequence::PaddedR2`]: the index mask of each dimension pair.
-    masks: [u32; KRONECKER_DIMS / 2],
+    masks: [u32; SEQUENCE_DIMS / 2],
     /// [`Sequence::PaddedSobol`]: per dimension pair, the seeds of the index shuffle
     /// and of the two coordinates' scrambles.
-    owen: [[u32; 3]; KRONECKER_DIMS / 2],
+    owen: [[u32; 3]; SEQUENCE_DIMS / 2],
     /// [`Sequence::PaddedSobol`]: log₂ of the shuffled block, ⌈log₂ spp⌉.
     bits: u32,
 }
@@ -114,8 +115,8 @@ impl PixelSampler {
     #[inline]
     pub fn new(sequence: Sequence, seed: u64, pixel: u64, spp: u32) -> PixelSampler {
         let pixel_key = mix64(mix64(seed) ^ pixel);
-        let mut shifts = [0.0; KRONECKER_DIMS];
-        let mut masks = [0u32; KRONECKER_DIMS / 2];
+        let mut shifts = [0.0; SEQUENCE_DIMS];
+        let mut masks = [0u32; SEQUENCE_DIMS / 2];
         if matches!(sequence, Sequence::Kronecker | Sequence::PaddedR2) {
             for (dim, s) in shifts.iter_mut().enumerate() {
                 *s = (mix64(pixel_key ^ salt(dim)) >> 11) as f64 * (1.0 / 9_007_199_254_740_992.0);
@@ -125,13 +126,13 @@ impl PixelSampler {
             // Masks below 2^⌈log₂ spp⌉, so that n ⊕ m stays among the first indices.
             let range = spp.max(1).next_power_of_two() - 1;
             for (pair, m) in masks.iter_mut().enumerate() {
-                *m = (mix64(pixel_key ^ salt(KRONECKER_DIMS + pair)) as u32) & range;
+                *m = (mix64(pixel_key ^ salt(SEQUENCE_DIMS + pair)) as u32) & range;
             }
         }
-        let mut owen = [[0u32; 3]; KRONECKER_DIMS / 2];
+        let mut owen = [[0u32; 3]; SEQUENCE_DIMS / 2];
         if sequence == Sequence::PaddedSobol {
             for (pair, seeds) in owen.iter_mut().enumerate() {
-                let a = mix64(pixel_key ^ salt(2 * KRONECKER_DIMS + pair));
+                let a = mix64(pixel_key ^ salt(2 * SEQUENCE_DIMS + pair));
                 let b = mix64(a);
                 *seeds = [a as u32, (a >> 32) as u32, b as u32];
             }
@@ -176,15 +177,15 @@ impl SampleStream<'_> {
     /// The uniform number in [0, 1) of dimension `dim`.
     #[inline(always)]
     pub fn get(&self, dim: usize) -> f32 {
-        if self.pixel.sequence == Sequence::PaddedSobol && dim < KRONECKER_DIMS {
+        if self.pixel.sequence == Sequence::PaddedSobol && dim < SEQUENCE_DIMS {
             let (x, y) = self.sobol_pair(dim / 2);
             return if dim.is_multiple_of(2) { x } else { y };
         }
         let x = match self.pixel.sequence {
-            Sequence::Kronecker if dim < KRONECKER_DIMS => {
+            Sequence::Kronecker if dim < SEQUENCE_DIMS => {
                 self.pixel.shifts[dim] + f64::from(self.index) * R8_ALPHA[dim]
             }
-            Sequence::PaddedR2 if dim < KRONECKER_DIMS => {
+            Sequence::PaddedR2 if dim < SEQUENCE_DIMS => {
                 let index = self.index ^ self.pixel.masks[dim / 2];
                 self.pixel.shifts[dim] + f64::from(index) * R2_ALPHA[dim % 2]
             }
@@ -196,11 +197,11 @@ impl SampleStream<'_> {
     }
 
     /// Dimensions `dim` and `dim + 1` as a pair. Pairs that start at an even dimension
-    /// below [`KRONECKER_DIMS`] are the 2-D point sets of the padded sequences.
+    /// below [`SEQUENCE_DIMS`] are the 2-D point sets of the padded sequences.
     #[inline(always)]
     pub fn get2(&self, dim: usize) -> (f32, f32) {
         if self.pixel.sequence == Sequence::PaddedSobol
-            && dim < KRONECKER_DIMS
+            && dim < SEQUENCE_DIMS
             && dim.is_multiple_of(2)
         {
             return self.sobol_pair(dim / 2);
