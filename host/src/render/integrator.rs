@@ -279,6 +279,19 @@ struct Vertex {
     own: u32,
 }
 
+/// The unit direction from `origin` to `target`, the distance and its square; `None`
+/// when the points coincide.
+#[inline(always)]
+fn towards(origin: Vec3, target: Vec3) -> Option<(Vec3, f32, f32)> {
+    let d = target - origin;
+    let dist2 = d.length_squared();
+    if dist2 <= 0.0 {
+        return None;
+    }
+    let dist = dist2.sqrt();
+    Some((d / dist, dist, dist2))
+}
+
 /// NEE at a diffuse vertex: Le·cos θ·w/(π·p_light) for one sampled light, or 0 if it is
 /// blocked or behind. The caller multiplies by β·ρ.
 #[inline]
@@ -308,13 +321,9 @@ fn direct(
             let emitter_object = &scene.objects()[object as usize];
             let (u1, u2) = stream.get2(base + DIM_LIGHT_POINT);
             let (y, ny) = sample_area(&emitter_object.shape, u1, u2);
-            let d = y - origin;
-            let dist2 = d.length_squared();
-            if dist2 <= 0.0 {
+            let Some((wi, dist, dist2)) = towards(origin, y) else {
                 return Rgb::ZERO;
-            }
-            let dist = dist2.sqrt();
-            let wi = d / dist;
+            };
             let cos_s = ns.dot(wi);
             let cos_l = ny.dot(wi).abs();
             if cos_s <= 0.0 || ng.dot(wi) <= 0.0 || cos_l <= 0.0 {
@@ -346,13 +355,9 @@ fn direct(
             le * (cos_s * FRAC_1_PI * weight / light_pdf)
         }
         Light::Point(point) => {
-            let d = point.position - origin;
-            let dist2 = d.length_squared();
-            if dist2 <= 0.0 {
+            let Some((wi, dist, dist2)) = towards(origin, point.position) else {
                 return Rgb::ZERO;
-            }
-            let dist = dist2.sqrt();
-            let wi = d / dist;
+            };
             let cos_s = ns.dot(wi);
             if cos_s <= 0.0 || ng.dot(wi) <= 0.0 {
                 return Rgb::ZERO;

@@ -177,11 +177,11 @@ impl SampleStream<'_> {
     /// The uniform number in [0, 1) of dimension `dim`.
     #[inline(always)]
     pub fn get(&self, dim: usize) -> f32 {
-        if self.pixel.sequence == Sequence::PaddedSobol && dim < SEQUENCE_DIMS {
-            let (x, y) = self.sobol_pair(dim / 2);
-            return if dim.is_multiple_of(2) { x } else { y };
-        }
         let x = match self.pixel.sequence {
+            Sequence::PaddedSobol if dim < SEQUENCE_DIMS => {
+                let (x, y) = self.sobol_pair(dim / 2);
+                return if dim.is_multiple_of(2) { x } else { y };
+            }
             Sequence::Kronecker if dim < SEQUENCE_DIMS => {
                 self.pixel.shifts[dim] + f64::from(self.index) * R8_ALPHA[dim]
             }
