@@ -52,6 +52,7 @@ impl Settings {
             learning_rate: self.learning_rate,
             common_random_numbers: false,
             negative_curvature: hodr_core::optim::NegativeCurvature::Fallback,
+            sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK as f32,
         }
     }
 }

@@ -113,6 +113,7 @@ impl Problem {
                 learning_rate: 0.05,
                 common_random_numbers: crn,
                 negative_curvature: NegativeCurvature::Fallback,
+                sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
             },
         }
     }

@@ -1,5 +1,7 @@
 //! A (scene, parameter map, target) triple as a hodr-core [`Objective`].
 
+use std::time::Instant;
+
 use hodr_core::{Batch, NoiseSeed, Objective, Real};
 use rayon::prelude::*;
 use tiny_skia::Pixmap;
@@ -99,9 +101,12 @@ impl Problem {
 /// The loss of a [`Problem`] as a function of θ, with one reusable renderer per thread.
 ///
 /// [`Objective::evaluate_batch`] splits a batch into contiguous chunks, one per
-/// renderer, on rayon's pool. Every evaluation is a pure function of θ (the seed is
-/// ignored: rendering is deterministic), so results do not depend on the thread count
-/// or scheduling. A non-finite θ or wrong dimension evaluates to NaN through the trait
+/// renderer, on rayon's pool, when the batch holds at least [`PARALLEL_WORK`] seconds of
+/// work at the evaluation cost measured on earlier batches; smaller batches (and the
+/// first one) run on the calling thread, since waking the pool costs more than a few
+/// small renders. Every evaluation is a pure function of θ (the seed is ignored:
+/// rendering is deterministic), so results do not depend on the thread count, the
+/// split or scheduling. A non-finite θ or wrong dimension evaluates to NaN through the trait
 /// (the estimators then report it); [`RasterObjective::loss`] returns the typed error.
 #[derive(Debug)]
 pub struct RasterObjective {
@@ -110,7 +115,12 @@ pub struct RasterObjective {
     renderers: Vec<Renderer>,
     normaliser: f64,
     evaluations: u64,
+    /// Running mean wall time of one evaluation, seconds (`None` before the first batch).
+    cost: Option<f64>,
 }
+
+/// Sequential work, in seconds, above which a batch is split across rayon's pool.
+pub const PARALLEL_WORK: f64 = 100e-6;
 
 impl RasterObjective {
     /// Builds the caches and one renderer per thread of rayon's current pool.
@@ -147,6 +157,7 @@ impl RasterObjective {
             renderers,
             normaliser,
             evaluations: 0,
+            cost: None,
         })
     }
 
@@ -215,11 +226,13 @@ impl<T: Real> Objective<T> for RasterObjective {
         let mut renderers = std::mem::take(&mut self.renderers);
         let this = &*self;
         let chunk = out.len().div_ceil(renderers.len()).max(1);
-        if renderers.len() == 1 || out.len() < 2 {
-            for (k, v) in out.iter_mut().enumerate() {
-                *v = this.value(&mut renderers[0], batch.point(k));
-            }
-        } else {
+        let parallel = renderers.len() > 1
+            && out.len() >= 2
+            && self
+                .cost
+                .is_some_and(|c| c * out.len() as f64 >= PARALLEL_WORK);
+        let clock = Instant::now();
+        if parallel {
             out.par_chunks_mut(chunk)
                 .zip(renderers.par_iter_mut())
                 .enumerate()
@@ -228,7 +241,15 @@ impl<T: Real> Objective<T> for RasterObjective {
                         *v = this.value(renderer, batch.point(c * chunk + j));
                     }
                 });
+        } else {
+            for (k, v) in out.iter_mut().enumerate() {
+                *v = this.value(&mut renderers[0], batch.point(k));
+            }
         }
+        // Per-evaluation cost: each of the chunks ran one after another on its thread.
+        let sequential = if parallel { chunk } else { out.len() };
+        let measured = clock.elapsed().as_secs_f64() / sequential.max(1) as f64;
+        self.cost = Some(self.cost.map_or(measured, |c| 0.5 * (c + measured)));
         self.renderers = renderers;
     }
 }

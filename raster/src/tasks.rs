@@ -89,6 +89,7 @@ impl Settings {
             learning_rate: self.adam_learning_rate,
             common_random_numbers: false,
             negative_curvature: NegativeCurvature::Fallback,
+            sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
         }
     }
 }

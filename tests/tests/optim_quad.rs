@@ -93,6 +93,8 @@ fn every_preset_reduces_quad_error_from_near_starts() {
             // Newton-CG's inner CG compounds HVP noise; measured 6/10 (aggregate, CRN) and
             // 3/10 (kernel) at 4 pairs.
             Preset::NewtonCgAggregate => 5,
+            // σ shrinks as the run closes in, and with it the estimates' error: 10/10.
+            Preset::NewtonCgAdaptive => 10,
             _ => 2,
         };
         assert!(wins >= needed, "{}: {wins}/10 seeds", preset.name());
@@ -107,4 +109,39 @@ fn second_order_presets_reach_quad_optimum_from_far_starts() {
         let wins = successes(preset, [900.0, 850.0], 150, 1.0 / 1240.0);
         assert_eq!(wins, 10, "{}", preset.name());
     }
+}
+
+/// The adaptive schedule follows the run: on QUAD (near start, 4 pairs) NewtonCG-AS's σ
+/// reaches its floor in the first half of the run, while the linear schedule is still
+/// near its start.
+#[test]
+fn adaptive_sigma_shrinks_ahead_of_the_linear_schedule() {
+    let h = hyper();
+    let iterations = 40;
+    let mut sigmas = Vec::new();
+    let preset = Preset::NewtonCgAdaptive;
+    let method = preset.method(&h);
+    let mut theta = [2.1, -1.3];
+    let mut buffer = vec![0.0; method.buffer_len(2)];
+    let est = Estimator::new(h.sigma_start, h.pairs, Xoshiro256PlusPlus::seed_from_u64(7)).unwrap();
+    let mut opt = Optimiser::new(
+        method,
+        preset.schedule(&h),
+        Budget::iterations(iterations),
+        est,
+        &mut theta,
+        &mut buffer,
+    )
+    .unwrap();
+    let (mut wb, mut seeds) = (vec![0.0; method.workspace_len(2, 64)], vec![0; 64]);
+    let mut ws = Workspace::new(2, &mut wb, &mut seeds).unwrap();
+    let mut f = quad;
+    opt.run(&mut f, &mut ws, || 0.0, |r, _| sigmas.push(r.sigma))
+        .unwrap();
+    assert_eq!(sigmas[0], h.sigma_start);
+    let floor = sigmas.iter().position(|&s| s == h.sigma_end);
+    assert!(
+        floor.is_some_and(|k| k < iterations / 2),
+        "σ never reached its floor early: {sigmas:?}"
+    );
 }

@@ -102,6 +102,7 @@ fn mug_converges_from_plateau_starts() {
         learning_rate: 0.05,
         common_random_numbers: true,
         negative_curvature: NegativeCurvature::Fallback,
+        sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
     };
     let wins = (0..20)
         .filter(|&seed| {
@@ -128,6 +129,7 @@ fn shadow_method(pairs: usize, ls: usize, nc: NegativeCurvature) -> (Method<f64>
         learning_rate: 0.1,
         common_random_numbers: true,
         negative_curvature: nc,
+        sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
     };
     (Preset::OurHvpa.method(&h), h)
 }

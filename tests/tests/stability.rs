@@ -20,6 +20,7 @@ fn hyper<T: Real>(sigma: f64, trust: f64) -> Hyper<T> {
         learning_rate: T::from_f64(0.1 * sigma),
         common_random_numbers: true,
         negative_curvature: NegativeCurvature::Fallback,
+        sigma_shrink: T::from_f64(hodr_core::optim::preset::SIGMA_SHRINK),
     }
 }
 

@@ -282,6 +282,8 @@ struct State<T> {
     /// Newton-CG's running mean of positive curvatures.
     #[cfg(feature = "cg")]
     mean_curvature: Option<T>,
+    /// σ chosen by an adaptive schedule for the next iteration (before the cap).
+    adapted_sigma: Option<T>,
     finished: Option<Termination>,
 }
 
@@ -360,6 +362,7 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
                 ncg: ncg::NcgState::default(),
                 #[cfg(feature = "cg")]
                 mean_curvature: None,
+                adapted_sigma: None,
                 finished: None,
             },
         })
@@ -428,9 +431,10 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
                 found: ws.dim(),
             }));
         }
-        let sigma = self
-            .schedule
-            .sigma(self.budget.progress(st.iteration, st.evaluations, now));
+        let scheduled =
+            self.schedule
+                .sigma(self.budget.progress(st.iteration, st.evaluations, now));
+        let sigma = st.adapted_sigma.map_or(scheduled, |s| s.min(scheduled));
         self.estimator.set_sigma(sigma).map_err(fail)?;
 
         let (saved, buf) = self.buffer.split_at_mut(n);
@@ -486,6 +490,13 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
             return Err(fail(Error::NonFiniteEstimate { index }));
         }
         st.iteration = iteration;
+        let model_minimum = !outcome.fallback
+            && outcome.gradient_norm > T::ZERO
+            && outcome.curvature.is_some_and(|c| c > T::ZERO);
+        st.adapted_sigma = Some(
+            self.schedule
+                .adapt(sigma, outcome.step_length, model_minimum),
+        );
         let termination = if outcome.converged {
             Some(Termination::Converged)
         } else {

@@ -12,6 +12,11 @@
 //! | `NewtonCgKernel` | Newton-CG (Steihaug) | Gaussian | kernel HVP |
 //! | `NewtonCgAggregate` | Newton-CG (Steihaug), one sample set per iteration | aggregate IS | CRN central-difference HVP |
 //! | `NewtonCgRegression` | Newton-CG (Steihaug), one sample set per iteration | least squares | CRN central-difference HVP |
+//! | `NewtonCgAdaptive` | `NewtonCgAggregate` with the adaptive σ schedule | aggregate IS | CRN central-difference HVP |
+//!
+//! Every preset anneals σ linearly from `sigma_start` to `sigma_end` over the budget (the
+//! paper's schedule) except `NewtonCgAdaptive`, whose σ shrinks by `sigma_shrink` after
+//! each step shorter than σ ([`Schedule::Adaptive`]).
 //!
 //! The paper's HVP presets draw the two gradients of a central difference independently
 //! (as its code does); [`Hyper::common_random_numbers`] switches them to common random
@@ -47,7 +52,14 @@ pub struct Hyper<T> {
     /// The step NCG and Newton-CG take where the estimated curvature is not positive.
     /// Default: [`NegativeCurvature::Fallback`].
     pub negative_curvature: NegativeCurvature,
+    /// Factor in (0, 1) by which the adaptive schedule shrinks σ after a step shorter
+    /// than σ ([`Schedule::Adaptive`]; used by [`Preset::NewtonCgAdaptive`] only).
+    /// Default: [`SIGMA_SHRINK`].
+    pub sigma_shrink: T,
 }
+
+/// Default [`Hyper::sigma_shrink`].
+pub const SIGMA_SHRINK: f64 = 0.5;
 
 /// A named method.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -77,6 +89,9 @@ pub enum Preset {
     /// (up to [`REGRESSION_INNER_STEPS`] inner steps). Exact Newton steps on quadratics
     /// whatever their conditioning.
     NewtonCgRegression,
+    /// [`Preset::NewtonCgAggregate`] with σ following the run ([`Schedule::Adaptive`])
+    /// rather than the budget.
+    NewtonCgAdaptive,
 }
 
 /// Inner CG steps per iteration of [`Preset::NewtonCgRegression`] (Newton-CG caps them at
@@ -91,7 +106,7 @@ pub const REGRESSION_INNER_TOLERANCE: f64 = 1e-8;
 
 impl Preset {
     /// Every preset, the paper's first.
-    pub const ALL: [Preset; 10] = [
+    pub const ALL: [Preset; 11] = [
         Preset::Fr22,
         Preset::OurG,
         Preset::OurH,
@@ -102,6 +117,7 @@ impl Preset {
         Preset::NewtonCgKernel,
         Preset::NewtonCgAggregate,
         Preset::NewtonCgRegression,
+        Preset::NewtonCgAdaptive,
     ];
 
     /// The name used in reports and on the command line.
@@ -117,6 +133,7 @@ impl Preset {
             Preset::NewtonCgKernel => "NewtonCG-kernel",
             Preset::NewtonCgAggregate => "NewtonCG-A",
             Preset::NewtonCgRegression => "NewtonCG-LS",
+            Preset::NewtonCgAdaptive => "NewtonCG-AS",
         }
     }
 
@@ -204,7 +221,9 @@ impl Preset {
             Preset::NewtonCgKernel => {
                 Method::NewtonCg(newton_cg(GradientMethod::Gaussian, HvpMethod::Kernel))
             }
-            Preset::NewtonCgAggregate => Method::NewtonCg(reusing(GradientMethod::Aggregate)),
+            Preset::NewtonCgAggregate | Preset::NewtonCgAdaptive => {
+                Method::NewtonCg(reusing(GradientMethod::Aggregate))
+            }
             Preset::NewtonCgRegression => Method::NewtonCg(NewtonCg {
                 max_inner: REGRESSION_INNER_STEPS,
                 inner_tolerance: T::from_f64(REGRESSION_INNER_TOLERANCE),
@@ -214,11 +233,19 @@ impl Preset {
         }
     }
 
-    /// The linear σ schedule of these hyper-parameters.
+    /// The σ schedule of this preset with these hyper-parameters: linear, or adaptive
+    /// for [`Preset::NewtonCgAdaptive`].
     pub fn schedule<T: Real>(self, h: &Hyper<T>) -> Schedule<T> {
-        Schedule::Linear {
-            start: h.sigma_start,
-            end: h.sigma_end,
+        match self {
+            Preset::NewtonCgAdaptive => Schedule::Adaptive {
+                start: h.sigma_start,
+                end: h.sigma_end,
+                shrink: h.sigma_shrink,
+            },
+            _ => Schedule::Linear {
+                start: h.sigma_start,
+                end: h.sigma_end,
+            },
         }
     }
 }

@@ -6,6 +6,7 @@ use crate::real::Real;
 /// How σ changes over the run. Progress p ∈ [0, 1] is the largest used fraction of the
 /// [`Budget`]'s iteration, evaluation and time limits.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Schedule<T> {
     /// σ fixed.
     Constant(T),
@@ -16,6 +17,31 @@ pub enum Schedule<T> {
         /// σ at p = 1.
         end: T,
     },
+    /// σ follows what the run finds rather than the budget. After an iteration that
+    /// stepped to a minimum of its curvature model (positive curvature, no fallback step)
+    /// less than σ away, σ ← max(end, shrink·σ); after one without a model minimum
+    /// (non-positive curvature or a vanishing gradient), σ ← σ/√shrink; otherwise σ
+    /// stays. σ never exceeds the linear schedule start → end at the same progress, so
+    /// it reaches `end` by the end of the budget at the latest.
+    ///
+    /// A short step to a model minimum says that the minimum of f̄_σ lies within one
+    /// smoothing width: smoothing at this scale has nothing more to show, and a smaller
+    /// σ resolves finer structure (a narrow well the wide kernel averaged away) and cuts
+    /// the estimators' σ-proportional error. Longer steps (travelling, or at the trust
+    /// boundary) keep σ. No model minimum — a plateau, where the gradient vanishes
+    /// because nothing is seen, or a ridge — calls for a wider kernel. The square root
+    /// makes σ fall on balance only while more than a third of the iterations find a
+    /// nearby minimum, as evolution strategies' success rules adapt their step size.
+    /// First-order methods measure no curvature, so for them σ only grows back to the
+    /// linear cap: use [`Schedule::Linear`] with them.
+    Adaptive {
+        /// σ at the start.
+        start: T,
+        /// The floor, and σ at p = 1.
+        end: T,
+        /// Factor in (0, 1) applied after a short step.
+        shrink: T,
+    },
 }
 
 impl<T: Real> Schedule<T> {
@@ -23,10 +49,24 @@ impl<T: Real> Schedule<T> {
     pub fn sigma(&self, progress: T) -> T {
         match *self {
             Schedule::Constant(s) => s,
-            Schedule::Linear { start, end } => {
+            Schedule::Linear { start, end } | Schedule::Adaptive { start, end, .. } => {
                 let p = progress.max(T::ZERO).min(T::ONE);
                 start + (end - start) * p
             }
+        }
+    }
+
+    /// σ for the next iteration of an adaptive schedule (before the cap of
+    /// [`Schedule::sigma`]), given this iteration's σ, its step length and whether the
+    /// step went to a minimum of the iteration's curvature model; `sigma` unchanged for
+    /// the other schedules.
+    pub fn adapt(&self, sigma: T, step_length: T, model_minimum: bool) -> T {
+        match *self {
+            Schedule::Adaptive { end, shrink, .. } if model_minimum && step_length < sigma => {
+                (shrink * sigma).max(end)
+            }
+            Schedule::Adaptive { shrink, .. } if !model_minimum => sigma / shrink.sqrt(),
+            _ => sigma,
         }
     }
 
@@ -35,6 +75,9 @@ impl<T: Real> Schedule<T> {
         let valid = match *self {
             Schedule::Constant(s) => ok(s),
             Schedule::Linear { start, end } => ok(start) && ok(end),
+            Schedule::Adaptive { start, end, shrink } => {
+                ok(start) && ok(end) && ok(shrink) && shrink < T::ONE
+            }
         };
         if valid {
             Ok(())
@@ -189,5 +232,37 @@ mod tests {
             .validate(),
             Err(Error::InvalidSigma)
         );
+    }
+
+    #[test]
+    fn adaptive_schedule_shrinks_after_short_steps_only() {
+        let s = Schedule::Adaptive {
+            start: 2.0,
+            end: 0.1,
+            shrink: 0.5,
+        };
+        assert_eq!(s.validate(), Ok(()));
+        // The cap is the linear schedule.
+        assert_eq!(s.sigma(0.0), 2.0);
+        assert!((s.sigma(0.5) - 1.05).abs() < 1e-15);
+        // Short steps shrink, down to the floor; long ones keep σ.
+        assert_eq!(s.adapt(2.0, 0.5, true), 1.0);
+        assert_eq!(s.adapt(2.0, 2.0, true), 2.0);
+        assert_eq!(s.adapt(0.15, 0.0, true), 0.1);
+        // No model minimum (a plateau) widens the kernel.
+        assert!((s.adapt(1.0, 0.0, false) - 2f64.sqrt()).abs() < 1e-15);
+        let linear = Schedule::Linear {
+            start: 2.0,
+            end: 0.1,
+        };
+        assert_eq!(linear.adapt(2.0, 0.0, true), 2.0);
+        for shrink in [0.0, 1.0, f64::NAN] {
+            let bad = Schedule::Adaptive {
+                start: 2.0,
+                end: 0.1,
+                shrink,
+            };
+            assert_eq!(bad.validate(), Err(Error::InvalidSigma));
+        }
     }
 }

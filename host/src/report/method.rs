@@ -169,10 +169,10 @@ pub fn run_observed(
             if first_estimate_cost(
                 preset,
                 task.dim(),
-                &settings.overrides.apply(task.hyper(preset)),
+                &settings.overrides.apply(task.run_hyper(preset)),
             ) > budget =>
         {
-            let h = settings.overrides.apply(task.hyper(preset));
+            let h = settings.overrides.apply(task.run_hyper(preset));
             let cost = first_estimate_cost(preset, task.dim(), &h);
             stopped = Some(format!(
                 "skipped: one estimate needs {cost} evaluations, the budget is {budget}"
@@ -180,7 +180,7 @@ pub fn run_observed(
             start.clone()
         }
         Method::Preset(preset) => {
-            let h = settings.overrides.apply(task.hyper(preset));
+            let h = settings.overrides.apply(task.run_hyper(preset));
             let m = preset.method(&h);
             let n = task.dim();
             let mut theta = start.clone();

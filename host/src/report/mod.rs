@@ -56,6 +56,8 @@ pub struct Overrides {
     /// The step of NCG and Newton-CG at non-positive curvature.
     #[serde(serialize_with = "serialize_negative_curvature")]
     pub negative_curvature: Option<NegativeCurvature>,
+    /// The adaptive schedule's shrink factor.
+    pub sigma_shrink: Option<f64>,
 }
 
 /// `--set negative_curvature=` names, both ways.
@@ -110,6 +112,9 @@ impl Overrides {
         if let Some(v) = self.negative_curvature {
             h.negative_curvature = v;
         }
+        if let Some(v) = self.sigma_shrink {
+            h.sigma_shrink = v;
+        }
         h
     }
 
@@ -133,6 +138,7 @@ impl Overrides {
             "recompute" => self.recompute = Some(value.parse().with_context(bad)?),
             "lr" | "learning_rate" => self.learning_rate = Some(value.parse().with_context(bad)?),
             "crn" => self.common_random_numbers = Some(value.parse().with_context(bad)?),
+            "sigma_shrink" => self.sigma_shrink = Some(value.parse().with_context(bad)?),
             "negative_curvature" => {
                 let named = NEGATIVE_CURVATURE_NAMES
                     .iter()
@@ -142,7 +148,7 @@ impl Overrides {
                     Some(named.with_context(|| format!("{} (fallback or two-sided)", bad()))?);
             }
             other => bail!(
-                "unknown hyper-parameter `{other}` (pairs, sigma_start, sigma_end, trust_radius, ls_iters, recompute, lr, crn, negative_curvature)"
+                "unknown hyper-parameter `{other}` (pairs, sigma_start, sigma_end, trust_radius, ls_iters, recompute, lr, crn, negative_curvature, sigma_shrink)"
             ),
         }
         Ok(())
