@@ -101,7 +101,7 @@ impl Problem {
 /// The loss of a [`Problem`] as a function of θ, with one reusable renderer per thread.
 ///
 /// [`Objective::evaluate_batch`] splits a batch into contiguous chunks, one per
-/// renderer, on rayon's pool, when the batch holds at least [`PARALLEL_WORK`] seconds of
+/// renderer, on rayon's pool, when the batch holds at least 100 µs (`PARALLEL_WORK`) of
 /// work at the evaluation cost measured on earlier batches; smaller batches (and the
 /// first one) run on the calling thread, since waking the pool costs more than a few
 /// small renders. Every evaluation is a pure function of θ (the seed is ignored:
@@ -120,7 +120,7 @@ pub struct RasterObjective {
 }
 
 /// Sequential work, in seconds, above which a batch is split across rayon's pool.
-pub const PARALLEL_WORK: f64 = 100e-6;
+const PARALLEL_WORK: f64 = 100e-6;
 
 impl RasterObjective {
     /// Builds the caches and one renderer per thread of rayon's current pool.

@@ -3,7 +3,7 @@
 //! convergence checks from both start distributions, as fractions of 10 fixed seeds.
 
 use hodr_core::optim::preset::{Hyper, Preset};
-use hodr_core::optim::{Budget, Optimiser};
+use hodr_core::optim::{Budget, Optimiser, StepReport};
 use hodr_core::{Estimator, Workspace};
 use hodr_host::report::task::{quad, quad_hyper};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -18,6 +18,17 @@ fn hyper() -> Hyper<f64> {
 
 /// Final distance to the optimum (0, 0) after `iterations` from `start`.
 fn run(preset: Preset, start: [f64; 2], iterations: usize, seed: u64) -> f64 {
+    run_observed(preset, start, iterations, seed, |_| {})
+}
+
+/// [`run`], calling `observe` with every iteration's report.
+fn run_observed(
+    preset: Preset,
+    start: [f64; 2],
+    iterations: usize,
+    seed: u64,
+    mut observe: impl FnMut(&StepReport<f64>),
+) -> f64 {
     let h = hyper();
     let method = preset.method(&h);
     let mut theta = start;
@@ -45,6 +56,7 @@ fn run(preset: Preset, start: [f64; 2], iterations: usize, seed: u64) -> f64 {
         &mut ws,
         || 0.0,
         |r, t| {
+            observe(r);
             if std::env::var("DBG").is_ok() {
                 eprintln!(
                     "{} it{} σ={:.3} g={:.3e} step={:.3e} curv={:?} fb={} rs={} θ={:?}",
@@ -119,25 +131,9 @@ fn adaptive_sigma_shrinks_ahead_of_the_linear_schedule() {
     let h = hyper();
     let iterations = 40;
     let mut sigmas = Vec::new();
-    let preset = Preset::NewtonCgAdaptive;
-    let method = preset.method(&h);
-    let mut theta = [2.1, -1.3];
-    let mut buffer = vec![0.0; method.buffer_len(2)];
-    let est = Estimator::new(h.sigma_start, h.pairs, Xoshiro256PlusPlus::seed_from_u64(7)).unwrap();
-    let mut opt = Optimiser::new(
-        method,
-        preset.schedule(&h),
-        Budget::iterations(iterations),
-        est,
-        &mut theta,
-        &mut buffer,
-    )
-    .unwrap();
-    let (mut wb, mut seeds) = (vec![0.0; method.workspace_len(2, 64)], vec![0; 64]);
-    let mut ws = Workspace::new(2, &mut wb, &mut seeds).unwrap();
-    let mut f = quad;
-    opt.run(&mut f, &mut ws, || 0.0, |r, _| sigmas.push(r.sigma))
-        .unwrap();
+    run_observed(Preset::NewtonCgAdaptive, [2.1, -1.3], iterations, 7, |r| {
+        sigmas.push(r.sigma)
+    });
     assert_eq!(sigmas[0], h.sigma_start);
     let floor = sigmas.iter().position(|&s| s == h.sigma_end);
     assert!(
