@@ -493,10 +493,9 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
         let model_minimum = !outcome.fallback
             && outcome.gradient_norm > T::ZERO
             && outcome.curvature.is_some_and(|c| c > T::ZERO);
-        st.adapted_sigma = Some(
-            self.schedule
-                .adapt(sigma, outcome.step_length, model_minimum),
-        );
+        st.adapted_sigma = self
+            .schedule
+            .adapt(sigma, outcome.step_length, model_minimum);
         let termination = if outcome.converged {
             Some(Termination::Converged)
         } else {

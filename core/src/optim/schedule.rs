@@ -58,15 +58,18 @@ impl<T: Real> Schedule<T> {
 
     /// σ for the next iteration of an adaptive schedule (before the cap of
     /// [`Schedule::sigma`]), given this iteration's σ, its step length and whether the
-    /// step went to a minimum of the iteration's curvature model; `sigma` unchanged for
-    /// the other schedules.
-    pub fn adapt(&self, sigma: T, step_length: T, model_minimum: bool) -> T {
+    /// step went to a minimum of the iteration's curvature model; `None` for the other
+    /// schedules, whose σ depends on progress alone.
+    pub fn adapt(&self, sigma: T, step_length: T, model_minimum: bool) -> Option<T> {
         match *self {
-            Schedule::Adaptive { end, shrink, .. } if model_minimum && step_length < sigma => {
+            Schedule::Adaptive { end, shrink, .. } => Some(if !model_minimum {
+                sigma / shrink.sqrt()
+            } else if step_length < sigma {
                 (shrink * sigma).max(end)
-            }
-            Schedule::Adaptive { shrink, .. } if !model_minimum => sigma / shrink.sqrt(),
-            _ => sigma,
+            } else {
+                sigma
+            }),
+            _ => None,
         }
     }
 
@@ -246,16 +249,16 @@ mod tests {
         assert_eq!(s.sigma(0.0), 2.0);
         assert!((s.sigma(0.5) - 1.05).abs() < 1e-15);
         // Short steps shrink, down to the floor; long ones keep σ.
-        assert_eq!(s.adapt(2.0, 0.5, true), 1.0);
-        assert_eq!(s.adapt(2.0, 2.0, true), 2.0);
-        assert_eq!(s.adapt(0.15, 0.0, true), 0.1);
+        assert_eq!(s.adapt(2.0, 0.5, true), Some(1.0));
+        assert_eq!(s.adapt(2.0, 2.0, true), Some(2.0));
+        assert_eq!(s.adapt(0.15, 0.0, true), Some(0.1));
         // No model minimum (a plateau) widens the kernel.
-        assert!((s.adapt(1.0, 0.0, false) - 2f64.sqrt()).abs() < 1e-15);
+        assert!((s.adapt(1.0, 0.0, false).unwrap() - 2f64.sqrt()).abs() < 1e-15);
         let linear = Schedule::Linear {
             start: 2.0,
             end: 0.1,
         };
-        assert_eq!(linear.adapt(2.0, 0.0, true), 2.0);
+        assert_eq!(linear.adapt(2.0, 0.0, true), None);
         for shrink in [0.0, 1.0, f64::NAN] {
             let bad = Schedule::Adaptive {
                 start: 2.0,
