@@ -55,6 +55,22 @@ pub(crate) struct BatchBuffers<'a, T> {
     /// Sum and count of the objective values of the current estimate.
     pub(crate) value_sum: T,
     pub(crate) value_count: usize,
+    /// The lowest sample evaluated since [`BatchBuffers::forget_best`]. Part of the
+    /// memory layout whatever the features; only Newton-CG's comparison (`cg`) keeps it.
+    #[cfg_attr(not(feature = "cg"), allow(dead_code))]
+    pub(crate) best: BestSample<'a, T>,
+}
+
+/// The point with the lowest objective value among the samples evaluated since it was
+/// last cleared (an optimiser clears it at the start of each iteration), and the noise
+/// seed it was evaluated with.
+#[derive(Debug)]
+#[cfg_attr(not(feature = "cg"), allow(dead_code))]
+pub(crate) struct BestSample<'a, T> {
+    /// n floats: the point (meaningful only when `value` is set).
+    pub(crate) point: &'a mut [T],
+    pub(crate) value: Option<T>,
+    pub(crate) seed: NoiseSeed,
 }
 
 impl<T: Real> BatchBuffers<'_, T> {
@@ -65,6 +81,29 @@ impl<T: Real> BatchBuffers<'_, T> {
         self.value_count = 0;
     }
 
+    /// Forgets the lowest sample seen.
+    #[cfg(feature = "cg")]
+    pub(crate) fn forget_best(&mut self) {
+        self.best.value = None;
+    }
+
+    /// Notes the first `used` rows of the batch (all finite) as candidates for the
+    /// lowest sample. Ties keep the earlier sample.
+    #[cfg(feature = "cg")]
+    pub(crate) fn note_best(&mut self, used: usize) {
+        let dim = self.best.point.len();
+        for row in 0..used {
+            let v = self.values[row];
+            if self.best.value.is_none_or(|b| v < b) {
+                self.best.value = Some(v);
+                self.best.seed = self.seeds[row];
+                self.best
+                    .point
+                    .copy_from_slice(&self.points[row * dim..(row + 1) * dim]);
+            }
+        }
+    }
+
     /// Mean of the objective values of the current estimate, if any.
     pub(crate) fn mean_value(&self) -> Option<T> {
         (self.value_count > 0).then(|| self.value_sum / T::from_usize(self.value_count))
@@ -73,9 +112,10 @@ impl<T: Real> BatchBuffers<'_, T> {
 
 impl<'a, T: Real> Workspace<'a, T> {
     /// Length of the `T` buffer that [`Workspace::new`] needs for dimension `dim` and
-    /// batch capacity `rows`: `dim·(rows + rows/2 + 3) + rows`.
+    /// batch capacity `rows`: `dim·(rows + rows/2 + 4) + rows` (the batch, its offsets
+    /// and values, [`SCRATCH_VECTORS`] and the lowest sample of an iteration).
     pub const fn buffer_len(dim: usize, rows: usize) -> usize {
-        dim * (rows + rows / 2 + SCRATCH_VECTORS) + rows
+        dim * (rows + rows / 2 + SCRATCH_VECTORS + 1) + rows
     }
 
     /// Floats of the optional moment region that least-squares estimates need:
@@ -117,6 +157,7 @@ impl<'a, T: Real> Workspace<'a, T> {
         let (offsets, rest) = rest.split_at_mut(rows / 2 * dim);
         let (values, rest) = rest.split_at_mut(rows);
         let (scratch, rest) = rest.split_at_mut(SCRATCH_VECTORS * dim);
+        let (best, rest) = rest.split_at_mut(dim);
         let moments_len = Self::moments_len(dim);
         let moments = if rest.len() >= moments_len {
             &mut rest[..moments_len]
@@ -133,6 +174,11 @@ impl<'a, T: Real> Workspace<'a, T> {
                 failed: None,
                 value_sum: T::ZERO,
                 value_count: 0,
+                best: BestSample {
+                    point: best,
+                    value: None,
+                    seed: 0,
+                },
             },
             scratch,
             moments,
@@ -161,7 +207,7 @@ impl<'a, T: Real> Workspace<'a, T> {
 }
 
 /// Inline storage for a workspace of compile-time dimension `N` and batch capacity `R`
-/// (`R ≥ MIN_ROWS`). Memory: `(2R + 3)·N + R` floats and `R` seeds. It has no moment
+/// (`R ≥ MIN_ROWS`). Memory: `(2R + 4)·N + R` floats and `R` seeds. It has no moment
 /// region: for least-squares estimates, carve a [`Workspace`] from a buffer instead.
 ///
 /// ```
@@ -177,6 +223,7 @@ pub struct FixedWorkspace<T, const N: usize, const R: usize> {
     values: [T; R],
     seeds: [NoiseSeed; R],
     scratch: [[T; N]; SCRATCH_VECTORS],
+    best: [T; N],
 }
 
 impl<T: Real, const N: usize, const R: usize> FixedWorkspace<T, N, R> {
@@ -195,6 +242,7 @@ impl<T: Real, const N: usize, const R: usize> FixedWorkspace<T, N, R> {
             values: [T::ZERO; R],
             seeds: [0; R],
             scratch: [[T::ZERO; N]; SCRATCH_VECTORS],
+            best: [T::ZERO; N],
         }
     }
 
@@ -210,6 +258,11 @@ impl<T: Real, const N: usize, const R: usize> FixedWorkspace<T, N, R> {
                 failed: None,
                 value_sum: T::ZERO,
                 value_count: 0,
+                best: BestSample {
+                    point: &mut self.best,
+                    value: None,
+                    seed: 0,
+                },
             },
             scratch: self.scratch.as_flattened_mut(),
             moments: &mut [],

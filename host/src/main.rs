@@ -250,8 +250,9 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             };
             let mut k = 0usize;
             let r = report::run_observed(t.as_ref(), m, seed, &settings, interrupt, &mut |p| {
+                let sigma = p.sigma.map_or(String::new(), |s| format!("  σ = {s:.3e}"));
                 println!(
-                    "iter {k:>4}  t = {:>9.4} s  evals = {:>7}  param error = {:.4e}  image error = {:.4e}",
+                    "iter {k:>4}  t = {:>9.4} s  evals = {:>7}  param error = {:.4e}  image error = {:.4e}{sigma}",
                     p.time, p.evaluations, p.param_error, p.image_error
                 );
                 k += 1;

@@ -45,9 +45,9 @@ pub use first_order::{Adam, GradientDescent};
 pub use ncg::{Curvature, Ncg};
 #[cfg(feature = "hessian")]
 pub use newton::Newton;
-pub use schedule::{Budget, Schedule, Termination};
+pub use schedule::{Budget, Schedule, StepKind, Termination};
 #[cfg(feature = "cg")]
-pub use steihaug::NewtonCg;
+pub use steihaug::{COMPARISON_MARGIN, NewtonCg};
 
 use crate::error::Error;
 use crate::estimate::Estimator;
@@ -221,6 +221,11 @@ pub(crate) struct Outcome<T> {
     pub shift: Option<T>,
     pub restarted: bool,
     pub fallback: bool,
+    /// The step stopped at the trust boundary on the way to a model minimum beyond it
+    /// (Newton-CG).
+    pub at_boundary: bool,
+    /// The objective rejected the model's step (Newton-CG's `compare_samples`).
+    pub rejected: bool,
     pub converged: bool,
 }
 
@@ -245,6 +250,8 @@ impl<T: Real> Default for Outcome<T> {
             shift: None,
             restarted: false,
             fallback: false,
+            at_boundary: false,
+            rejected: false,
             converged: false,
         }
     }
@@ -439,6 +446,8 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
 
         let (saved, buf) = self.buffer.split_at_mut(n);
         saved.copy_from_slice(self.theta);
+        #[cfg(feature = "cg")]
+        ws.batch.forget_best();
         let snapshot = self
             .method
             .reuses_samples()
@@ -490,12 +499,21 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
             return Err(fail(Error::NonFiniteEstimate { index }));
         }
         st.iteration = iteration;
-        let model_minimum = !outcome.fallback
+        let kind = if outcome.rejected {
+            StepKind::Rejected
+        } else if !outcome.fallback
             && outcome.gradient_norm > T::ZERO
-            && outcome.curvature.is_some_and(|c| c > T::ZERO);
-        st.adapted_sigma = self
-            .schedule
-            .adapt(sigma, outcome.step_length, model_minimum);
+            && outcome.curvature.is_some_and(|c| c > T::ZERO)
+        {
+            if outcome.at_boundary {
+                StepKind::TowardModelMinimum
+            } else {
+                StepKind::ToModelMinimum(outcome.step_length)
+            }
+        } else {
+            StepKind::NoModelMinimum
+        };
+        st.adapted_sigma = self.schedule.adapt(sigma, kind);
         let termination = if outcome.converged {
             Some(Termination::Converged)
         } else {

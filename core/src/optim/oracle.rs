@@ -1,9 +1,14 @@
 //! The estimators as seen by an optimiser: one place that counts evaluations and keeps
 //! the latest loss estimate. It also compares candidate points by their objective values
-//! (the two-sided negative-curvature step, [`super::NegativeCurvature::TwoSided`]).
+//! (the two-sided negative-curvature step, [`super::NegativeCurvature::TwoSided`], and
+//! Newton-CG's [`super::NewtonCg::compare_samples`]).
 
 use rand_core::Rng;
 
+#[cfg(feature = "cg")]
+use super::COMPARISON_MARGIN;
+#[cfg(feature = "cg")]
+use super::vector::{axpy, distance, norm};
 use crate::error::Error;
 #[cfg(feature = "hessian")]
 use crate::estimate::HessianMethod;
@@ -110,6 +115,58 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
             .hessian(method, self.objective, theta, self.ws, out)?;
         self.record(&r);
         Ok(())
+    }
+
+    /// Ends an iteration by comparing, on the objective itself, the current θ, the model
+    /// step θ + p and the lowest sample this iteration evaluated, and moves θ to the
+    /// lowest. θ and θ + p are evaluated with that sample's noise seed (2 evaluations,
+    /// counted here), so renderer noise cancels from the comparison as in common random
+    /// numbers. Values within [`COMPARISON_MARGIN`] (relative) of each other tie; ties go
+    /// to θ + p, then θ. Without a sample (nothing evaluated since the
+    /// iteration began) θ takes the model step unevaluated.
+    ///
+    /// Returns whether the model step was rejected, and the distance θ moved.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteObjective`] (the point stays in the workspace; θ is unchanged).
+    #[cfg(feature = "cg")]
+    pub fn settle(&mut self, theta: &mut [T], p: &[T]) -> Result<(bool, T), Error> {
+        let n = self.ws.dim;
+        let b = &mut self.ws.batch;
+        let Some(sample_value) = b.best.value else {
+            axpy(T::ONE, p, theta);
+            return Ok((false, norm(p)));
+        };
+        let (model, current) = b.points[..2 * n].split_at_mut(n);
+        for ((m, c), (&x, &pi)) in model
+            .iter_mut()
+            .zip(current.iter_mut())
+            .zip(theta.iter().zip(p))
+        {
+            *m = x + pi;
+            *c = x;
+        }
+        b.seeds[..2].fill(b.best.seed);
+        let batch = Batch::new(&b.points[..2 * n], &b.seeds[..2], n)?;
+        self.objective.evaluate_batch(&batch, &mut b.values[..2]);
+        self.evaluations += 2;
+        if let Some(k) = b.values[..2].iter().position(|v| !v.is_finite()) {
+            b.failed = Some(k);
+            return Err(Error::NonFiniteObjective { sample: k });
+        }
+        let (at_model, at_current) = (b.values[0], b.values[1]);
+        let margin = T::from_f64(COMPARISON_MARGIN);
+        let below = |a: T, b: T| a < b - margin * a.abs().max(b.abs());
+        if below(sample_value, at_model.min(at_current)) {
+            let moved = distance(theta, b.best.point);
+            theta.copy_from_slice(b.best.point);
+            Ok((true, moved))
+        } else if below(at_current, at_model) {
+            Ok((true, T::ZERO))
+        } else {
+            axpy(T::ONE, p, theta);
+            Ok((false, norm(p)))
+        }
     }
 
     /// The index of the lowest of `K` candidate points by objective value, all evaluated

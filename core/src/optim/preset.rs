@@ -13,9 +13,10 @@
 //! | `NewtonCgAggregate` | Newton-CG (Steihaug), one sample set per iteration | aggregate IS | CRN central-difference HVP |
 //! | `NewtonCgRegression` | Newton-CG (Steihaug), one sample set per iteration | least squares | CRN central-difference HVP |
 //! | `NewtonCgAdaptive` | `NewtonCgAggregate` with the adaptive σ schedule | aggregate IS | CRN central-difference HVP |
+//! | `NewtonCgCompare` | `NewtonCgAdaptive`, each step compared on f with θ and the lowest sample | aggregate IS | CRN central-difference HVP |
 //!
 //! Every preset anneals σ linearly from `sigma_start` to `sigma_end` over the budget (the
-//! paper's schedule) except `NewtonCgAdaptive`, whose σ shrinks by `sigma_shrink` after
+//! paper's schedule) except `NewtonCgAdaptive` and `NewtonCgCompare`, whose σ shrinks by `sigma_shrink` after
 //! each step shorter than σ ([`Schedule::Adaptive`]).
 //!
 //! The paper's HVP presets draw the two gradients of a central difference independently
@@ -92,6 +93,10 @@ pub enum Preset {
     /// [`Preset::NewtonCgAggregate`] with σ following the run ([`Schedule::Adaptive`])
     /// rather than the budget.
     NewtonCgAdaptive,
+    /// [`Preset::NewtonCgAdaptive`] whose iterations end with a comparison on f of the
+    /// current θ, the model step and the iteration's lowest sample
+    /// ([`NewtonCg::compare_samples`]).
+    NewtonCgCompare,
 }
 
 /// Inner CG steps per iteration of [`Preset::NewtonCgRegression`] (Newton-CG caps them at
@@ -106,7 +111,7 @@ pub const REGRESSION_INNER_TOLERANCE: f64 = 1e-8;
 
 impl Preset {
     /// Every preset, the paper's first.
-    pub const ALL: [Preset; 11] = [
+    pub const ALL: [Preset; 12] = [
         Preset::Fr22,
         Preset::OurG,
         Preset::OurH,
@@ -118,6 +123,7 @@ impl Preset {
         Preset::NewtonCgAggregate,
         Preset::NewtonCgRegression,
         Preset::NewtonCgAdaptive,
+        Preset::NewtonCgCompare,
     ];
 
     /// The name used in reports and on the command line.
@@ -134,6 +140,7 @@ impl Preset {
             Preset::NewtonCgAggregate => "NewtonCG-A",
             Preset::NewtonCgRegression => "NewtonCG-LS",
             Preset::NewtonCgAdaptive => "NewtonCG-AS",
+            Preset::NewtonCgCompare => "NewtonCG-ASC",
         }
     }
 
@@ -178,6 +185,7 @@ impl Preset {
             reuse_samples: false,
             reorthogonalize: false,
             negative_curvature: h.negative_curvature,
+            compare_samples: false,
         };
         // Newton-CG on one sample set per iteration, CRN central-difference HVPs of the
         // same gradient estimator.
@@ -224,6 +232,10 @@ impl Preset {
             Preset::NewtonCgAggregate | Preset::NewtonCgAdaptive => {
                 Method::NewtonCg(reusing(GradientMethod::Aggregate))
             }
+            Preset::NewtonCgCompare => Method::NewtonCg(NewtonCg {
+                compare_samples: true,
+                ..reusing(GradientMethod::Aggregate)
+            }),
             Preset::NewtonCgRegression => Method::NewtonCg(NewtonCg {
                 max_inner: REGRESSION_INNER_STEPS,
                 inner_tolerance: T::from_f64(REGRESSION_INNER_TOLERANCE),
@@ -237,7 +249,7 @@ impl Preset {
     /// for [`Preset::NewtonCgAdaptive`].
     pub fn schedule<T: Real>(self, h: &Hyper<T>) -> Schedule<T> {
         match self {
-            Preset::NewtonCgAdaptive => Schedule::Adaptive {
+            Preset::NewtonCgAdaptive | Preset::NewtonCgCompare => Schedule::Adaptive {
                 start: h.sigma_start,
                 end: h.sigma_end,
                 shrink: h.sigma_shrink,

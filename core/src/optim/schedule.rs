@@ -19,9 +19,10 @@ pub enum Schedule<T> {
     },
     /// σ follows what the run finds rather than the budget. After an iteration that
     /// stepped to a minimum of its curvature model (positive curvature, no fallback step)
-    /// less than σ away, σ ← max(end, shrink·σ); after one without a model minimum
-    /// (non-positive curvature or a vanishing gradient), σ ← σ/√shrink; otherwise σ
-    /// stays. σ never exceeds the linear schedule start → end at the same progress, so
+    /// less than σ away, or whose model step the objective rejected
+    /// ([`StepKind::Rejected`]), σ ← max(end, shrink·σ); after one without a model
+    /// minimum (non-positive curvature or a vanishing gradient), σ ← σ/√shrink;
+    /// otherwise σ stays. σ never exceeds the linear schedule start → end at the same progress, so
     /// it reaches `end` by the end of the budget at the latest.
     ///
     /// A short step to a model minimum says that the minimum of f̄_σ lies within one
@@ -31,7 +32,9 @@ pub enum Schedule<T> {
     /// boundary) keep σ. No model minimum — a plateau, where the gradient vanishes
     /// because nothing is seen, or a ridge — calls for a wider kernel. The square root
     /// makes σ fall on balance only while more than a third of the iterations find a
-    /// nearby minimum, as evolution strategies' success rules adapt their step size.
+    /// nearby minimum, as evolution strategies' success rules adapt their step size. A
+    /// rejected model step says the model at this σ does not describe f near θ — the
+    /// trust-region rule, with the radius Δσ shrinking through σ.
     /// First-order methods measure no curvature, so for them σ only grows back to the
     /// linear cap: use [`Schedule::Linear`] with them.
     Adaptive {
@@ -42,6 +45,21 @@ pub enum Schedule<T> {
         /// Factor in (0, 1) applied after a short step.
         shrink: T,
     },
+}
+
+/// What an iteration's step says about the smoothing scale ([`Schedule::adapt`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StepKind<T> {
+    /// A step of this length to a minimum of the iteration's curvature model.
+    ToModelMinimum(T),
+    /// A step to the trust boundary toward a minimum of the curvature model beyond it.
+    TowardModelMinimum,
+    /// The model had no minimum: non-positive curvature, a fallback step or a vanishing
+    /// gradient.
+    NoModelMinimum,
+    /// The objective preferred the current point or one of the iteration's samples to
+    /// the model's step ([`super::NewtonCg::compare_samples`]).
+    Rejected,
 }
 
 impl<T: Real> Schedule<T> {
@@ -57,17 +75,14 @@ impl<T: Real> Schedule<T> {
     }
 
     /// σ for the next iteration of an adaptive schedule (before the cap of
-    /// [`Schedule::sigma`]), given this iteration's σ, its step length and whether the
-    /// step went to a minimum of the iteration's curvature model; `None` for the other
-    /// schedules, whose σ depends on progress alone.
-    pub fn adapt(&self, sigma: T, step_length: T, model_minimum: bool) -> Option<T> {
+    /// [`Schedule::sigma`]), given this iteration's σ and what its step was; `None` for
+    /// the other schedules, whose σ depends on progress alone.
+    pub fn adapt(&self, sigma: T, step: StepKind<T>) -> Option<T> {
         match *self {
-            Schedule::Adaptive { end, shrink, .. } => Some(if !model_minimum {
-                sigma / shrink.sqrt()
-            } else if step_length < sigma {
-                (shrink * sigma).max(end)
-            } else {
-                sigma
+            Schedule::Adaptive { end, shrink, .. } => Some(match step {
+                StepKind::NoModelMinimum | StepKind::TowardModelMinimum => sigma / shrink.sqrt(),
+                StepKind::ToModelMinimum(length) if length >= sigma => sigma,
+                StepKind::ToModelMinimum(_) | StepKind::Rejected => (shrink * sigma).max(end),
             }),
             _ => None,
         }
@@ -249,16 +264,18 @@ mod tests {
         assert_eq!(s.sigma(0.0), 2.0);
         assert!((s.sigma(0.5) - 1.05).abs() < 1e-15);
         // Short steps shrink, down to the floor; long ones keep σ.
-        assert_eq!(s.adapt(2.0, 0.5, true), Some(1.0));
-        assert_eq!(s.adapt(2.0, 2.0, true), Some(2.0));
-        assert_eq!(s.adapt(0.15, 0.0, true), Some(0.1));
+        assert_eq!(s.adapt(2.0, StepKind::ToModelMinimum(0.5)), Some(1.0));
+        assert_eq!(s.adapt(2.0, StepKind::ToModelMinimum(2.0)), Some(2.0));
+        assert_eq!(s.adapt(0.15, StepKind::ToModelMinimum(0.0)), Some(0.1));
+        // A rejected model step shrinks whatever its length.
+        assert_eq!(s.adapt(2.0, StepKind::Rejected), Some(1.0));
         // No model minimum (a plateau) widens the kernel.
-        assert!((s.adapt(1.0, 0.0, false).unwrap() - 2f64.sqrt()).abs() < 1e-15);
+        assert!((s.adapt(1.0, StepKind::NoModelMinimum).unwrap() - 2f64.sqrt()).abs() < 1e-15);
         let linear = Schedule::Linear {
             start: 2.0,
             end: 0.1,
         };
-        assert_eq!(linear.adapt(2.0, 0.0, true), None);
+        assert_eq!(linear.adapt(2.0, StepKind::ToModelMinimum(0.0)), None);
         for shrink in [0.0, 1.0, f64::NAN] {
             let bad = Schedule::Adaptive {
                 start: 2.0,

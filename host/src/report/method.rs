@@ -84,6 +84,9 @@ pub struct Point {
     pub param_error: f64,
     /// The loss at a fixed noise seed.
     pub image_error: f64,
+    /// The smoothing width σ of the iteration (CMA-ES: its overall step size); none at
+    /// the start.
+    pub sigma: Option<f64>,
 }
 
 /// One run: task × method × seed.
@@ -150,19 +153,24 @@ pub fn run_observed(
         evaluations: 0,
         param_error: param_error(&start),
         image_error: task.image_error(probe.as_mut(), &start),
+        sigma: None,
     }];
     observe(&points[0]);
-    let mut record =
-        |elapsed: Duration, evaluations: usize, theta: &[f64], points: &mut Vec<Point>| {
-            let p = Point {
-                time: elapsed.as_secs_f64(),
-                evaluations,
-                param_error: param_error(theta),
-                image_error: task.image_error(probe.as_mut(), theta),
-            };
-            observe(&p);
-            points.push(p);
+    let mut record = |elapsed: Duration,
+                      evaluations: usize,
+                      sigma: f64,
+                      theta: &[f64],
+                      points: &mut Vec<Point>| {
+        let p = Point {
+            time: elapsed.as_secs_f64(),
+            evaluations,
+            param_error: param_error(theta),
+            image_error: task.image_error(probe.as_mut(), theta),
+            sigma: Some(sigma),
         };
+        observe(&p);
+        points.push(p);
+    };
     let mut stopped = None;
     let theta = match method {
         Method::Preset(preset)
@@ -211,9 +219,13 @@ pub fn run_observed(
                 let step = opt.step(objective.as_mut(), &mut ws, 0.0);
                 elapsed += clock.elapsed();
                 match step {
-                    Ok(Some(report)) => {
-                        record(elapsed, report.evaluations, opt.theta(), &mut points)
-                    }
+                    Ok(Some(report)) => record(
+                        elapsed,
+                        report.evaluations,
+                        report.sigma,
+                        opt.theta(),
+                        &mut points,
+                    ),
                     Ok(None) => break,
                     Err(failed) => {
                         stopped = Some(failed.to_string());
@@ -248,7 +260,13 @@ pub fn run_observed(
                 let done = cma.next();
                 elapsed += clock.elapsed();
                 let mean = cma.mean().as_slice().to_vec();
-                record(elapsed, cma.function_evals(), &mean, &mut points);
+                record(
+                    elapsed,
+                    cma.function_evals(),
+                    cma.sigma(),
+                    &mean,
+                    &mut points,
+                );
                 if done.is_some() {
                     break;
                 }

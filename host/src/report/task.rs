@@ -29,11 +29,11 @@ pub trait Task: Send + Sync {
     /// Per-task hyper-parameters of `preset` (DESIGN §3; data, overridable).
     fn hyper(&self, preset: Preset) -> Hyper<f64>;
     /// The hyper-parameters `preset` runs with: [`Task::hyper`], except that
-    /// NewtonCG-AS takes one antithetic pair per estimate where n ≤ 2
+    /// NewtonCG-AS and NewtonCG-ASC take one antithetic pair per estimate where n ≤ 2
     /// ([`ADAPTIVE_LOW_DIM_PAIRS`]).
     fn run_hyper(&self, preset: Preset) -> Hyper<f64> {
         let mut h = self.hyper(preset);
-        if preset == Preset::NewtonCgAdaptive && self.dim() <= 2 {
+        if matches!(preset, Preset::NewtonCgAdaptive | Preset::NewtonCgCompare) && self.dim() <= 2 {
             h.pairs = ADAPTIVE_LOW_DIM_PAIRS;
         }
         h
@@ -64,7 +64,7 @@ pub trait Task: Send + Sync {
     }
 }
 
-/// Antithetic pairs per estimate of NewtonCG-AS on tasks with n ≤ 2. Its iterations
+/// Antithetic pairs per estimate of NewtonCG-AS (and NewtonCG-ASC) on tasks with n ≤ 2. Its iterations
 /// reuse one sample set for every estimate and σ follows the run, so cheap iterations
 /// win: measured with 20 seeds, evaluations to 99 % parameter-error reduction fall from
 /// 176 to 60 (QUAD), 752 to 294 (QUAD-far), 252 to 96 (BOX2-REF, from 2 pairs: 124) and
