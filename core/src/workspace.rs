@@ -113,7 +113,7 @@ impl<T: Real> BatchBuffers<'_, T> {
 impl<'a, T: Real> Workspace<'a, T> {
     /// Length of the `T` buffer that [`Workspace::new`] needs for dimension `dim` and
     /// batch capacity `rows`: `dim·(rows + rows/2 + 4) + rows` (the batch, its offsets
-    /// and values, [`SCRATCH_VECTORS`] and the lowest sample of an iteration).
+    /// and values, three scratch vectors and the lowest sample of an iteration).
     pub const fn buffer_len(dim: usize, rows: usize) -> usize {
         dim * (rows + rows / 2 + SCRATCH_VECTORS + 1) + rows
     }

@@ -54,7 +54,8 @@ pub struct Hyper<T> {
     /// Default: [`NegativeCurvature::Fallback`].
     pub negative_curvature: NegativeCurvature,
     /// Factor in (0, 1) by which the adaptive schedule shrinks σ after a step shorter
-    /// than σ ([`Schedule::Adaptive`]; used by [`Preset::NewtonCgAdaptive`] only).
+    /// than σ ([`Schedule::Adaptive`]; used by [`Preset::NewtonCgAdaptive`] and
+    /// [`Preset::NewtonCgCompare`] only).
     /// Default: [`SIGMA_SHRINK`].
     pub sigma_shrink: T,
 }
