@@ -2,12 +2,12 @@
 //! hyper-parameters (with common random numbers for the central-difference HVPs): quick
 //! convergence checks from both start distributions, as fractions of 10 fixed seeds.
 
+mod common;
+
+use common::{Sampling, optimise};
 use hodr_core::optim::preset::{Hyper, Preset};
-use hodr_core::optim::{Budget, Optimiser, StepReport};
-use hodr_core::{Estimator, Workspace};
+use hodr_core::optim::{Budget, StepReport};
 use hodr_host::report::task::{quad, quad_hyper};
-use rand_xoshiro::Xoshiro256PlusPlus;
-use rand_xoshiro::rand_core::SeedableRng;
 
 fn hyper() -> Hyper<f64> {
     Hyper {
@@ -30,31 +30,19 @@ fn run_observed(
     mut observe: impl FnMut(&StepReport<f64>),
 ) -> f64 {
     let h = hyper();
-    let method = preset.method(&h);
     let mut theta = start;
-    let mut buffer = vec![0.0; method.buffer_len(2)];
-    let est = Estimator::new(
-        h.sigma_start,
-        h.pairs,
-        Xoshiro256PlusPlus::seed_from_u64(seed),
-    )
-    .unwrap();
-    let mut opt = Optimiser::new(
-        method,
+    let sampling = Sampling {
+        sigma: h.sigma_start,
+        pairs: h.pairs,
+        seed,
+    };
+    optimise(
+        preset.method(&h),
         preset.schedule(&h),
         Budget::iterations(iterations),
-        est,
+        sampling,
         &mut theta,
-        &mut buffer,
-    )
-    .unwrap();
-    let (mut wb, mut seeds) = (vec![0.0; method.workspace_len(2, 64)], vec![0; 64]);
-    let mut ws = Workspace::new(2, &mut wb, &mut seeds).unwrap();
-    let mut f = quad;
-    opt.run(
-        &mut f,
-        &mut ws,
-        || 0.0,
+        &mut quad,
         |r, t| {
             observe(r);
             if std::env::var("DBG").is_ok() {
@@ -72,10 +60,8 @@ fn run_observed(
                 )
             }
         },
-    )
-    .unwrap();
-    let t = opt.theta();
-    (t[0] * t[0] + t[1] * t[1]).sqrt()
+    );
+    (theta[0] * theta[0] + theta[1] * theta[1]).sqrt()
 }
 
 /// Seeds out of 10 whose final distance is below `fraction` × the start distance.

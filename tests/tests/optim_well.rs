@@ -6,11 +6,12 @@
 //! pushes f̄'s minimum onto the plateau, so a method that follows f̄ waits there for σ to
 //! fall; MUG's hyper-parameters (one pair, σ 3 → 0.01, Δ = 4).
 
+mod common;
+
+use common::{Sampling, optimise};
 use hodr_core::optim::preset::{Hyper, Preset};
-use hodr_core::optim::{Budget, NegativeCurvature, Optimiser};
-use hodr_core::{Estimator, NoiseSeed, Objective, Workspace};
-use rand_xoshiro::Xoshiro256PlusPlus;
-use rand_xoshiro::rand_core::SeedableRng;
+use hodr_core::optim::{Budget, NegativeCurvature};
+use hodr_core::{NoiseSeed, Objective};
 
 struct Well;
 
@@ -41,28 +42,22 @@ fn hyper() -> Hyper<f64> {
 /// Final |x| after `evaluations` from a start in [4, 6] fixed by `seed`.
 fn final_error(preset: Preset, seed: u64, evaluations: usize) -> f64 {
     let h = hyper();
-    let method = preset.method(&h);
     let mut theta = [4.0 + 2.0 * (seed as f64 * 0.618_034).fract()];
-    let mut buffer = vec![0.0; method.buffer_len(1)];
-    let est = Estimator::new(
-        h.sigma_start,
-        h.pairs,
-        Xoshiro256PlusPlus::seed_from_u64(seed),
-    )
-    .unwrap();
-    let mut opt = Optimiser::new(
-        method,
+    let sampling = Sampling {
+        sigma: h.sigma_start,
+        pairs: h.pairs,
+        seed,
+    };
+    optimise(
+        preset.method(&h),
         preset.schedule(&h),
         Budget::evaluations(evaluations),
-        est,
+        sampling,
         &mut theta,
-        &mut buffer,
-    )
-    .unwrap();
-    let (mut wb, mut seeds) = (vec![0.0; method.workspace_len(1, 64)], vec![0; 64]);
-    let mut ws = Workspace::new(1, &mut wb, &mut seeds).unwrap();
-    opt.run(&mut Well, &mut ws, || 0.0, |_, _| {}).unwrap();
-    opt.theta()[0].abs()
+        &mut Well,
+        |_, _| {},
+    );
+    theta[0].abs()
 }
 
 fn wins(preset: Preset, evaluations: usize) -> usize {

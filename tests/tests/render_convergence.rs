@@ -7,12 +7,12 @@
 //! that the suite stays fast in debug builds; the hyper-parameters are the paper's
 //! (DESIGN §3) with the iteration budgets stated per test.
 
+mod common;
+
+use common::{Sampling, optimise};
 use hodr_core::optim::preset::{Hyper, Preset};
-use hodr_core::optim::{Budget, Method, NegativeCurvature, Optimiser};
-use hodr_core::{Estimator, Workspace};
+use hodr_core::optim::{Budget, Method, NegativeCurvature};
 use hodr_host::tasks::{self, Task3d, TaskObjective, TaskSettings};
-use rand_xoshiro::Xoshiro256PlusPlus;
-use rand_xoshiro::rand_core::SeedableRng;
 
 /// Starting and final parameter error of one run of `method` (σ schedule of `h`).
 fn run(
@@ -23,32 +23,21 @@ fn run(
     iterations: usize,
     seed: u64,
 ) -> (f64, f64) {
-    let n = task.dimension();
     let mut theta = task.start(seed);
     let start_error = task.parameter_error(&theta);
     let mut objective = TaskObjective::with_settings(task, settings).unwrap();
-    let mut buffer = vec![0.0; method.buffer_len(n)];
-    let estimator = Estimator::new(
-        h.sigma_start,
-        h.pairs,
-        Xoshiro256PlusPlus::seed_from_u64(seed),
-    )
-    .unwrap();
-    let mut opt = Optimiser::new(
+    let sampling = Sampling {
+        sigma: h.sigma_start,
+        pairs: h.pairs,
+        seed,
+    };
+    optimise(
         method,
         Preset::OurHvpa.schedule(h),
         Budget::iterations(iterations),
-        estimator,
+        sampling,
         &mut theta,
-        &mut buffer,
-    )
-    .unwrap();
-    let (mut wb, mut seeds) = (vec![0.0; method.workspace_len(n, 64)], vec![0; 64]);
-    let mut ws = Workspace::new(n, &mut wb, &mut seeds).unwrap();
-    opt.run(
         &mut objective,
-        &mut ws,
-        || 0.0,
         |r, t| {
             if std::env::var("DBG").is_ok() {
                 eprintln!(
@@ -62,9 +51,8 @@ fn run(
                 );
             }
         },
-    )
-    .unwrap();
-    (start_error, task.parameter_error(opt.theta()))
+    );
+    (start_error, task.parameter_error(&theta))
 }
 
 fn small(width: u32, spp: u32, target_spp: u32) -> TaskSettings {
