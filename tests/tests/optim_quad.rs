@@ -31,16 +31,11 @@ fn run_observed(
 ) -> f64 {
     let h = hyper();
     let mut theta = start;
-    let sampling = Sampling {
-        sigma: h.sigma_start,
-        pairs: h.pairs,
-        seed,
-    };
     optimise(
         preset.method(&h),
         preset.schedule(&h),
         Budget::iterations(iterations),
-        sampling,
+        Sampling::of(&h, seed),
         &mut theta,
         &mut quad,
         |r, t| {

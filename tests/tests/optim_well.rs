@@ -9,9 +9,10 @@
 mod common;
 
 use common::{Sampling, optimise};
+use hodr_core::optim::Budget;
 use hodr_core::optim::preset::{Hyper, Preset};
-use hodr_core::optim::{Budget, NegativeCurvature};
 use hodr_core::{NoiseSeed, Objective};
+use hodr_host::report::task;
 
 struct Well;
 
@@ -23,36 +24,21 @@ impl Objective<f64> for Well {
     }
 }
 
-fn hyper() -> Hyper<f64> {
-    Hyper {
-        pairs: 1,
-        sigma_start: 3.0,
-        sigma_end: 0.01,
-        trust_radius: 4.0,
-        line_search_iterations: 1,
-        line_search_tolerance: 1e-3,
-        recompute: 5,
-        learning_rate: 0.1,
-        common_random_numbers: true,
-        negative_curvature: NegativeCurvature::Fallback,
-        sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
-    }
+/// MUG's hyper-parameters as the report runs NewtonCG-AS and NewtonCG-ASC with them.
+fn hyper(preset: Preset) -> Hyper<f64> {
+    let mug = task::select(&["MUG".to_string()], false).unwrap().remove(0);
+    mug.run_hyper(preset)
 }
 
 /// Final |x| after `evaluations` from a start in [4, 6] fixed by `seed`.
 fn final_error(preset: Preset, seed: u64, evaluations: usize) -> f64 {
-    let h = hyper();
+    let h = hyper(preset);
     let mut theta = [4.0 + 2.0 * (seed as f64 * 0.618_034).fract()];
-    let sampling = Sampling {
-        sigma: h.sigma_start,
-        pairs: h.pairs,
-        seed,
-    };
     optimise(
         preset.method(&h),
         preset.schedule(&h),
         Budget::evaluations(evaluations),
-        sampling,
+        Sampling::of(&h, seed),
         &mut theta,
         &mut Well,
         |_, _| {},

@@ -26,16 +26,11 @@ fn run(
     let mut theta = task.start(seed);
     let start_error = task.parameter_error(&theta);
     let mut objective = TaskObjective::with_settings(task, settings).unwrap();
-    let sampling = Sampling {
-        sigma: h.sigma_start,
-        pairs: h.pairs,
-        seed,
-    };
     optimise(
         method,
         Preset::OurHvpa.schedule(h),
         Budget::iterations(iterations),
-        sampling,
+        Sampling::of(h, seed),
         &mut theta,
         &mut objective,
         |r, t| {

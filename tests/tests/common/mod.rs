@@ -1,6 +1,7 @@
 //! Set-up shared by the optimiser tests: one run of a method from a start, with the
 //! estimator, optimiser buffer and workspace allocated here.
 
+use hodr_core::optim::preset::Hyper;
 use hodr_core::optim::{Budget, Method, Optimiser, Schedule, StepReport};
 use hodr_core::{Estimator, Objective, Workspace};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -14,6 +15,17 @@ pub struct Sampling {
     pub sigma: f64,
     pub pairs: usize,
     pub seed: u64,
+}
+
+impl Sampling {
+    /// σ and pairs of `h`, with the RNG seeded by `seed`.
+    pub fn of(h: &Hyper<f64>, seed: u64) -> Self {
+        Sampling {
+            sigma: h.sigma_start,
+            pairs: h.pairs,
+            seed,
+        }
+    }
 }
 
 /// Runs `method` under `schedule` from `theta` (updated in place) until `budget` is
