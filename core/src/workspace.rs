@@ -56,7 +56,8 @@ pub(crate) struct BatchBuffers<'a, T> {
     pub(crate) value_sum: T,
     pub(crate) value_count: usize,
     /// The lowest sample evaluated since [`BatchBuffers::forget_best`]. Part of the
-    /// memory layout whatever the features; only Newton-CG's comparison (`cg`) keeps it.
+    /// memory layout whatever the features; tracked only with `cg`, for Newton-CG's
+    /// comparison of steps.
     #[cfg_attr(not(feature = "cg"), allow(dead_code))]
     pub(crate) best: BestSample<'a, T>,
 }

@@ -13,11 +13,11 @@
 //! | `NewtonCgAggregate` | Newton-CG (Steihaug), one sample set per iteration | aggregate IS | CRN central-difference HVP |
 //! | `NewtonCgRegression` | Newton-CG (Steihaug), one sample set per iteration | least squares | CRN central-difference HVP |
 //! | `NewtonCgAdaptive` | `NewtonCgAggregate` with the adaptive σ schedule | aggregate IS | CRN central-difference HVP |
-//! | `NewtonCgCompare` | `NewtonCgAdaptive`, each step compared on f with θ and the lowest sample | aggregate IS | CRN central-difference HVP |
+//! | `NewtonCgCompare` | `NewtonCgAdaptive`, steps compared on f with θ and the lowest sample | aggregate IS | CRN central-difference HVP |
 //!
 //! Every preset anneals σ linearly from `sigma_start` to `sigma_end` over the budget (the
-//! paper's schedule) except `NewtonCgAdaptive` and `NewtonCgCompare`, whose σ shrinks by `sigma_shrink` after
-//! each step shorter than σ ([`Schedule::Adaptive`]).
+//! paper's schedule) except `NewtonCgAdaptive` and `NewtonCgCompare`, whose σ shrinks by
+//! `sigma_shrink` after each short step to a model minimum ([`Schedule::Adaptive`]).
 //!
 //! The paper's HVP presets draw the two gradients of a central difference independently
 //! (as its code does); [`Hyper::common_random_numbers`] switches them to common random
@@ -247,7 +247,7 @@ impl Preset {
     }
 
     /// The σ schedule of this preset with these hyper-parameters: linear, or adaptive
-    /// for [`Preset::NewtonCgAdaptive`].
+    /// for [`Preset::NewtonCgAdaptive`] and [`Preset::NewtonCgCompare`].
     pub fn schedule<T: Real>(self, h: &Hyper<T>) -> Schedule<T> {
         match self {
             Preset::NewtonCgAdaptive | Preset::NewtonCgCompare => Schedule::Adaptive {

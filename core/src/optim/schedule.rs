@@ -17,20 +17,24 @@ pub enum Schedule<T> {
         /// σ at p = 1.
         end: T,
     },
-    /// σ follows what the run finds rather than the budget. After an iteration that
-    /// stepped to a minimum of its curvature model (positive curvature, no fallback step)
-    /// less than σ away, or whose model step the objective rejected
-    /// ([`StepKind::Rejected`]), σ ← max(end, shrink·σ); after one without a model
-    /// minimum (non-positive curvature or a vanishing gradient), σ ← σ/√shrink;
-    /// otherwise σ stays. σ never exceeds the linear schedule start → end at the same progress, so
-    /// it reaches `end` by the end of the budget at the latest.
+    /// σ follows what the run finds rather than the budget ([`Schedule::adapt`]). After
+    /// an iteration that stepped to a minimum of its curvature model (positive
+    /// curvature, no fallback step) less than σ away, or whose model step the objective
+    /// rejected ([`StepKind::Rejected`]), σ ← max(end, shrink·σ); after one without a
+    /// model minimum (non-positive curvature or a vanishing gradient), or whose step
+    /// stopped at the trust boundary on the way to a model minimum beyond it,
+    /// σ ← σ/√shrink; after a step of at least σ to a model minimum, σ stays. σ never
+    /// exceeds the linear schedule start → end at the same progress, so it reaches `end`
+    /// by the end of the budget at the latest.
     ///
     /// A short step to a model minimum says that the minimum of f̄_σ lies within one
     /// smoothing width: smoothing at this scale has nothing more to show, and a smaller
     /// σ resolves finer structure (a narrow well the wide kernel averaged away) and cuts
-    /// the estimators' σ-proportional error. Longer steps (travelling, or at the trust
-    /// boundary) keep σ. No model minimum — a plateau, where the gradient vanishes
-    /// because nothing is seen, or a ridge — calls for a wider kernel. The square root
+    /// the estimators' σ-proportional error. A longer step to a model minimum keeps σ;
+    /// one cut short by the trust boundary (radius Δσ) widens it, as a trust region
+    /// grows after a successful step to its edge. No model minimum — a plateau, where
+    /// the gradient vanishes because nothing is seen, or a ridge — calls for a wider
+    /// kernel. The square root
     /// makes σ fall on balance only while more than a third of the iterations find a
     /// nearby minimum, as evolution strategies' success rules adapt their step size. A
     /// rejected model step says the model at this σ does not describe f near θ — the
@@ -42,7 +46,7 @@ pub enum Schedule<T> {
         start: T,
         /// The floor, and σ at p = 1.
         end: T,
-        /// Factor in (0, 1) applied after a short step.
+        /// Factor in (0, 1) applied after a short or rejected step.
         shrink: T,
     },
 }
