@@ -37,7 +37,7 @@
 //! adapted ones for BOX10 (see its constant) and ours for TRI1D and SHAPES.
 
 use hodr_core::optim::NegativeCurvature;
-use hodr_core::optim::preset::Hyper;
+use hodr_core::optim::preset::{Hyper, SIGMA_SHRINK};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::{Rng, SeedableRng};
 
@@ -72,6 +72,11 @@ pub struct Settings {
     pub recompute: usize,
     /// Adam's learning rate for the first-order methods.
     pub adam_learning_rate: f64,
+    /// σ at the first iteration of the presets whose σ follows the run
+    /// (`hodr_core::optim::Schedule::Adaptive`), θ units.
+    pub adaptive_sigma_start: f64,
+    /// Factor in (0, 1) by which the adaptive schedule shrinks σ after a short step.
+    pub sigma_shrink: f64,
 }
 
 impl Settings {
@@ -89,7 +94,16 @@ impl Settings {
             learning_rate: self.adam_learning_rate,
             common_random_numbers: false,
             negative_curvature: NegativeCurvature::Fallback,
-            sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
+            sigma_shrink: self.sigma_shrink,
+        }
+    }
+
+    /// [`Settings::hyper`] for the presets with the adaptive σ schedule: σ starts at
+    /// [`Settings::adaptive_sigma_start`].
+    pub fn adaptive_hyper(&self) -> Hyper<f64> {
+        Hyper {
+            sigma_start: self.adaptive_sigma_start,
+            ..self.hyper()
         }
     }
 }
@@ -251,6 +265,8 @@ const TRI1D: Settings = Settings {
     line_search_iterations: 3,
     recompute: 10,
     adam_learning_rate: 0.3,
+    adaptive_sigma_start: 1.0,
+    sigma_shrink: SIGMA_SHRINK,
 };
 
 const BOX2: Settings = Settings {
@@ -261,12 +277,19 @@ const BOX2: Settings = Settings {
     line_search_iterations: 3,
     recompute: 10,
     adam_learning_rate: 0.3,
+    adaptive_sigma_start: 1.5,
+    sigma_shrink: SIGMA_SHRINK,
 };
 
 /// The paper's σ start (0.6), recompute and line search; more pairs (16, not 6), a
 /// smaller trust radius (σ, not 10σ) and a lower final σ (0.05, not 0.1): with the
 /// paper's values in our units every NCG step on the plateau moves each square by up
 /// to 6 of the image's 8 units and the squares scatter (0 of 10 seeds converged).
+///
+/// The adaptive schedule starts wider (0.8) and shrinks faster (0.3): NewtonCG-FR then
+/// reaches 99 % parameter-error reduction in 17 of 20 seeds, against 11 with σ 0.6 and
+/// shrink 0.5 (a wider start keeps squares from settling on one another; a faster
+/// shrink shortens the noisy end game).
 const BOX10: Settings = Settings {
     pairs: 16,
     sigma_start: 0.6,
@@ -275,6 +298,8 @@ const BOX10: Settings = Settings {
     line_search_iterations: 3,
     recompute: 30,
     adam_learning_rate: 0.05,
+    adaptive_sigma_start: 0.8,
+    sigma_shrink: 0.3,
 };
 
 const SHAPES: Settings = Settings {
@@ -285,6 +310,8 @@ const SHAPES: Settings = Settings {
     line_search_iterations: 3,
     recompute: 20,
     adam_learning_rate: 0.05,
+    adaptive_sigma_start: 0.5,
+    sigma_shrink: SIGMA_SHRINK,
 };
 
 const BLACK: Rgba = Rgba::rgb(0.0, 0.0, 0.0);

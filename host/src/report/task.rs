@@ -28,12 +28,12 @@ pub trait Task: Send + Sync {
     fn start(&self, seed: u64) -> Vec<f64>;
     /// Per-task hyper-parameters of `preset` (DESIGN §3; data, overridable).
     fn hyper(&self, preset: Preset) -> Hyper<f64>;
-    /// The hyper-parameters `preset` runs with: [`Task::hyper`], except that
-    /// NewtonCG-AS and NewtonCG-ASC take one antithetic pair per estimate where n ≤ 2
-    /// ([`ADAPTIVE_LOW_DIM_PAIRS`]).
+    /// The hyper-parameters `preset` runs with: [`Task::hyper`], except that the presets
+    /// with the adaptive σ schedule ([`Preset::adaptive`]: NewtonCG-AS, -ASC, -FR) take
+    /// one antithetic pair per estimate where n ≤ 2 ([`ADAPTIVE_LOW_DIM_PAIRS`]).
     fn run_hyper(&self, preset: Preset) -> Hyper<f64> {
         let mut h = self.hyper(preset);
-        if matches!(preset, Preset::NewtonCgAdaptive | Preset::NewtonCgCompare) && self.dim() <= 2 {
+        if preset.adaptive() && self.dim() <= 2 {
             h.pairs = ADAPTIVE_LOW_DIM_PAIRS;
         }
         h
@@ -64,7 +64,7 @@ pub trait Task: Send + Sync {
     }
 }
 
-/// Antithetic pairs per estimate of NewtonCG-AS (and NewtonCG-ASC) on tasks with n ≤ 2. Its iterations
+/// Antithetic pairs per estimate of the adaptive presets (NewtonCG-AS, -ASC, -FR) on tasks with n ≤ 2. Their iterations
 /// reuse one sample set for every estimate and σ follows the run, so cheap iterations
 /// win: measured with 20 seeds, evaluations to 99 % parameter-error reduction fall from
 /// 176 to 60 (QUAD), 752 to 294 (QUAD-far), 252 to 96 (BOX2-REF, from 2 pairs: 124) and
@@ -259,7 +259,12 @@ impl Task for RasterTask {
         self.task.start(seed)
     }
     fn hyper(&self, preset: Preset) -> Hyper<f64> {
-        let mut h = self.task.settings().hyper();
+        let settings = self.task.settings();
+        let mut h = if preset.adaptive() {
+            settings.adaptive_hyper()
+        } else {
+            settings.hyper()
+        };
         if preset.is_first_order() {
             // Adam's step is η per iteration; the paper's first-order rates are in the
             // same σ units as its second-order trust radii.
