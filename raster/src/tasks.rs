@@ -76,6 +76,8 @@ pub struct Settings {
     /// (`hodr_core::optim::Schedule::Adaptive`), θ units.
     pub adaptive_sigma_start: f64,
     /// Factor in (0, 1) by which the adaptive schedule shrinks σ after a short step.
+    /// This and `adaptive_sigma_start` apply to the adaptive presets only; [`Settings::hyper`]
+    /// carries the linear schedule's values and the default shrink.
     pub sigma_shrink: f64,
 }
 
@@ -94,16 +96,7 @@ impl Settings {
             learning_rate: self.adam_learning_rate,
             common_random_numbers: false,
             negative_curvature: NegativeCurvature::Fallback,
-            sigma_shrink: self.sigma_shrink,
-        }
-    }
-
-    /// [`Settings::hyper`] for the presets with the adaptive σ schedule: σ starts at
-    /// [`Settings::adaptive_sigma_start`].
-    pub fn adaptive_hyper(&self) -> Hyper<f64> {
-        Hyper {
-            sigma_start: self.adaptive_sigma_start,
-            ..self.hyper()
+            sigma_shrink: SIGMA_SHRINK,
         }
     }
 }
