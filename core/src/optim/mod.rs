@@ -224,7 +224,10 @@ pub(crate) struct Outcome<T> {
     /// The step stopped at the trust boundary on the way to a model minimum beyond it
     /// (Newton-CG).
     pub at_boundary: bool,
-    /// The objective rejected the model's step (Newton-CG's `compare_samples`).
+    /// The objective compared the model's step with the current point (Newton-CG's
+    /// `compare_samples`).
+    pub compared: bool,
+    /// The objective rejected the model's step (only when `compared`).
     pub rejected: bool,
     pub converged: bool,
 }
@@ -251,6 +254,7 @@ impl<T: Real> Default for Outcome<T> {
             restarted: false,
             fallback: false,
             at_boundary: false,
+            compared: false,
             rejected: false,
             converged: false,
         }
@@ -506,7 +510,9 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
             && outcome.curvature.is_some_and(|c| c > T::ZERO)
         {
             if outcome.at_boundary {
-                StepKind::TowardModelMinimum
+                StepKind::TowardModelMinimum {
+                    confirmed: outcome.compared,
+                }
             } else {
                 StepKind::ToModelMinimum(outcome.step_length)
             }

@@ -125,17 +125,18 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     /// to θ + p, then θ. Without a sample (nothing evaluated since the
     /// iteration began) θ takes the model step unevaluated.
     ///
-    /// Returns whether the model step was rejected, and the distance θ moved.
+    /// Returns whether the model step was rejected (`None`: nothing to compare with, the
+    /// step was taken), and the distance θ moved.
     ///
     /// # Errors
     /// [`Error::NonFiniteObjective`] (the point stays in the workspace; θ is unchanged).
     #[cfg(feature = "cg")]
-    pub fn settle(&mut self, theta: &mut [T], p: &[T]) -> Result<(bool, T), Error> {
+    pub fn settle(&mut self, theta: &mut [T], p: &[T]) -> Result<(Option<bool>, T), Error> {
         let n = self.ws.dim;
         let b = &mut self.ws.batch;
         let Some(sample_value) = b.best.value else {
             axpy(T::ONE, p, theta);
-            return Ok((false, norm(p)));
+            return Ok((None, norm(p)));
         };
         let (model, current) = b.points[..2 * n].split_at_mut(n);
         for ((m, c), (&x, &pi)) in model
@@ -160,12 +161,12 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         if below(sample_value, at_model.min(at_current)) {
             let moved = distance(theta, b.best.point);
             theta.copy_from_slice(b.best.point);
-            Ok((true, moved))
+            Ok((Some(true), moved))
         } else if below(at_current, at_model) {
-            Ok((true, T::ZERO))
+            Ok((Some(true), T::ZERO))
         } else {
             axpy(T::ONE, p, theta);
-            Ok((false, norm(p)))
+            Ok((Some(false), norm(p)))
         }
     }
 

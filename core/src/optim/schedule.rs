@@ -22,8 +22,9 @@ pub enum Schedule<T> {
     /// curvature, no fallback step) less than σ away, or whose model step the objective
     /// rejected ([`StepKind::Rejected`]), σ ← max(end, shrink·σ); after one without a
     /// model minimum (non-positive curvature or a vanishing gradient), or whose step
-    /// stopped at the trust boundary on the way to a model minimum beyond it,
-    /// σ ← σ/√shrink; after a step of at least σ to a model minimum, σ stays. σ never
+    /// stopped at the trust boundary on the way to a model minimum beyond it and the
+    /// objective confirmed that step, σ ← σ/√shrink; after a step of at least σ to a
+    /// model minimum, or an unconfirmed one to the boundary, σ stays. σ never
     /// exceeds the linear schedule start → end at the same progress, so it reaches `end`
     /// by the end of the budget at the latest.
     ///
@@ -31,8 +32,10 @@ pub enum Schedule<T> {
     /// smoothing width: smoothing at this scale has nothing more to show, and a smaller
     /// σ resolves finer structure (a narrow well the wide kernel averaged away) and cuts
     /// the estimators' σ-proportional error. A longer step to a model minimum keeps σ;
-    /// one cut short by the trust boundary (radius Δσ) widens it, as a trust region
-    /// grows after a successful step to its edge. No model minimum — a plateau, where
+    /// one cut short by the trust boundary (radius Δσ) widens it once the objective has
+    /// confirmed the step, as a trust region grows after a successful step to its edge;
+    /// unconfirmed, a boundary step is as likely the estimates' noise (BOX10's end game,
+    /// where widening kept σ oscillating and the squares dithering). No model minimum — a plateau, where
     /// the gradient vanishes because nothing is seen, or a ridge — calls for a wider
     /// kernel. The square root
     /// makes σ fall on balance only while more than a third of the iterations find a
@@ -56,8 +59,13 @@ pub enum Schedule<T> {
 pub enum StepKind<T> {
     /// A step of this length to a minimum of the iteration's curvature model.
     ToModelMinimum(T),
-    /// A step to the trust boundary toward a minimum of the curvature model beyond it.
-    TowardModelMinimum,
+    /// A step to the trust boundary toward a minimum of the curvature model beyond it;
+    /// `confirmed` when the objective compared it with the current point and kept it
+    /// ([`super::NewtonCg::compare_samples`]).
+    TowardModelMinimum {
+        /// The objective kept the step.
+        confirmed: bool,
+    },
     /// The model had no minimum: non-positive curvature, a fallback step or a vanishing
     /// gradient.
     NoModelMinimum,
@@ -84,7 +92,10 @@ impl<T: Real> Schedule<T> {
     pub fn adapt(&self, sigma: T, step: StepKind<T>) -> Option<T> {
         match *self {
             Schedule::Adaptive { end, shrink, .. } => Some(match step {
-                StepKind::NoModelMinimum | StepKind::TowardModelMinimum => sigma / shrink.sqrt(),
+                StepKind::NoModelMinimum | StepKind::TowardModelMinimum { confirmed: true } => {
+                    sigma / shrink.sqrt()
+                }
+                StepKind::TowardModelMinimum { confirmed: false } => sigma,
                 StepKind::ToModelMinimum(length) if length >= sigma => sigma,
                 StepKind::ToModelMinimum(_) | StepKind::Rejected => (shrink * sigma).max(end),
             }),
@@ -273,8 +284,13 @@ mod tests {
         assert_eq!(s.adapt(0.15, StepKind::ToModelMinimum(0.0)), Some(0.1));
         // A rejected model step shrinks whatever its length.
         assert_eq!(s.adapt(2.0, StepKind::Rejected), Some(1.0));
-        // No model minimum (a plateau) widens the kernel.
+        // No model minimum (a plateau) widens the kernel; so does a confirmed step to the
+        // trust boundary, while an unconfirmed one keeps it.
         assert!((s.adapt(1.0, StepKind::NoModelMinimum).unwrap() - 2f64.sqrt()).abs() < 1e-15);
+        let confirmed = StepKind::TowardModelMinimum { confirmed: true };
+        assert!((s.adapt(1.0, confirmed).unwrap() - 2f64.sqrt()).abs() < 1e-15);
+        let unconfirmed = StepKind::TowardModelMinimum { confirmed: false };
+        assert_eq!(s.adapt(1.0, unconfirmed), Some(1.0));
         let linear = Schedule::Linear {
             start: 2.0,
             end: 0.1,

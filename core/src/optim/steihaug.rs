@@ -225,7 +225,10 @@ impl<T: Real> NewtonCg<T> {
             rr = rr_new;
         }
         if self.compare_samples {
-            (outcome.rejected, outcome.step_length) = oracle.settle(theta, p)?;
+            let (verdict, moved) = oracle.settle(theta, p)?;
+            outcome.compared = verdict.is_some();
+            outcome.rejected = verdict == Some(true);
+            outcome.step_length = moved;
         } else {
             axpy(T::ONE, p, theta);
             outcome.step_length = norm(p);
