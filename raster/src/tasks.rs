@@ -76,8 +76,8 @@ pub struct Settings {
     /// (`hodr_core::optim::Schedule::Adaptive`), θ units.
     pub adaptive_sigma_start: f64,
     /// Factor in (0, 1) by which the adaptive schedule shrinks σ after a short step.
-    /// This and `adaptive_sigma_start` apply to the adaptive presets only; [`Settings::hyper`]
-    /// carries the linear schedule's values and the default shrink.
+    /// This and `adaptive_sigma_start` apply to the adaptive presets only;
+    /// [`Settings::hyper`] carries the linear schedule's values and the default shrink.
     pub sigma_shrink: f64,
 }
 

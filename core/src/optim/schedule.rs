@@ -35,11 +35,11 @@ pub enum Schedule<T> {
     /// one cut short by the trust boundary (radius Δσ) widens it once the objective has
     /// confirmed the step, as a trust region grows after a successful step to its edge;
     /// unconfirmed, a boundary step is as likely the estimates' noise (BOX10's end game,
-    /// where widening kept σ oscillating and the squares dithering). No model minimum — a plateau, where
-    /// the gradient vanishes because nothing is seen, or a ridge — calls for a wider
-    /// kernel. The square root
-    /// makes σ fall on balance only while more than a third of the iterations find a
-    /// nearby minimum, as evolution strategies' success rules adapt their step size. A
+    /// where widening kept σ oscillating and the squares dithering). No model minimum —
+    /// a plateau, where the gradient vanishes because nothing is seen, or a ridge —
+    /// calls for a wider kernel. The square root makes σ fall on balance only while
+    /// more than a third of the iterations find a nearby minimum, as evolution
+    /// strategies' success rules adapt their step size. A
     /// rejected model step says the model at this σ does not describe f near θ — the
     /// trust-region rule, with the radius Δσ shrinking through σ.
     /// First-order methods measure no curvature, so for them σ only grows back to the

@@ -70,8 +70,8 @@ pub trait Task: Send + Sync {
     }
 }
 
-/// Antithetic pairs per estimate of the adaptive presets (NewtonCG-AS, -ASC, -FR) on tasks with n ≤ 2. Their iterations
-/// reuse one sample set for every estimate and σ follows the run, so cheap iterations
+/// Antithetic pairs per estimate of the adaptive presets (NewtonCG-AS, -ASC, -FR) on
+/// tasks with n ≤ 2. Their iterations reuse one sample set for every estimate and σ follows the run, so cheap iterations
 /// win: measured with 20 seeds, evaluations to 99 % parameter-error reduction fall from
 /// 176 to 60 (QUAD), 752 to 294 (QUAD-far), 252 to 96 (BOX2-REF, from 2 pairs: 124) and
 /// 204 to 118 (BOX2, 3 pairs; 2 pairs: 124) against the tasks' 4–6 pairs.

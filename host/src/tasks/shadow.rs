@@ -42,7 +42,8 @@ use crate::render::{
 /// the target's well (loss ≤ 0.015 within ≈ 0.3 of θ*) beats the out-of-view shadows'
 /// 0.019, its comparison keeps it, and σ shrinks around it; 16 of 20 seeds reach 99 %
 /// parameter-error reduction, median 296 evaluations (`cargo test -p hodr-tests
-/// --test optim_shadow`; BENCHMARKS.md). NCG with OurHVPA's estimators and the two-sided negative-curvature step
+/// --test optim_shadow`; BENCHMARKS.md). NCG with OurHVPA's estimators and the
+/// two-sided negative-curvature step
 /// (`hodr_core::optim::NegativeCurvature::TwoSided`: at dᵀĤd ≤ 0 the objective picks
 /// between the fallback step and the trust-boundary points along ±d) does, once the
 /// gradient's direction is reliable: with 16 pairs, 3 line-search steps, 20 iterations
