@@ -53,6 +53,7 @@ impl Settings {
             common_random_numbers: false,
             negative_curvature: hodr_core::optim::NegativeCurvature::Fallback,
             sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK as f32,
+            inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
         }
     }
 }

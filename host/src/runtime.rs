@@ -114,6 +114,7 @@ impl Problem {
                 common_random_numbers: crn,
                 negative_curvature: NegativeCurvature::Fallback,
                 sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
+                inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
             },
         }
     }

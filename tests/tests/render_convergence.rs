@@ -86,6 +86,7 @@ fn mug_converges_from_plateau_starts() {
         common_random_numbers: true,
         negative_curvature: NegativeCurvature::Fallback,
         sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
+        inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
     };
     let wins = (0..20)
         .filter(|&seed| {
@@ -113,6 +114,7 @@ fn shadow_method(pairs: usize, ls: usize, nc: NegativeCurvature) -> (Method<f64>
         common_random_numbers: true,
         negative_curvature: nc,
         sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
+        inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
     };
     (Preset::OurHvpa.method(&h), h)
 }

@@ -21,6 +21,7 @@ fn hyper<T: Real>(sigma: f64, trust: f64) -> Hyper<T> {
         common_random_numbers: true,
         negative_curvature: NegativeCurvature::Fallback,
         sigma_shrink: T::from_f64(hodr_core::optim::preset::SIGMA_SHRINK),
+        inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
     }
 }
 

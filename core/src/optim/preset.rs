@@ -60,10 +60,18 @@ pub struct Hyper<T> {
     /// [`Preset::adaptive`]).
     /// Default: [`SIGMA_SHRINK`].
     pub sigma_shrink: T,
+    /// Inner CG steps per iteration of the Newton-CG presets (not
+    /// [`Preset::NewtonCgRegression`], which takes [`REGRESSION_INNER_STEPS`]); 1 makes
+    /// the step the model minimum along the gradient, capped by the trust radius.
+    /// Default: [`NEWTON_CG_INNER_STEPS`].
+    pub inner_steps: usize,
 }
 
 /// Default [`Hyper::sigma_shrink`].
 pub const SIGMA_SHRINK: f64 = 0.5;
+
+/// Default [`Hyper::inner_steps`].
+pub const NEWTON_CG_INNER_STEPS: usize = 3;
 
 /// A named method.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -86,7 +94,7 @@ pub enum Preset {
     /// Newton-CG (Steihaug) + Gaussian gradient + kernel HVP.
     NewtonCgKernel,
     /// Newton-CG (Steihaug) + aggregate gradient + CRN aggregate HVP, every estimate of
-    /// an iteration from the same samples (up to 10 inner steps).
+    /// an iteration from the same samples ([`Hyper::inner_steps`] inner steps).
     NewtonCgAggregate,
     /// Newton-CG (Steihaug) + least-squares gradient + CRN central-difference HVP of
     /// least-squares gradients, every estimate of an iteration from the same samples
@@ -186,12 +194,12 @@ impl Preset {
                 negative_curvature: h.negative_curvature,
             })
         };
-        // Newton-CG with fresh samples per estimate and three inner steps.
+        // Newton-CG with fresh samples per estimate.
         let newton_cg = |gradient, hvp| NewtonCg {
             gradient,
             hvp,
             trust_radius: h.trust_radius,
-            max_inner: 3,
+            max_inner: h.inner_steps,
             inner_tolerance: T::from_f64(0.1),
             reuse_samples: false,
             reorthogonalize: false,

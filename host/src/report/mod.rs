@@ -58,6 +58,8 @@ pub struct Overrides {
     pub negative_curvature: Option<NegativeCurvature>,
     /// The adaptive schedule's shrink factor.
     pub sigma_shrink: Option<f64>,
+    /// Newton-CG's inner CG steps per iteration.
+    pub inner_steps: Option<usize>,
 }
 
 /// `--set negative_curvature=` names, both ways.
@@ -115,6 +117,9 @@ impl Overrides {
         if let Some(v) = self.sigma_shrink {
             h.sigma_shrink = v;
         }
+        if let Some(v) = self.inner_steps {
+            h.inner_steps = v;
+        }
         h
     }
 
@@ -139,6 +144,7 @@ impl Overrides {
             "lr" | "learning_rate" => self.learning_rate = Some(value.parse().with_context(bad)?),
             "crn" => self.common_random_numbers = Some(value.parse().with_context(bad)?),
             "sigma_shrink" => self.sigma_shrink = Some(value.parse().with_context(bad)?),
+            "inner_steps" => self.inner_steps = Some(value.parse().with_context(bad)?),
             "negative_curvature" => {
                 let named = NEGATIVE_CURVATURE_NAMES
                     .iter()
@@ -148,7 +154,7 @@ impl Overrides {
                     Some(named.with_context(|| format!("{} (fallback or two-sided)", bad()))?);
             }
             other => bail!(
-                "unknown hyper-parameter `{other}` (pairs, sigma_start, sigma_end, trust_radius, ls_iters, recompute, lr, crn, negative_curvature, sigma_shrink)"
+                "unknown hyper-parameter `{other}` (pairs, sigma_start, sigma_end, trust_radius, ls_iters, recompute, lr, crn, negative_curvature, sigma_shrink, inner_steps)"
             ),
         }
         Ok(())

@@ -107,6 +107,7 @@ pub fn quad_hyper() -> Hyper<f64> {
         common_random_numbers: false,
         negative_curvature: NegativeCurvature::Fallback,
         sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
+        inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
     }
 }
 
@@ -127,6 +128,7 @@ pub fn box2ref_hyper(preset: Preset) -> Hyper<f64> {
         common_random_numbers: false,
         negative_curvature: NegativeCurvature::Fallback,
         sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
+        inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
     }
 }
 
@@ -288,14 +290,18 @@ impl Task for RasterTask {
         }
         h
     }
-    /// [`low_dim_pairs`], σ starting at the task's `adaptive_sigma_start` and
-    /// shrinking by its `sigma_shrink` (BOX10: 0.8 and 0.3, see BENCHMARKS.md).
+    /// The task's own adaptive settings where it has them (BOX10, see
+    /// `hodr_raster::tasks::AdaptiveSettings`), else [`low_dim_pairs`].
     fn adaptive(&self, h: Hyper<f64>) -> Hyper<f64> {
-        let settings = self.task.settings();
-        Hyper {
-            sigma_start: settings.adaptive_sigma_start,
-            sigma_shrink: settings.sigma_shrink,
-            ..low_dim_pairs(h, self.dim())
+        match self.task.settings().adaptive {
+            Some(a) => Hyper {
+                pairs: a.pairs,
+                sigma_start: a.sigma_start,
+                sigma_shrink: a.sigma_shrink,
+                inner_steps: a.inner_steps,
+                ..h
+            },
+            None => low_dim_pairs(h, self.dim()),
         }
     }
     fn budget(&self, quick: bool) -> usize {
@@ -394,6 +400,7 @@ impl Task for PathTask {
             common_random_numbers: false,
             negative_curvature: NegativeCurvature::Fallback,
             sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
+            inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
         }
     }
     /// [`low_dim_pairs`], except on SHADOW: 8 pairs and σ from 1.0. NewtonCG-ASC then
