@@ -224,12 +224,20 @@ pub(crate) struct Outcome<T> {
     /// The step stopped at the trust boundary on the way to a model minimum beyond it
     /// (Newton-CG).
     pub at_boundary: bool,
-    /// The objective compared the model's step with the current point (Newton-CG's
-    /// `compare_samples`).
-    pub compared: bool,
-    /// The objective rejected the model's step (only when `compared`).
-    pub rejected: bool,
+    /// What the objective made of the model's step (Newton-CG's `compare_samples`).
+    pub verdict: Verdict,
     pub converged: bool,
+}
+
+/// What comparing the model's step on the objective decided ([`Oracle::settle`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Verdict {
+    /// Not compared: the step was taken unevaluated.
+    Uncompared,
+    /// The objective kept the model's step.
+    Kept,
+    /// The objective preferred the current point or the iteration's lowest sample.
+    Rejected,
 }
 
 impl<T: Real> Outcome<T> {
@@ -254,8 +262,7 @@ impl<T: Real> Default for Outcome<T> {
             restarted: false,
             fallback: false,
             at_boundary: false,
-            compared: false,
-            rejected: false,
+            verdict: Verdict::Uncompared,
             converged: false,
         }
     }
@@ -503,7 +510,7 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
             return Err(fail(Error::NonFiniteEstimate { index }));
         }
         st.iteration = iteration;
-        let kind = if outcome.rejected {
+        let kind = if outcome.verdict == Verdict::Rejected {
             StepKind::Rejected
         } else if !outcome.fallback
             && outcome.gradient_norm > T::ZERO
@@ -511,7 +518,7 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
         {
             if outcome.at_boundary {
                 StepKind::TowardModelMinimum {
-                    confirmed: outcome.compared,
+                    confirmed: outcome.verdict == Verdict::Kept,
                 }
             } else {
                 StepKind::ToModelMinimum(outcome.step_length)

@@ -6,9 +6,9 @@
 use rand_core::Rng;
 
 #[cfg(feature = "cg")]
-use super::COMPARISON_MARGIN;
-#[cfg(feature = "cg")]
 use super::vector::{axpy, distance, norm};
+#[cfg(feature = "cg")]
+use super::{COMPARISON_MARGIN, Verdict};
 use crate::error::Error;
 #[cfg(feature = "hessian")]
 use crate::estimate::HessianMethod;
@@ -125,18 +125,17 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     /// to θ + p, then θ. Without a sample (nothing evaluated since the
     /// iteration began) θ takes the model step unevaluated.
     ///
-    /// Returns whether the model step was rejected (`None`: nothing to compare with, the
-    /// step was taken), and the distance θ moved.
+    /// Returns the [`Verdict`] on the model step and the distance θ moved.
     ///
     /// # Errors
     /// [`Error::NonFiniteObjective`] (the point stays in the workspace; θ is unchanged).
     #[cfg(feature = "cg")]
-    pub fn settle(&mut self, theta: &mut [T], p: &[T]) -> Result<(Option<bool>, T), Error> {
+    pub fn settle(&mut self, theta: &mut [T], p: &[T]) -> Result<(Verdict, T), Error> {
         let n = self.ws.dim;
         let b = &mut self.ws.batch;
         let Some(sample_value) = b.best.value else {
             axpy(T::ONE, p, theta);
-            return Ok((None, norm(p)));
+            return Ok((Verdict::Uncompared, norm(p)));
         };
         let (model, current) = b.points[..2 * n].split_at_mut(n);
         for ((m, c), (&x, &pi)) in model
@@ -161,12 +160,12 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         if below(sample_value, at_model.min(at_current)) {
             let moved = distance(theta, b.best.point);
             theta.copy_from_slice(b.best.point);
-            Ok((Some(true), moved))
+            Ok((Verdict::Rejected, moved))
         } else if below(at_current, at_model) {
-            Ok((Some(true), T::ZERO))
+            Ok((Verdict::Rejected, T::ZERO))
         } else {
             axpy(T::ONE, p, theta);
-            Ok((Some(false), norm(p)))
+            Ok((Verdict::Kept, norm(p)))
         }
     }
 

@@ -225,10 +225,7 @@ impl<T: Real> NewtonCg<T> {
             rr = rr_new;
         }
         if self.compare_samples {
-            let (verdict, moved) = oracle.settle(theta, p)?;
-            outcome.compared = verdict.is_some();
-            outcome.rejected = verdict == Some(true);
-            outcome.step_length = moved;
+            (outcome.verdict, outcome.step_length) = oracle.settle(theta, p)?;
         } else {
             axpy(T::ONE, p, theta);
             outcome.step_length = norm(p);
