@@ -2,26 +2,14 @@
 //! converges where Newton-CG on aggregate gradients does not (BENCHMARKS.md,
 //! "NewtonCG-FR on BOX10").
 
-use std::sync::atomic::AtomicBool;
+mod report_runs;
 
 use hodr_core::optim::preset::Preset;
-use hodr_host::report::{Method, Settings, run, task};
+use report_runs::seeds_reaching_99;
 
-/// Seeds out of 0..10 whose parameter error falls to 1 % of the start's within the
-/// task's budget (the report's "param 99 %" threshold).
+/// Seeds out of 0..10 reaching the report's "param 99 %" within BOX10's budget.
 fn converged(preset: Preset) -> usize {
-    let task = task::select(&["BOX10".to_string()], false)
-        .unwrap()
-        .remove(0);
-    let settings = Settings::default();
-    let interrupt = AtomicBool::new(false);
-    (0..10)
-        .filter(|&seed| {
-            let r = run(&*task, Method::Preset(preset), seed, &settings, &interrupt).unwrap();
-            let start = r.points[0].param_error;
-            r.points.iter().any(|p| p.param_error <= 0.01 * start)
-        })
-        .count()
+    seeds_reaching_99("BOX10", preset, 10, None)
 }
 
 /// Aggregate gradients blur every square with N₁ and Newton-CG settles squares on one
