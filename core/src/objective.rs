@@ -32,12 +32,25 @@ pub trait Objective<T: Real> {
             *value = self.evaluate(batch.point(k), batch.seed(k));
         }
     }
+
+    /// True when f(θ) depends on θ alone — the seed is ignored and every evaluation of
+    /// a point gives the same value — so an optimiser may remember values instead of
+    /// evaluating a point again. Default: `false`.
+    fn deterministic(&self) -> bool {
+        false
+    }
 }
 
+/// A plain closure cannot see the seed and is taken to be a function of θ alone:
+/// wrap one with randomness of its own in [`Seeded`].
 impl<T: Real, F: FnMut(&[T]) -> T> Objective<T> for F {
     #[inline]
     fn evaluate(&mut self, theta: &[T], _seed: NoiseSeed) -> T {
         self(theta)
+    }
+
+    fn deterministic(&self) -> bool {
+        true
     }
 }
 

@@ -63,8 +63,8 @@ pub(crate) struct BatchBuffers<'a, T> {
 }
 
 /// The point with the lowest objective value among the samples evaluated since it was
-/// last cleared (an optimiser clears it at the start of each iteration), and the noise
-/// seed it was evaluated with.
+/// last cleared (an optimiser clears it at the start of each iteration), the noise
+/// seed it was evaluated with, and the highest value among the same samples.
 #[derive(Debug)]
 #[cfg_attr(not(feature = "cg"), allow(dead_code))]
 pub(crate) struct BestSample<'a, T> {
@@ -72,6 +72,7 @@ pub(crate) struct BestSample<'a, T> {
     pub(crate) point: &'a mut [T],
     pub(crate) value: Option<T>,
     pub(crate) seed: NoiseSeed,
+    pub(crate) highest: Option<T>,
 }
 
 impl<T: Real> BatchBuffers<'_, T> {
@@ -82,10 +83,11 @@ impl<T: Real> BatchBuffers<'_, T> {
         self.value_count = 0;
     }
 
-    /// Forgets the lowest sample seen.
+    /// Forgets the lowest sample seen (and the highest value).
     #[cfg(feature = "cg")]
     pub(crate) fn forget_best(&mut self) {
         self.best.value = None;
+        self.best.highest = None;
     }
 
     /// Notes the first `used` rows of the batch (all finite) as candidates for the
@@ -95,6 +97,9 @@ impl<T: Real> BatchBuffers<'_, T> {
         let dim = self.best.point.len();
         for row in 0..used {
             let v = self.values[row];
+            if self.best.highest.is_none_or(|h| v > h) {
+                self.best.highest = Some(v);
+            }
             if self.best.value.is_none_or(|b| v < b) {
                 self.best.value = Some(v);
                 self.best.seed = self.seeds[row];
@@ -179,6 +184,7 @@ impl<'a, T: Real> Workspace<'a, T> {
                     point: best,
                     value: None,
                     seed: 0,
+                    highest: None,
                 },
             },
             scratch,
@@ -263,6 +269,7 @@ impl<T: Real, const N: usize, const R: usize> FixedWorkspace<T, N, R> {
                     point: &mut self.best,
                     value: None,
                     seed: 0,
+                    highest: None,
                 },
             },
             scratch: self.scratch.as_flattened_mut(),

@@ -139,6 +139,10 @@ impl Objective<f64> for Box2Ref {
         }
         self.loss(theta)
     }
+
+    fn deterministic(&self) -> bool {
+        true
+    }
 }
 
 #[cfg(test)]

@@ -225,6 +225,17 @@ impl Problem {
     /// What the central-difference HVP estimates: (∇f̄(θ + εu) − ∇f̄(θ − εu))/(2ε)·‖v‖
     /// with u = v/‖v‖ and ε = σ/3.
     pub fn hvp_central(&self, theta: &[f64], v: &[f64], sigma: f64) -> Vec<f64> {
+        self.hvp_difference(theta, v, sigma, -1.0)
+    }
+
+    /// What the forward-difference HVP estimates: (∇f̄(θ + εu) − ∇f̄(θ))/ε·‖v‖ with
+    /// u = v/‖v‖ and ε = σ/3.
+    pub fn hvp_forward(&self, theta: &[f64], v: &[f64], sigma: f64) -> Vec<f64> {
+        self.hvp_difference(theta, v, sigma, 0.0)
+    }
+
+    /// (∇f̄(θ + εu) − ∇f̄(θ + bεu))/((1 − b)ε)·‖v‖, ε = σ/3.
+    fn hvp_difference(&self, theta: &[f64], v: &[f64], sigma: f64, b: f64) -> Vec<f64> {
         let norm = dot(v, v).sqrt();
         let eps = sigma * hodr_core::estimate::HVP_STEP_RATIO;
         let shift = |s: f64| -> Vec<f64> {
@@ -234,13 +245,13 @@ impl Problem {
                 .map(|(t, d)| t + s * eps * d / norm)
                 .collect()
         };
-        let (gp, gm) = (
+        let (gp, gb) = (
             self.gradient(&shift(1.0), sigma),
-            self.gradient(&shift(-1.0), sigma),
+            self.gradient(&shift(b), sigma),
         );
         gp.iter()
-            .zip(&gm)
-            .map(|(p, m)| (p - m) / (2.0 * eps) * norm)
+            .zip(&gb)
+            .map(|(p, q)| (p - q) / ((1.0 - b) * eps) * norm)
             .collect()
     }
 

@@ -164,6 +164,10 @@ impl Objective<f64> for Quadratic {
         0.5 * (d[0] * (self.a[0] * d[0] + self.a[1] * d[1])
             + d[1] * (self.a[2] * d[0] + self.a[3] * d[1]))
     }
+
+    fn deterministic(&self) -> bool {
+        true
+    }
 }
 
 /// One run: the samples (time, evaluations, parameter error) after every iteration.

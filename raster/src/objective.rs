@@ -221,6 +221,11 @@ impl<T: Real> Objective<T> for RasterObjective {
         value
     }
 
+    /// tiny-skia rasterises without randomness: the seed is ignored.
+    fn deterministic(&self) -> bool {
+        true
+    }
+
     fn evaluate_batch(&mut self, batch: &Batch<'_, T>, out: &mut [T]) {
         self.evaluations += out.len() as u64;
         let mut renderers = std::mem::take(&mut self.renderers);

@@ -198,6 +198,7 @@ fn check_hvp(p: &Problem, method: HvpMethod, seed: u64) -> Stats {
     });
     let expected = match method {
         HvpMethod::Kernel => p.hvp(p.theta(), &v, SIGMA),
+        HvpMethod::ForwardDifference { .. } => p.hvp_forward(p.theta(), &v, SIGMA),
         _ => p.hvp_central(p.theta(), &v, SIGMA),
     };
     assert_matches(&stats, &expected, &format!("{method:?} HVP n={n}"));
@@ -217,7 +218,45 @@ fn hvps_match_closed_forms() {
                         60 + k as u64,
                     );
                 }
+                check_hvp(p, HvpMethod::ForwardDifference { gradient }, 65 + k as u64);
             }
+        }
+    }
+}
+
+/// Given g(θ) from the draws the stream repeats, a forward-difference HVP evaluates only
+/// around θ + εu, and is exactly the estimate that differences both gradients itself.
+#[test]
+fn forward_difference_given_the_gradient_halves_the_cost() {
+    let p = Problem::sin_cos(3, 1);
+    let n = p.dim();
+    let v = p.direction(7);
+    let mut mem = Memory::new(n, 8);
+    let mut ws = mem.ws(n);
+    let mut f = |x: &[f64]| p.value(x);
+    for gradient in GRADIENTS {
+        let method = HvpMethod::ForwardDifference { gradient };
+        let rng = Xoshiro256PlusPlus::seed_from_u64(90);
+        let mut est = Estimator::new(SIGMA, PAIRS, rng.clone()).unwrap();
+        let mut both = vec![0.0; n];
+        est.hvp(method, &mut f, p.theta(), &v, &mut ws, &mut both)
+            .unwrap();
+        let mut g = vec![0.0; n];
+        let mut est = Estimator::new(SIGMA, PAIRS, rng.clone()).unwrap();
+        est.gradient(gradient, &mut f, p.theta(), &mut ws, &mut g)
+            .unwrap();
+        let mut est = Estimator::new(SIGMA, PAIRS, rng).unwrap();
+        let mut given = vec![0.0; n];
+        let r = est
+            .hvp_given_gradient(method, &mut f, p.theta(), Some(&g), &v, &mut ws, &mut given)
+            .unwrap();
+        assert_eq!(r.evaluations, method.evaluations(n, PAIRS) / 2);
+        for k in 0..n {
+            let scale = both[k].abs().max(1.0);
+            assert!(
+                (both[k] - given[k]).abs() <= 1e-9 * scale,
+                "{gradient:?}: {both:?} vs {given:?}"
+            );
         }
     }
 }

@@ -56,13 +56,15 @@ fn wins(preset: Preset, evaluations: usize) -> usize {
 /// sample finds the well from σ = 3 and stays in it while σ shrinks. Without the
 /// comparison the same optimiser follows f̄ onto the plateau, where the well is
 /// invisible to its model, and finds the well only when noise carries it there.
-/// Measured within 150 evaluations: 19 of 20 seeds with the comparison, 6 without.
+/// Measured within 150 evaluations: 16 of 20 seeds with the comparison, 3 without
+/// (19 and 6 with central-difference HVPs, whose curvature is local to θ; the forward
+/// difference's is the secant over [θ, θ + σ/3], blunter on a well of width σ/15).
 #[test]
 fn compared_steps_find_a_narrow_well_beside_a_wall() {
     let compared = wins(Preset::NewtonCgCompare, 150);
     let uncompared = wins(Preset::NewtonCgAdaptive, 150);
     assert!(
-        compared >= 17 && uncompared <= 10,
+        compared >= 15 && uncompared <= 8,
         "NewtonCG-ASC {compared}/20, NewtonCG-AS {uncompared}/20"
     );
 }

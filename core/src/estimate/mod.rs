@@ -18,6 +18,7 @@
 //! | [`HessianMethod::Aggregate`] | mixture of the n(n+1)/2 element densities | 2P + 1 |
 //! | [`HessianMethod::Gaussian`] | N(0, I) | 2P + 1 |
 //! | [`HvpMethod::CentralDifference`] | two gradient estimates at θ ± εv/‖v‖ | 2× gradient |
+//! | [`HvpMethod::ForwardDifference`] | gradient estimates at θ + εv/‖v‖ and θ | 2× gradient (1× given g(θ)) |
 //! | [`HvpMethod::Kernel`] | N(0, I), shared with the gradient | 2P + 1 |
 //!
 //! P is [`Estimator::pairs`]. All randomness comes from the estimator's RNG, in a fixed
@@ -148,6 +149,15 @@ pub enum HvpMethod {
         /// Independent or common random numbers.
         draws: Draws,
     },
+    /// (g(θ + εu) − g(θ))/ε·‖v‖ with u = v/‖v‖, ε = σ/3, both g from `gradient` with the
+    /// same draws (common random numbers). Biased by O(ε) third derivatives of f̄ — it
+    /// is the mean curvature of f̄ along [θ, θ + εu] — but given g(θ) from the same
+    /// draws ([`Estimator::hvp_given_gradient`]), as an optimiser that repeats one
+    /// sample set per iteration has it, it costs one gradient estimate, not two.
+    ForwardDifference {
+        /// The gradient estimator differenced.
+        gradient: GradientMethod,
+    },
     /// The Gaussian kernel (τ(τ·v)/σ⁴ − v/σ²) with τ ~ N(0, σ²I) and the f(θ) control
     /// variate (DESIGN §1.4): unbiased, and the same samples give the gradient too
     /// ([`Estimator::gradient_and_hvp`]).
@@ -163,8 +173,18 @@ impl HvpMethod {
     )]
     pub fn evaluations(self, n: usize, pairs: usize) -> usize {
         match self {
-            HvpMethod::CentralDifference { gradient, .. } => 2 * gradient.evaluations(n, pairs),
+            HvpMethod::CentralDifference { gradient, .. }
+            | HvpMethod::ForwardDifference { gradient } => 2 * gradient.evaluations(n, pairs),
             HvpMethod::Kernel => 2 * pairs + 1,
+        }
+    }
+
+    /// The gradient estimator this method differences, if it differences one.
+    pub fn differenced(self) -> Option<GradientMethod> {
+        match self {
+            HvpMethod::CentralDifference { gradient, .. }
+            | HvpMethod::ForwardDifference { gradient } => Some(gradient),
+            HvpMethod::Kernel => None,
         }
     }
 }
@@ -371,10 +391,44 @@ impl<T: Real, R: Rng> Estimator<T, R> {
         ws: &mut Workspace<'_, T>,
         hv: &mut [T],
     ) -> Result<Report<T>, Error> {
+        self.hvp_given_gradient(method, objective, theta, None, v, ws, hv)
+    }
+
+    /// [`Estimator::hvp`], told the gradient estimate at θ: with
+    /// [`HvpMethod::ForwardDifference`] and `gradient_at_theta` = Some(g), g(θ) is not
+    /// re-estimated. The caller guarantees that g is what that method's gradient
+    /// estimator gives at θ from the draws this estimator's stream produces next (an
+    /// optimiser that rewinds its stream before every estimate of an iteration); the
+    /// other methods ignore it.
+    ///
+    /// # Errors
+    /// As [`Estimator::hvp`]; `gradient_at_theta` must be finite and of length n too.
+    #[allow(clippy::too_many_arguments)]
+    #[cfg(feature = "hvp")]
+    pub fn hvp_given_gradient<O: Objective<T> + ?Sized>(
+        &mut self,
+        method: HvpMethod,
+        objective: &mut O,
+        theta: &[T],
+        gradient_at_theta: Option<&[T]>,
+        v: &[T],
+        ws: &mut Workspace<'_, T>,
+        hv: &mut [T],
+    ) -> Result<Report<T>, Error> {
         match method {
             HvpMethod::CentralDifference { gradient, draws } => {
                 hvp::central_difference(self, gradient, draws, objective, theta, v, ws, hv)
             }
+            HvpMethod::ForwardDifference { gradient } => hvp::forward_difference(
+                self,
+                gradient,
+                objective,
+                theta,
+                v,
+                gradient_at_theta,
+                ws,
+                hv,
+            ),
             HvpMethod::Kernel => self.kernel_hvp(objective, theta, v, ws, None, hv),
         }
     }

@@ -115,7 +115,7 @@ impl<T: Real> Method<T> {
         {
             let fits = |g: GradientMethod| g == GradientMethod::Regression;
             #[cfg(feature = "cg")]
-            let hvp_fits = |h: HvpMethod| matches!(h, HvpMethod::CentralDifference { gradient, .. } if fits(gradient));
+            let hvp_fits = |h: HvpMethod| h.differenced().is_some_and(fits);
             match self {
                 Method::GradientDescent(m) => fits(m.gradient),
                 Method::Adam(m) => fits(m.gradient),
@@ -302,6 +302,8 @@ struct State<T> {
     mean_curvature: Option<T>,
     /// σ chosen by an adaptive schedule for the next iteration (before the cap).
     adapted_sigma: Option<T>,
+    /// f(θ) at the current θ, when a deterministic objective was evaluated there.
+    value_at_theta: Option<T>,
     finished: Option<Termination>,
 }
 
@@ -381,6 +383,7 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
                 #[cfg(feature = "cg")]
                 mean_curvature: None,
                 adapted_sigma: None,
+                value_at_theta: None,
                 finished: None,
             },
         })
@@ -470,6 +473,8 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
             evaluations: 0,
             loss: None,
             snapshot,
+            value_at_theta: st.value_at_theta,
+            settled: false,
         };
         let tol = self.budget.gradient_tolerance;
         let theta = &mut *self.theta;
@@ -494,6 +499,12 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
         };
         st.evaluations += oracle.evaluations;
         let loss = oracle.loss;
+        // A value stays known while θ stays put or comes from a comparison.
+        let value_at_theta = if oracle.settled || theta[..] == saved[..] {
+            oracle.value_at_theta
+        } else {
+            None
+        };
         if self.method.reuses_samples() {
             // Fresh samples next iteration: step the stream past this iteration's draws.
             let _ = self.estimator.rng_mut().next_u64();
@@ -510,6 +521,7 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
             return Err(fail(Error::NonFiniteEstimate { index }));
         }
         st.iteration = iteration;
+        st.value_at_theta = value_at_theta;
         let kind = if outcome.verdict == Verdict::Rejected {
             StepKind::Rejected
         } else if !outcome.fallback

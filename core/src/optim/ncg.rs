@@ -63,10 +63,11 @@ pub struct Ncg<T> {
     /// Reuse one sample set for every estimate of an iteration (gradient, HVPs, line
     /// search): the RNG is rewound to its state at the iteration's start before each
     /// estimate, so all of them see the same offsets and noise seeds. The iteration then
-    /// works on one fixed sample-average approximation of f̄: with central-difference
-    /// HVPs of the same gradient estimator, Ĥv = M·∇²f̄·v and ĝ = M·∇f̄ share the random
-    /// matrix M, which cancels from the Newton step on quadratics. Fresh samples come
-    /// with each new iteration.
+    /// works on one fixed sample-average approximation of f̄: with central- or
+    /// forward-difference HVPs of the same gradient estimator, Ĥv = M·∇²f̄·v and
+    /// ĝ = M·∇f̄ share the random matrix M, which cancels from the Newton step on
+    /// quadratics; a forward difference then reuses ĝ(θ) itself
+    /// ([`HvpMethod::ForwardDifference`]). Fresh samples come with each new iteration.
     pub reuse_samples: bool,
     /// The step where dᵀĤd ≤ 0. Presets: [`NegativeCurvature::Fallback`].
     pub negative_curvature: NegativeCurvature,
@@ -171,7 +172,7 @@ impl<T: Real> Ncg<T> {
                 if j > 0 {
                     oracle.gradient(self.gradient, theta, g)?;
                 }
-                self.curvature_along(oracle, theta, d, hd, rest)?;
+                self.curvature_along(oracle, theta, g, d, hd, rest)?;
             }
             let gd = dot(g, d);
             let dhd = dot(d, hd);
@@ -225,18 +226,19 @@ impl<T: Real> Ncg<T> {
         gaussian && self.curvature == Curvature::Hvp(HvpMethod::Kernel)
     }
 
-    /// Ĥd into `hd`, using `hess` (n² floats) for Hessian curvature.
+    /// Ĥd into `hd` (ĝ = `g` at θ), using `hess` (n² floats) for Hessian curvature.
     #[cfg_attr(not(feature = "hessian"), allow(unused_variables))]
     fn curvature_along<R: Rng + Clone, O: Objective<T> + ?Sized>(
         &self,
         oracle: &mut Oracle<'_, '_, T, R, O>,
         theta: &[T],
+        g: &[T],
         d: &[T],
         hd: &mut [T],
         hess: &mut [T],
     ) -> Result<(), Error> {
         match self.curvature {
-            Curvature::Hvp(m) => oracle.hvp(m, theta, d, hd),
+            Curvature::Hvp(m) => oracle.hvp(m, theta, (self.gradient, g), d, hd),
             #[cfg(feature = "hessian")]
             Curvature::Hessian(m) => {
                 let n = theta.len();

@@ -34,6 +34,10 @@ pub(crate) struct Oracle<'a, 'w, T, R, O: ?Sized> {
     /// With sample reuse: the RNG state at the start of the iteration, restored before
     /// every estimate so that all of them draw the same offsets and noise seeds.
     pub snapshot: Option<R>,
+    /// f(θ) at the current θ if known (a deterministic objective evaluated there).
+    pub value_at_theta: Option<T>,
+    /// [`Oracle::settle`] moved θ this iteration and set `value_at_theta` for it.
+    pub settled: bool,
 }
 
 impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> {
@@ -70,18 +74,32 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         Ok(())
     }
 
+    /// Ĥv at θ. `gradient` is this iteration's gradient estimate at θ and the estimator
+    /// that made it: with sample reuse it came from the draws the rewound stream repeats,
+    /// so a forward difference of that same estimator uses it instead of re-estimating
+    /// g(θ). Otherwise it is ignored.
     #[cfg(feature = "cg")]
     pub fn hvp(
         &mut self,
         method: HvpMethod,
         theta: &[T],
+        gradient: (GradientMethod, &[T]),
         v: &[T],
         out: &mut [T],
     ) -> Result<(), Error> {
         self.rewind();
-        let r = self
-            .estimator
-            .hvp(method, self.objective, theta, v, self.ws, out)?;
+        let (made_by, estimate) = gradient;
+        let base =
+            (self.snapshot.is_some() && method.differenced() == Some(made_by)).then_some(estimate);
+        let r = self.estimator.hvp_given_gradient(
+            method,
+            self.objective,
+            theta,
+            base,
+            v,
+            self.ws,
+            out,
+        )?;
         self.record(&r);
         Ok(())
     }
@@ -117,13 +135,26 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         Ok(())
     }
 
+    /// True when this iteration has evaluated samples and they all tie with the lowest
+    /// (within [`COMPARISON_MARGIN`], relative): nothing near θ tells one point from
+    /// another — a plateau at this σ.
+    #[cfg(feature = "cg")]
+    pub fn flat(&self) -> bool {
+        let best = &self.ws.batch.best;
+        match (best.value, best.highest) {
+            (Some(low), Some(high)) => !below(low, high),
+            _ => false,
+        }
+    }
+
     /// Ends an iteration by comparing, on the objective itself, the current θ, the model
     /// step θ + p and the lowest sample this iteration evaluated, and moves θ to the
     /// lowest. θ and θ + p are evaluated with that sample's noise seed (2 evaluations,
     /// counted here), so renderer noise cancels from the comparison as in common random
-    /// numbers. Values within [`COMPARISON_MARGIN`] (relative) of each other tie; ties go
-    /// to θ + p, then θ. Without a sample (nothing evaluated since the
-    /// iteration began) θ takes the model step unevaluated.
+    /// numbers; a [deterministic](Objective::deterministic) objective's f(θ) is not
+    /// evaluated again once known (1 evaluation). Values within [`COMPARISON_MARGIN`]
+    /// (relative) of each other tie; ties go to θ + p, then θ. Without a sample (nothing
+    /// evaluated since the iteration began) θ takes the model step unevaluated.
     ///
     /// Returns the [`Verdict`] on the model step and the distance θ moved.
     ///
@@ -132,11 +163,14 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     #[cfg(feature = "cg")]
     pub fn settle(&mut self, theta: &mut [T], p: &[T]) -> Result<(Verdict, T), Error> {
         let n = self.ws.dim;
+        let deterministic = self.objective.deterministic();
         let b = &mut self.ws.batch;
         let Some(sample_value) = b.best.value else {
             axpy(T::ONE, p, theta);
             return Ok((Verdict::Uncompared, norm(p)));
         };
+        let known = self.value_at_theta.filter(|_| deterministic);
+        let count = if known.is_some() { 1 } else { 2 };
         let (model, current) = b.points[..2 * n].split_at_mut(n);
         for ((m, c), (&x, &pi)) in model
             .iter_mut()
@@ -147,26 +181,29 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
             *c = x;
         }
         b.seeds[..2].fill(b.best.seed);
-        let batch = Batch::new(&b.points[..2 * n], &b.seeds[..2], n)?;
-        self.objective.evaluate_batch(&batch, &mut b.values[..2]);
-        self.evaluations += 2;
-        if let Some(k) = b.values[..2].iter().position(|v| !v.is_finite()) {
+        let batch = Batch::new(&b.points[..count * n], &b.seeds[..count], n)?;
+        self.objective
+            .evaluate_batch(&batch, &mut b.values[..count]);
+        self.evaluations += count;
+        if let Some(k) = b.values[..count].iter().position(|v| !v.is_finite()) {
             b.failed = Some(k);
             return Err(Error::NonFiniteObjective { sample: k });
         }
-        let (at_model, at_current) = (b.values[0], b.values[1]);
-        let margin = T::from_f64(COMPARISON_MARGIN);
-        let below = |a: T, b: T| a < b - margin * a.abs().max(b.abs());
-        if below(sample_value, at_model.min(at_current)) {
+        let at_model = b.values[0];
+        let at_current = known.unwrap_or(b.values[1]);
+        let (verdict, moved, value) = if below(sample_value, at_model.min(at_current)) {
             let moved = distance(theta, b.best.point);
             theta.copy_from_slice(b.best.point);
-            Ok((Verdict::Rejected, moved))
+            (Verdict::Rejected, moved, sample_value)
         } else if below(at_current, at_model) {
-            Ok((Verdict::Rejected, T::ZERO))
+            (Verdict::Rejected, T::ZERO, at_current)
         } else {
             axpy(T::ONE, p, theta);
-            Ok((Verdict::Kept, norm(p)))
-        }
+            (Verdict::Kept, norm(p), at_model)
+        };
+        self.value_at_theta = deterministic.then_some(value);
+        self.settled = true;
+        Ok((verdict, moved))
     }
 
     /// The index of the lowest of `K` candidate points by objective value, all evaluated
@@ -206,4 +243,10 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         }
         Ok(best)
     }
+}
+
+/// a < b by more than [`COMPARISON_MARGIN`] × the larger magnitude (else they tie).
+#[cfg(feature = "cg")]
+fn below<T: Real>(a: T, b: T) -> bool {
+    a < b - T::from_f64(COMPARISON_MARGIN) * a.abs().max(b.abs())
 }

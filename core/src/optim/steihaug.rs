@@ -6,6 +6,11 @@
 //! steps, or at non-positive curvature dᵀĤd ≤ 0. The first inner step is a
 //! curvature-scaled steepest-descent (Cauchy) step.
 //!
+//! Where the gradient's samples all tie (within [`COMPARISON_MARGIN`]) the iteration
+//! has seen a plateau at this σ: its estimates hold nothing but the objective's
+//! rounding (BOX2-REF's square drawn at sub-pixel offsets), so it takes no step and
+//! estimates no curvature, and the adaptive schedule widens σ.
+//!
 //! Noise changes one classical choice: Steihaug steps to the boundary along d at
 //! negative curvature, but estimated curvature turns negative under noise far more
 //! often than the smoothed loss does. Here, negative curvature after the first inner
@@ -56,10 +61,11 @@ pub struct NewtonCg<T> {
     /// Reuse one sample set for every estimate of an iteration (gradient, HVPs, line
     /// search): the RNG is rewound to its state at the iteration's start before each
     /// estimate, so all of them see the same offsets and noise seeds. The iteration then
-    /// works on one fixed sample-average approximation of f̄: with central-difference
-    /// HVPs of the same gradient estimator, Ĥv = M·∇²f̄·v and ĝ = M·∇f̄ share the random
-    /// matrix M, which cancels from the Newton step on quadratics. Fresh samples come
-    /// with each new iteration.
+    /// works on one fixed sample-average approximation of f̄: with central- or
+    /// forward-difference HVPs of the same gradient estimator, Ĥv = M·∇²f̄·v and
+    /// ĝ = M·∇f̄ share the random matrix M, which cancels from the Newton step on
+    /// quadratics; a forward difference then reuses ĝ(θ) itself
+    /// ([`HvpMethod::ForwardDifference`]). Fresh samples come with each new iteration.
     pub reuse_samples: bool,
     /// Keep the inner residuals mutually orthogonal, as they are in exact arithmetic:
     /// each new residual is Gram–Schmidt-orthogonalised against normalised copies of the
@@ -140,7 +146,9 @@ impl<T: Real> NewtonCg<T> {
             gradient_norm,
             ..Outcome::default()
         };
-        if gradient_norm == T::ZERO || !gradient_norm.is_finite() {
+        // Nothing seen (a vanishing gradient, or samples that all tie): no step, no
+        // curvature to estimate.
+        if gradient_norm == T::ZERO || !gradient_norm.is_finite() || oracle.flat() {
             return Ok(outcome);
         }
         let radius = self.trust_radius * oracle.sigma();
@@ -152,7 +160,7 @@ impl<T: Real> NewtonCg<T> {
         let mut rr = dot(r, r);
         keep(basis, &mut basis_len, r, rr);
         for j in 0..self.max_inner.min(2 * n) {
-            oracle.hvp(self.hvp, theta, d, hd)?;
+            oracle.hvp(self.hvp, theta, (self.gradient, g), d, hd)?;
             let kappa = dot(d, hd);
             let dd = dot(d, d);
             outcome.curvature = Some(kappa / dd);

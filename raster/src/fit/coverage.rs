@@ -169,6 +169,10 @@ impl<T: Real> Objective<T> for ShapeObjective<'_> {
         T::from_f64(value)
     }
 
+    fn deterministic(&self) -> bool {
+        true
+    }
+
     fn evaluate_batch(&mut self, batch: &Batch<'_, T>, out: &mut [T]) {
         self.evaluations += out.len() as u64;
         let scratch = std::mem::take(&mut self.scratch);
