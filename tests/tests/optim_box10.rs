@@ -15,13 +15,13 @@ fn converged(preset: Preset) -> usize {
 /// Aggregate gradients blur every square with N₁ and Newton-CG settles squares on one
 /// another (hiding a misplaced square halves its cost); FR22's gradients blur the
 /// other coordinates with p_G, and the same optimiser reaches every target. Measured on
-/// seeds 0..10: NewtonCG-FR 9, NewtonCG-AS 4 (20 seeds: 19 and 8).
+/// seeds 0..10: NewtonCG-FR 10, NewtonCG-AS 6 (20 seeds: 20 and 12).
 #[test]
 fn newton_cg_on_fr22_gradients_solves_box10() {
     let fr = converged(Preset::NewtonCgFr22);
     let aggregate = converged(Preset::NewtonCgAdaptive);
     assert!(
-        fr >= 7 && aggregate <= 5,
+        fr >= 9 && aggregate <= 7,
         "NewtonCG-FR {fr}/10, NewtonCG-AS {aggregate}/10"
     );
 }
