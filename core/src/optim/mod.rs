@@ -47,7 +47,7 @@ pub use ncg::{Curvature, Ncg};
 pub use newton::Newton;
 pub use schedule::{Budget, Schedule, StepKind, Termination};
 #[cfg(feature = "cg")]
-pub use steihaug::{COMPARISON_MARGIN, NewtonCg};
+pub use steihaug::{COMPARISON_MARGIN, NewtonCg, PLATEAU_MARGIN};
 
 use crate::error::Error;
 use crate::estimate::Estimator;

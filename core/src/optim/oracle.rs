@@ -8,7 +8,7 @@ use rand_core::Rng;
 #[cfg(feature = "cg")]
 use super::vector::{axpy, distance, norm};
 #[cfg(feature = "cg")]
-use super::{COMPARISON_MARGIN, Verdict};
+use super::{COMPARISON_MARGIN, PLATEAU_MARGIN, Verdict};
 use crate::error::Error;
 #[cfg(feature = "hessian")]
 use crate::estimate::HessianMethod;
@@ -135,14 +135,14 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         Ok(())
     }
 
-    /// True when this iteration has evaluated samples and they all tie with the lowest
-    /// (within [`COMPARISON_MARGIN`], relative): nothing near θ tells one point from
+    /// True when this iteration has evaluated samples and they all lie within
+    /// [`PLATEAU_MARGIN`] (relative) of the lowest: nothing near θ tells one point from
     /// another — a plateau at this σ.
     #[cfg(feature = "cg")]
     pub fn flat(&self) -> bool {
         let best = &self.ws.batch.best;
         match (best.value, best.highest) {
-            (Some(low), Some(high)) => !below(low, high),
+            (Some(low), Some(high)) => !below(low, high, PLATEAU_MARGIN),
             _ => false,
         }
     }
@@ -191,16 +191,17 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         }
         let at_model = b.values[0];
         let at_current = known.unwrap_or(b.values[1]);
-        let (verdict, moved, value) = if below(sample_value, at_model.min(at_current)) {
-            let moved = distance(theta, b.best.point);
-            theta.copy_from_slice(b.best.point);
-            (Verdict::Rejected, moved, sample_value)
-        } else if below(at_current, at_model) {
-            (Verdict::Rejected, T::ZERO, at_current)
-        } else {
-            axpy(T::ONE, p, theta);
-            (Verdict::Kept, norm(p), at_model)
-        };
+        let (verdict, moved, value) =
+            if below(sample_value, at_model.min(at_current), COMPARISON_MARGIN) {
+                let moved = distance(theta, b.best.point);
+                theta.copy_from_slice(b.best.point);
+                (Verdict::Rejected, moved, sample_value)
+            } else if below(at_current, at_model, COMPARISON_MARGIN) {
+                (Verdict::Rejected, T::ZERO, at_current)
+            } else {
+                axpy(T::ONE, p, theta);
+                (Verdict::Kept, norm(p), at_model)
+            };
         self.value_at_theta = deterministic.then_some(value);
         self.settled = true;
         Ok((verdict, moved))
@@ -245,8 +246,8 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     }
 }
 
-/// a < b by more than [`COMPARISON_MARGIN`] × the larger magnitude (else they tie).
+/// a < b by more than `margin` × the larger magnitude (else they tie).
 #[cfg(feature = "cg")]
-fn below<T: Real>(a: T, b: T) -> bool {
-    a < b - T::from_f64(COMPARISON_MARGIN) * a.abs().max(b.abs())
+fn below<T: Real>(a: T, b: T, margin: f64) -> bool {
+    a < b - T::from_f64(margin) * a.abs().max(b.abs())
 }

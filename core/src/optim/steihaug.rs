@@ -6,10 +6,10 @@
 //! steps, or at non-positive curvature dᵀĤd ≤ 0. The first inner step is a
 //! curvature-scaled steepest-descent (Cauchy) step.
 //!
-//! Where the gradient's samples all tie (within [`COMPARISON_MARGIN`]) the iteration
-//! has seen a plateau at this σ: its estimates hold nothing but the objective's
-//! rounding (BOX2-REF's square drawn at sub-pixel offsets), so it takes no step and
-//! estimates no curvature, and the adaptive schedule widens σ.
+//! Where the gradient's samples all lie within [`PLATEAU_MARGIN`] of each other the
+//! iteration has seen a plateau at this σ: its estimates hold nothing but the
+//! objective's rounding (BOX2-REF's square drawn at sub-pixel offsets), so it takes no
+//! step and estimates no curvature, and the adaptive schedule widens σ.
 //!
 //! Noise changes one classical choice: Steihaug steps to the boundary along d at
 //! negative curvature, but estimated curvature turns negative under noise far more
@@ -42,6 +42,15 @@ use crate::real::Real;
 /// a margin of √ε those differences rejected model steps and σ collapsed before the
 /// target was seen (184 evaluations to 99 % parameter-error reduction); with 1e-3, 80.
 pub const COMPARISON_MARGIN: f64 = 1e-3;
+
+/// The relative spread below which an iteration's samples are a plateau (Newton-CG takes
+/// no step; [`COMPARISON_MARGIN`]'s scale, the larger magnitude of the two values):
+/// BOX2-REF's loss at plateau points 40 px apart spans 2.2e-5 of its value (the
+/// square's pixel sums at sub-pixel offsets). The margin is relative to |f|: an
+/// objective whose values near its minimum differ by less than this fraction of their
+/// size (a large constant offset, f = 100 + x²) stops where they do — subtract the
+/// offset.
+pub const PLATEAU_MARGIN: f64 = 1e-4;
 
 /// Newton-CG (Steihaug) with HVPs.
 #[derive(Clone, Copy, Debug, PartialEq)]
