@@ -8,7 +8,7 @@
 //! scheme run over the two centres, whose antithetic combinations are differenced per
 //! sample — so what they share cancels. With [`Draws::Independent`] (the reference
 //! code's choice) they are two separate runs. A forward difference given g(θ) from the
-//! same draws ([`forward_difference`]'s `base`) evaluates only around θ + εu.
+//! same draws ([`Stencil::Forward`]) evaluates only around θ + εu.
 
 use rand_core::Rng;
 
@@ -21,11 +21,22 @@ use crate::objective::Objective;
 use crate::real::Real;
 use crate::workspace::Workspace;
 
+/// Which two gradients are differenced.
+#[derive(Clone, Copy)]
+pub(super) enum Stencil<'g, T> {
+    /// g(θ + εu) − g(θ − εu), over 2ε.
+    Central(Draws),
+    /// g(θ + εu) − g(θ), over ε, with common random numbers; g(θ) given (estimated by
+    /// the same method from the draws the stream repeats) or estimated here.
+    Forward(Option<&'g [T]>),
+}
+
+/// Hv by `stencil` from gradient estimates of `gradient` (DESIGN §1.5).
 #[allow(clippy::too_many_arguments)]
-pub(super) fn central_difference<T: Real, R: Rng, O: Objective<T> + ?Sized>(
+pub(super) fn difference<T: Real, R: Rng, O: Objective<T> + ?Sized>(
     estimator: &mut Estimator<T, R>,
     gradient: GradientMethod,
-    draws: Draws,
+    stencil: Stencil<'_, T>,
     objective: &mut O,
     theta: &[T],
     v: &[T],
@@ -36,6 +47,9 @@ pub(super) fn central_difference<T: Real, R: Rng, O: Objective<T> + ?Sized>(
     check_vector(n, theta)?;
     check_vector(n, v)?;
     check_len(n, hv.len())?;
+    if let Stencil::Forward(Some(base)) = stencil {
+        check_vector(n, base)?;
+    }
     ws.batch.begin();
     hv.fill(T::ZERO);
     let norm = norm2(v);
@@ -58,87 +72,31 @@ pub(super) fn central_difference<T: Real, R: Rng, O: Objective<T> + ?Sized>(
         *p = x + step * d;
         *m = x - step * d;
     }
-    let result = match draws {
-        Draws::Common => {
-            estimator.gradient_sum(gradient, objective, &[&*plus, &*minus], T::ONE, ws, hv, 0)
-        }
-        Draws::Independent => estimator
-            .gradient_sum(gradient, objective, &[&*plus], T::ONE, ws, hv, 0)
-            .and_then(|first| {
-                estimator
-                    .gradient_sum(gradient, objective, &[&*minus], -T::ONE, ws, hv, first)
-                    .map(|second| first + second)
-            }),
+    let (plus, minus): (&[T], &[T]) = (plus, minus);
+    let mut sum = |centres: &[&[T]], sign, ws: &mut Workspace<'_, T>, hv: &mut [T], first| {
+        estimator.gradient_sum(gradient, objective, centres, sign, ws, hv, first)
+    };
+    let result = match stencil {
+        Stencil::Central(Draws::Common) => sum(&[plus, minus], T::ONE, ws, hv, 0),
+        Stencil::Central(Draws::Independent) => sum(&[plus], T::ONE, ws, hv, 0)
+            .and_then(|first| sum(&[minus], -T::ONE, ws, hv, first).map(|second| first + second)),
+        Stencil::Forward(Some(_)) => sum(&[plus], T::ONE, ws, hv, 0),
+        Stencil::Forward(None) => sum(&[plus, theta], T::ONE, ws, hv, 0),
     };
     ws.scratch = scratch;
     let evaluations = result?;
-    // (S₊ − S₋)/(σP) is the gradient difference; divide by 2ε, multiply by ‖v‖.
+    // S/(σP) is a gradient (difference); over the stencil's width, times ‖v‖.
     let pairs = T::from_usize(estimator.pairs());
-    scale_checked(hv, norm / (T::TWO * eps * sigma * pairs))?;
-    Ok(Report {
-        evaluations,
-        centre_value: None,
-        mean_value: ws.batch.mean_value(),
-    })
-}
-
-/// The forward difference (g(θ + εu) − g(θ))/ε·‖v‖ with common random numbers. With
-/// `base` = g(θ), estimated by `gradient` from the draws the estimator's stream is about
-/// to repeat, only g(θ + εu) is estimated (half the evaluations); without, both are.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn forward_difference<T: Real, R: Rng, O: Objective<T> + ?Sized>(
-    estimator: &mut Estimator<T, R>,
-    gradient: GradientMethod,
-    objective: &mut O,
-    theta: &[T],
-    v: &[T],
-    base: Option<&[T]>,
-    ws: &mut Workspace<'_, T>,
-    hv: &mut [T],
-) -> Result<Report<T>, Error> {
-    let n = ws.dim;
-    check_vector(n, theta)?;
-    check_vector(n, v)?;
-    check_len(n, hv.len())?;
-    if let Some(b) = base {
-        check_vector(n, b)?;
-    }
-    ws.batch.begin();
-    hv.fill(T::ZERO);
-    let norm = norm2(v);
-    if norm == T::ZERO {
-        return Ok(Report {
-            evaluations: 0,
-            centre_value: None,
-            mean_value: None,
-        });
-    }
-    let sigma = estimator.sigma();
-    let eps = T::from_f64(HVP_STEP_RATIO) * sigma;
-    let scratch = core::mem::take(&mut ws.scratch);
-    let plus = &mut scratch[..n];
-    let step = eps / norm;
-    for ((p, &x), &d) in plus.iter_mut().zip(theta).zip(v) {
-        *p = x + step * d;
-    }
-    let result = match base {
-        Some(_) => estimator.gradient_sum(gradient, objective, &[&*plus], T::ONE, ws, hv, 0),
-        None => estimator.gradient_sum(gradient, objective, &[&*plus, theta], T::ONE, ws, hv, 0),
-    };
-    ws.scratch = scratch;
-    let evaluations = result?;
-    let pairs = T::from_usize(estimator.pairs());
-    match base {
-        // S₊/(σP) − g(θ), over ε, times ‖v‖.
-        Some(b) => {
+    match stencil {
+        Stencil::Central(_) => scale_checked(hv, norm / (T::TWO * eps * sigma * pairs))?,
+        Stencil::Forward(None) => scale_checked(hv, norm / (eps * sigma * pairs))?,
+        Stencil::Forward(Some(base)) => {
             let to_gradient = T::ONE / (sigma * pairs);
-            for (h, &g) in hv.iter_mut().zip(b) {
+            for (h, &g) in hv.iter_mut().zip(base) {
                 *h = *h * to_gradient - g;
             }
             scale_checked(hv, norm / eps)?;
         }
-        // (S₊ − S₀)/(σP), over ε, times ‖v‖.
-        None => scale_checked(hv, norm / (eps * sigma * pairs))?,
     }
     Ok(Report {
         evaluations,

@@ -416,16 +416,23 @@ impl<T: Real, R: Rng> Estimator<T, R> {
         hv: &mut [T],
     ) -> Result<Report<T>, Error> {
         match method {
-            HvpMethod::CentralDifference { gradient, draws } => {
-                hvp::central_difference(self, gradient, draws, objective, theta, v, ws, hv)
-            }
-            HvpMethod::ForwardDifference { gradient } => hvp::forward_difference(
+            HvpMethod::CentralDifference { gradient, draws } => hvp::difference(
                 self,
                 gradient,
+                hvp::Stencil::Central(draws),
                 objective,
                 theta,
                 v,
-                gradient_at_theta,
+                ws,
+                hv,
+            ),
+            HvpMethod::ForwardDifference { gradient } => hvp::difference(
+                self,
+                gradient,
+                hvp::Stencil::Forward(gradient_at_theta),
+                objective,
+                theta,
+                v,
                 ws,
                 hv,
             ),
