@@ -76,6 +76,19 @@ pub enum GradientMethod {
 }
 
 impl GradientMethod {
+    /// True when an estimate from one antithetic pair, offsets ±σt, is a multiple of t
+    /// (the aggregate and Gaussian weights are proportional to t; FR22's and the
+    /// per-element ones to sign(t)).
+    pub fn along_offset(self) -> bool {
+        match self {
+            #[cfg(feature = "aggregate")]
+            GradientMethod::Aggregate => true,
+            #[cfg(feature = "gaussian")]
+            GradientMethod::Gaussian => true,
+            _ => false,
+        }
+    }
+
     /// Objective evaluations for one estimate in dimension `n` with `pairs` pairs.
     #[cfg_attr(
         not(any(feature = "per-element", feature = "regression")),

@@ -50,11 +50,9 @@ pub use schedule::{Budget, Schedule, StepKind, Termination};
 pub use steihaug::{COMPARISON_MARGIN, NewtonCg, PLATEAU_MARGIN};
 
 use crate::error::Error;
-use crate::estimate::Estimator;
-#[cfg(feature = "regression")]
-use crate::estimate::GradientMethod;
 #[cfg(all(feature = "regression", feature = "cg"))]
 use crate::estimate::HvpMethod;
+use crate::estimate::{Estimator, GradientMethod};
 use crate::objective::Objective;
 use crate::real::Real;
 use crate::workspace::Workspace;
@@ -131,6 +129,32 @@ impl<T: Real> Method<T> {
         }
         #[cfg(not(feature = "regression"))]
         false
+    }
+
+    /// The estimator of this method's gradient.
+    pub fn gradient_method(&self) -> GradientMethod {
+        match self {
+            Method::GradientDescent(m) => m.gradient,
+            Method::Adam(m) => m.gradient,
+            #[cfg(feature = "hessian")]
+            Method::Newton(m) => m.gradient,
+            #[cfg(feature = "cg")]
+            Method::Ncg(m) => m.gradient,
+            #[cfg(feature = "cg")]
+            Method::NewtonCg(m) => m.gradient,
+        }
+    }
+
+    /// The fraction of the n parameter directions one gradient estimate with `pairs`
+    /// antithetic pairs samples: min(1, antithetic offsets / n). One pair in two
+    /// dimensions sees one direction (½); per-element estimators see every coordinate.
+    pub fn coverage(&self, n: usize, pairs: usize) -> T {
+        let offsets = self.gradient_method().evaluations(n, pairs) / 2;
+        if offsets >= n {
+            T::ONE
+        } else {
+            T::from_usize(offsets) / T::from_usize(n)
+        }
     }
 
     /// True when every estimate of an iteration reuses the same samples.
@@ -474,6 +498,7 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
             loss: None,
             snapshot,
             value_at_theta: st.value_at_theta,
+            centre_sample: None,
             settled: false,
         };
         let tol = self.budget.gradient_tolerance;
@@ -524,16 +549,16 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
         st.value_at_theta = value_at_theta;
         let kind = if outcome.verdict == Verdict::Rejected {
             StepKind::Rejected
-        } else if !outcome.fallback
-            && outcome.gradient_norm > T::ZERO
-            && outcome.curvature.is_some_and(|c| c > T::ZERO)
-        {
+        } else if !outcome.fallback && outcome.curvature.is_some_and(|c| c > T::ZERO) {
             if outcome.at_boundary {
                 StepKind::TowardModelMinimum {
                     confirmed: outcome.verdict == Verdict::Kept,
                 }
             } else {
-                StepKind::ToModelMinimum(outcome.step_length)
+                StepKind::ToModelMinimum {
+                    length: outcome.step_length,
+                    coverage: self.method.coverage(n, self.estimator.pairs()),
+                }
             }
         } else {
             StepKind::NoModelMinimum

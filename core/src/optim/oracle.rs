@@ -17,7 +17,7 @@ use crate::estimate::HvpMethod;
 use crate::estimate::{Estimator, GradientMethod, Report};
 #[cfg(feature = "cg")]
 use crate::objective::Batch;
-use crate::objective::Objective;
+use crate::objective::{NoiseSeed, Objective};
 use crate::real::Real;
 #[cfg(feature = "cg")]
 use crate::workspace::MIN_ROWS;
@@ -36,6 +36,9 @@ pub(crate) struct Oracle<'a, 'w, T, R, O: ?Sized> {
     pub snapshot: Option<R>,
     /// f(θ) at the current θ if known (a deterministic objective evaluated there).
     pub value_at_theta: Option<T>,
+    /// f(θ) at the current θ evaluated with this noise seed this iteration
+    /// ([`Oracle::pair_curvature`]).
+    pub centre_sample: Option<(T, NoiseSeed)>,
     /// [`Oracle::settle`] moved θ this iteration and set `value_at_theta` for it.
     pub settled: bool,
 }
@@ -135,14 +138,88 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         Ok(())
     }
 
-    /// True when this iteration has evaluated samples and they all lie within
+    /// The curvature along the offset of the gradient estimate `g` just made, when it
+    /// came from one antithetic pair θ ± σt and lies along t, in two or more dimensions
+    /// ([`super::NewtonCg::pair_curvature`]): the second difference
+    /// c = (f(θ + σt) + f(θ − σt) − 2f(θ))/(σ‖t‖)², in the estimator's scale. An
+    /// estimator's one-pair estimate is ĝ = m·D·t̂ with D = (f(θ + σt) − f(θ − σt))/(2σ‖t‖)
+    /// the pair's directional derivative and m > 0 its weight (1 for none; the aggregate
+    /// weight n·Z·‖t‖²/‖t‖₁), as its difference HVP is m·(t̂ᵀ∇²f̄t̂)·t̂; the result is m·c,
+    /// so that the model step ‖ĝ‖/(m·c) = |D|/c is the minimum of the parabola through
+    /// the three values. Where the pair's values are equal (ĝ = 0) it is c.
+    ///
+    /// f(θ) is the remembered value of a deterministic objective, or evaluated here with
+    /// the pair's noise seed (1 evaluation, kept for [`Oracle::settle`]). `None` when
+    /// the estimate was not such a pair.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteObjective`] for a non-finite f(θ) (θ stays in the workspace).
+    #[cfg(feature = "cg")]
+    pub fn pair_curvature(
+        &mut self,
+        gradient: GradientMethod,
+        theta: &[T],
+        g: &[T],
+    ) -> Result<Option<T>, Error> {
+        let n = self.ws.dim;
+        let pairs = self.estimator.pairs();
+        if n < 2 || gradient.evaluations(n, pairs) != 2 || !gradient.along_offset() {
+            return Ok(None);
+        }
+        let b = &mut self.ws.batch;
+        let seed = b.seeds[0];
+        let known = self
+            .value_at_theta
+            .filter(|_| self.objective.deterministic());
+        let centre = match known {
+            Some(v) => v,
+            None => {
+                let v = self.objective.evaluate(theta, seed);
+                self.evaluations += 1;
+                if !v.is_finite() {
+                    b.points[..n].copy_from_slice(theta);
+                    b.failed = Some(0);
+                    return Err(Error::NonFiniteObjective { sample: 0 });
+                }
+                if self.objective.deterministic() {
+                    self.value_at_theta = Some(v);
+                }
+                self.centre_sample = Some((v, seed));
+                v
+            }
+        };
+        let t = &b.offsets[..n];
+        let sigma = self.estimator.sigma();
+        let tt = t.iter().fold(T::ZERO, |s, &x| s + x.sq());
+        let (minus, plus) = (b.values[0], b.values[1]);
+        let c = (plus + minus - T::TWO * centre) / (sigma.sq() * tt);
+        let rise = plus - minus;
+        if rise == T::ZERO {
+            return Ok(c.is_finite().then_some(c));
+        }
+        // m = (ĝ·t)/(‖t‖·D) = 2σ(ĝ·t)/(f(θ + σt) − f(θ − σt)).
+        let gt = g.iter().zip(t).fold(T::ZERO, |s, (&gi, &ti)| s + gi * ti);
+        let m = T::TWO * sigma * gt / rise;
+        let scaled = m * c;
+        Ok((m > T::ZERO && scaled.is_finite()).then_some(scaled))
+    }
+
+    /// True when this iteration has evaluated samples and they, with f(θ) where it is
+    /// known (remembered, or evaluated this iteration), all lie within
     /// [`PLATEAU_MARGIN`] (relative) of the lowest: nothing near θ tells one point from
     /// another — a plateau at this σ.
     #[cfg(feature = "cg")]
     pub fn flat(&self) -> bool {
         let best = &self.ws.batch.best;
+        let centre = self
+            .value_at_theta
+            .filter(|_| self.objective.deterministic())
+            .or(self.centre_sample.map(|(v, _)| v));
         match (best.value, best.highest) {
-            (Some(low), Some(high)) => !below(low, high, PLATEAU_MARGIN),
+            (Some(low), Some(high)) => {
+                let (low, high) = centre.map_or((low, high), |c| (low.min(c), high.max(c)));
+                !below(low, high, PLATEAU_MARGIN)
+            }
             _ => false,
         }
     }
@@ -169,7 +246,9 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
             axpy(T::ONE, p, theta);
             return Ok((Verdict::Uncompared, norm(p)));
         };
-        let known = self.value_at_theta.filter(|_| deterministic);
+        let known = self.value_at_theta.filter(|_| deterministic).or(self
+            .centre_sample
+            .and_then(|(v, seed)| (seed == b.best.seed).then_some(v)));
         let count = if known.is_some() { 1 } else { 2 };
         let (model, current) = b.points[..2 * n].split_at_mut(n);
         for ((m, c), (&x, &pi)) in model

@@ -27,7 +27,11 @@
 //! iteration's own ĝ(θ) from the same samples ([`HvpMethod::ForwardDifference`]): each
 //! HVP costs one gradient estimate instead of two. Measured (20 seeds, evaluations to
 //! 99 % parameter-error reduction, central → forward): BOX2-REF NewtonCG-A 396 → 216,
-//! QUAD-far NewtonCG-AS 294 → 196, BOX2 NewtonCG-FR 84 → 64 (BENCHMARKS.md).
+//! QUAD-far NewtonCG-AS 294 → 196, BOX2 NewtonCG-FR 84 → 64 (BENCHMARKS.md). Where an
+//! iteration's gradient is one antithetic pair along its offset (the aggregate
+//! estimator with one pair, any estimator in one dimension), they take the curvature
+//! along it from the pair and f(θ) instead ([`NewtonCg::pair_curvature`]): QUAD-far
+//! NewtonCG-ASC 246 → 148, BOX2-REF 48 → 41.
 
 use super::{Adam, Curvature, Method, Ncg, NegativeCurvature, Newton, NewtonCg, Schedule};
 use crate::estimate::{Draws, GradientMethod, HessianMethod, HvpMethod};
@@ -210,11 +214,13 @@ impl Preset {
             reorthogonalize: false,
             negative_curvature: h.negative_curvature,
             compare_samples: false,
+            pair_curvature: false,
         };
         // Newton-CG on one sample set per iteration, CRN forward-difference HVPs of the
         // same gradient estimator (from the iteration's ĝ(θ)).
         let reusing = |gradient| NewtonCg {
             reuse_samples: true,
+            pair_curvature: true,
             ..newton_cg(gradient, HvpMethod::ForwardDifference { gradient })
         };
         match self {

@@ -19,8 +19,10 @@ pub enum Schedule<T> {
     },
     /// σ follows what the run finds rather than the budget ([`Schedule::adapt`]). After
     /// an iteration that stepped to a minimum of its curvature model (positive
-    /// curvature, no fallback step) less than σ away, or whose model step the objective
-    /// rejected ([`StepKind::Rejected`]), σ ← max(end, shrink·σ); after one without a
+    /// curvature, no fallback step) less than σ away, σ ← max(end, shrink^c·σ), c the
+    /// fraction of the directions its samples spanned ([`StepKind::ToModelMinimum`]);
+    /// after one whose model step the objective rejected ([`StepKind::Rejected`]),
+    /// σ ← max(end, shrink·σ); after one without a
     /// model minimum (non-positive curvature or a vanishing gradient), or whose step
     /// stopped at the trust boundary on the way to a model minimum beyond it and the
     /// objective confirmed that step, σ ← σ/√shrink; after a step of at least σ to a
@@ -37,7 +39,11 @@ pub enum Schedule<T> {
     /// unconfirmed, a boundary step is as likely the estimates' noise (BOX10's end game,
     /// where widening kept σ oscillating and the squares dithering). No model minimum —
     /// a plateau, where the gradient vanishes because nothing is seen, or a ridge —
-    /// calls for a wider kernel. The square root makes σ fall on balance only while
+    /// calls for a wider kernel. A model fitted from samples along fewer directions
+    /// than n (one antithetic pair in two dimensions) sees its minimum along those
+    /// directions only, so a short step there shrinks σ by the matching fraction of
+    /// `shrink`: shrink^c, c = directions/n, and n/directions such steps shrink it by
+    /// `shrink`. The square root makes σ fall on balance only while
     /// more than a third of the iterations find a nearby minimum, as evolution
     /// strategies' success rules adapt their step size. A
     /// rejected model step says the model at this σ does not describe f near θ — the
@@ -57,8 +63,14 @@ pub enum Schedule<T> {
 /// What an iteration's step says about the smoothing scale ([`Schedule::adapt`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum StepKind<T> {
-    /// A step of this length to a minimum of the iteration's curvature model.
-    ToModelMinimum(T),
+    /// A step to a minimum of the iteration's curvature model.
+    ToModelMinimum {
+        /// The step's length.
+        length: T,
+        /// The fraction of the n parameter directions the iteration's samples spanned,
+        /// in (0, 1]: min(1, antithetic directions / n).
+        coverage: T,
+    },
     /// A step to the trust boundary toward a minimum of the curvature model beyond it;
     /// `confirmed` when the objective compared it with the current point and kept it
     /// ([`super::NewtonCg::compare_samples`]).
@@ -96,8 +108,17 @@ impl<T: Real> Schedule<T> {
                     sigma / shrink.sqrt()
                 }
                 StepKind::TowardModelMinimum { confirmed: false } => sigma,
-                StepKind::ToModelMinimum(length) if length >= sigma => sigma,
-                StepKind::ToModelMinimum(_) | StepKind::Rejected => (shrink * sigma).max(end),
+                StepKind::ToModelMinimum { length, .. } if length >= sigma => sigma,
+                StepKind::ToModelMinimum { coverage, .. } => {
+                    let c = coverage.max(T::ZERO).min(T::ONE);
+                    let factor = if c == T::ONE {
+                        shrink
+                    } else {
+                        (c * shrink.ln()).exp()
+                    };
+                    (factor * sigma).max(end)
+                }
+                StepKind::Rejected => (shrink * sigma).max(end),
             }),
             _ => None,
         }
@@ -279,9 +300,21 @@ mod tests {
         assert_eq!(s.sigma(0.0), 2.0);
         assert!((s.sigma(0.5) - 1.05).abs() < 1e-15);
         // Short steps shrink, down to the floor; long ones keep σ.
-        assert_eq!(s.adapt(2.0, StepKind::ToModelMinimum(0.5)), Some(1.0));
-        assert_eq!(s.adapt(2.0, StepKind::ToModelMinimum(2.0)), Some(2.0));
-        assert_eq!(s.adapt(0.15, StepKind::ToModelMinimum(0.0)), Some(0.1));
+        let to_minimum = |length| StepKind::ToModelMinimum {
+            length,
+            coverage: 1.0,
+        };
+        assert_eq!(s.adapt(2.0, to_minimum(0.5)), Some(1.0));
+        assert_eq!(s.adapt(2.0, to_minimum(2.0)), Some(2.0));
+        assert_eq!(s.adapt(0.15, to_minimum(0.0)), Some(0.1));
+        // Samples along half the directions: two short steps shrink σ by `shrink`.
+        let half = StepKind::ToModelMinimum {
+            length: 0.5,
+            coverage: 0.5,
+        };
+        let once = s.adapt(2.0, half).unwrap();
+        assert!((once - 2.0 * 0.5f64.sqrt()).abs() < 1e-15);
+        assert!((s.adapt(once, half).unwrap() - 1.0).abs() < 1e-15);
         // A rejected model step shrinks whatever its length.
         assert_eq!(s.adapt(2.0, StepKind::Rejected), Some(1.0));
         // No model minimum (a plateau) widens the kernel; so does a confirmed step to the
@@ -295,7 +328,7 @@ mod tests {
             start: 2.0,
             end: 0.1,
         };
-        assert_eq!(linear.adapt(2.0, StepKind::ToModelMinimum(0.0)), None);
+        assert_eq!(linear.adapt(2.0, to_minimum(0.0)), None);
         for shrink in [0.0, 1.0, f64::NAN] {
             let bad = Schedule::Adaptive {
                 start: 2.0,
