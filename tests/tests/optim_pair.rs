@@ -7,7 +7,7 @@ mod common;
 
 use common::{Sampling, optimise};
 use hodr_core::optim::preset::{Hyper, Preset};
-use hodr_core::optim::{Budget, NegativeCurvature, Schedule};
+use hodr_core::optim::{Budget, Schedule};
 use hodr_core::{NoiseSeed, Objective};
 
 /// ½xᵀAx with A = [[3, 1], [1, 2]].
@@ -20,20 +20,7 @@ fn gradient(x: &[f64]) -> [f64; 2] {
 }
 
 fn hyper() -> Hyper<f64> {
-    Hyper {
-        pairs: 1,
-        sigma_start: 0.5,
-        sigma_end: 0.01,
-        trust_radius: 100.0,
-        line_search_iterations: 2,
-        line_search_tolerance: 1e-3,
-        recompute: 10,
-        learning_rate: 0.1,
-        common_random_numbers: true,
-        negative_curvature: NegativeCurvature::Fallback,
-        sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
-        inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
-    }
+    common::one_pair(0.5, 100.0)
 }
 
 fn adaptive(h: &Hyper<f64>) -> Schedule<f64> {

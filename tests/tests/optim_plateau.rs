@@ -10,7 +10,7 @@ mod common;
 
 use common::{Sampling, optimise};
 use hodr_core::optim::preset::{Hyper, Preset};
-use hodr_core::optim::{Budget, NegativeCurvature, Schedule};
+use hodr_core::optim::{Budget, Schedule};
 use hodr_core::{NoiseSeed, Objective};
 
 /// A bowl at the origin of radius 3 on a plateau of height 1 that wobbles by 1e-6.
@@ -21,20 +21,7 @@ fn bowl_on_wobbly_plateau(x: &[f64]) -> f64 {
 }
 
 fn hyper() -> Hyper<f64> {
-    Hyper {
-        pairs: 1,
-        sigma_start: 1.0,
-        sigma_end: 0.01,
-        trust_radius: 2.0,
-        line_search_iterations: 2,
-        line_search_tolerance: 1e-3,
-        recompute: 10,
-        learning_rate: 0.1,
-        common_random_numbers: true,
-        negative_curvature: NegativeCurvature::Fallback,
-        sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
-        inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
-    }
+    common::one_pair(1.0, 2.0)
 }
 
 /// Far out on the plateau every sample ties with every other (within the comparison
