@@ -498,6 +498,7 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
             loss: None,
             snapshot,
             value_at_theta: st.value_at_theta,
+            #[cfg(feature = "cg")]
             centre_sample: None,
             settled: false,
         };

@@ -17,7 +17,9 @@ use crate::estimate::HvpMethod;
 use crate::estimate::{Estimator, GradientMethod, Report};
 #[cfg(feature = "cg")]
 use crate::objective::Batch;
-use crate::objective::{NoiseSeed, Objective};
+#[cfg(feature = "cg")]
+use crate::objective::NoiseSeed;
+use crate::objective::Objective;
 use crate::real::Real;
 #[cfg(feature = "cg")]
 use crate::workspace::MIN_ROWS;
@@ -38,6 +40,7 @@ pub(crate) struct Oracle<'a, 'w, T, R, O: ?Sized> {
     pub value_at_theta: Option<T>,
     /// f(θ) at the current θ evaluated with this noise seed this iteration
     /// ([`Oracle::pair_curvature`]).
+    #[cfg(feature = "cg")]
     pub centre_sample: Option<(T, NoiseSeed)>,
     /// [`Oracle::settle`] moved θ this iteration and set `value_at_theta` for it.
     pub settled: bool,
