@@ -187,7 +187,7 @@ impl Box2Ref {
     /// separable before the clamp, so each pixel of θ's box combines two precomputed
     /// 1-D factors; J* is precomputed over its support and 0 outside it. Along each row
     /// the columns split into runs outside and inside the target's columns, each summed
-    /// in [`LANES`] partial sums.
+    /// in `LANES` partial sums.
     pub fn loss(&self, theta: &[f64]) -> f64 {
         let p = [
             theta[0].clamp(CLAMP_LO, CLAMP_HI),
