@@ -169,11 +169,9 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         if n < 2 || gradient.evaluations(n, pairs) != 2 || !gradient.along_offset() {
             return Ok(None);
         }
+        let seed = self.ws.batch.seeds[0];
+        let known = self.known_value(Some(seed));
         let b = &mut self.ws.batch;
-        let seed = b.seeds[0];
-        let known = self
-            .value_at_theta
-            .filter(|_| self.objective.deterministic());
         let centre = match known {
             Some(v) => v,
             None => {
@@ -207,6 +205,20 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         Ok((m > T::ZERO && scaled.is_finite()).then_some(scaled))
     }
 
+    /// f(θ) where it is known without evaluating it: a deterministic objective's
+    /// remembered value, else the value [`Oracle::pair_curvature`] evaluated this
+    /// iteration with noise seed `seed` (with any seed for `None`).
+    #[cfg(feature = "cg")]
+    fn known_value(&self, seed: Option<NoiseSeed>) -> Option<T> {
+        self.value_at_theta
+            .filter(|_| self.objective.deterministic())
+            .or_else(|| {
+                self.centre_sample
+                    .filter(|&(_, s)| seed.is_none_or(|want| want == s))
+                    .map(|(v, _)| v)
+            })
+    }
+
     /// True when this iteration has evaluated samples and they, with f(θ) where it is
     /// known (remembered, or evaluated this iteration), all lie within
     /// [`PLATEAU_MARGIN`] (relative) of the lowest: nothing near θ tells one point from
@@ -214,10 +226,7 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     #[cfg(feature = "cg")]
     pub fn flat(&self) -> bool {
         let best = &self.ws.batch.best;
-        let centre = self
-            .value_at_theta
-            .filter(|_| self.objective.deterministic())
-            .or(self.centre_sample.map(|(v, _)| v));
+        let centre = self.known_value(None);
         match (best.value, best.highest) {
             (Some(low), Some(high)) => {
                 let (low, high) = centre.map_or((low, high), |c| (low.min(c), high.max(c)));
@@ -244,14 +253,12 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     pub fn settle(&mut self, theta: &mut [T], p: &[T]) -> Result<(Verdict, T), Error> {
         let n = self.ws.dim;
         let deterministic = self.objective.deterministic();
+        let known = self.known_value(Some(self.ws.batch.best.seed));
         let b = &mut self.ws.batch;
         let Some(sample_value) = b.best.value else {
             axpy(T::ONE, p, theta);
             return Ok((Verdict::Uncompared, norm(p)));
         };
-        let known = self.value_at_theta.filter(|_| deterministic).or(self
-            .centre_sample
-            .and_then(|(v, seed)| (seed == b.best.seed).then_some(v)));
         let count = if known.is_some() { 1 } else { 2 };
         let (model, current) = b.points[..2 * n].split_at_mut(n);
         for ((m, c), (&x, &pi)) in model

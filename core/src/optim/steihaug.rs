@@ -104,12 +104,11 @@ pub struct NewtonCg<T> {
     pub compare_samples: bool,
     /// Where the iteration's gradient came from one antithetic pair θ ± σt and lies
     /// along t ([`GradientMethod::along_offset`]) in n ≥ 2 dimensions, the first inner
-    /// step's
-    /// curvature along t is the pair's second difference
+    /// step's curvature along t is the pair's second difference
     /// (f(θ + σt) + f(θ − σt) − 2f(θ))/(σ‖t‖)² instead of an HVP: f(θ) is the value
-    /// remembered for a deterministic objective (no evaluation) or f at θ with the pair's
-    /// noise seed (one evaluation, which [`NewtonCg::compare_samples`] then reuses), where
-    /// the HVP costs a gradient estimate (two). The pair's samples see f along t only,
+    /// remembered for a deterministic objective (no evaluation) or f at θ with the
+    /// pair's noise seed (one evaluation, which [`NewtonCg::compare_samples`] then
+    /// reuses), where the HVP costs a gradient estimate (two). The pair's samples see f along t only,
     /// so the curvature along t is all an estimate from them can hold; the difference is
     /// the mean curvature of f over [θ − σt, θ + σt], as the forward-difference HVP is
     /// that of f̄ over [θ, θ + εu]. In one dimension the HVP stays: on the narrow well
