@@ -54,6 +54,7 @@ impl Settings {
             negative_curvature: hodr_core::optim::NegativeCurvature::Fallback,
             sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK as f32,
             inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
+            line_curvature: false,
         }
     }
 }

@@ -42,7 +42,8 @@ enum Command {
         budget: Option<usize>,
         /// Hyper-parameter override for every task, key=value (repeatable): pairs,
         /// sigma_start, sigma_end, trust_radius, ls_iters, recompute, lr, crn,
-        /// negative_curvature (fallback | two-sided), sigma_shrink, inner_steps.
+        /// negative_curvature (fallback | two-sided), sigma_shrink, inner_steps,
+        /// line_curvature (true | false).
         #[arg(long = "set")]
         set: Vec<String>,
         /// Output directory.

@@ -115,6 +115,7 @@ impl Problem {
                 negative_curvature: NegativeCurvature::Fallback,
                 sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
                 inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
+                line_curvature: false,
             },
         }
     }

@@ -88,6 +88,9 @@ pub struct AdaptiveSettings {
     pub sigma_shrink: f64,
     /// Newton-CG's inner CG steps per iteration.
     pub inner_steps: usize,
+    /// Newton-CG's first inner step takes its curvature from f on a line along ĝ
+    /// (`hodr_core::optim::NewtonCg::line_curvature`).
+    pub line_curvature: bool,
 }
 
 impl Settings {
@@ -107,6 +110,7 @@ impl Settings {
             negative_curvature: NegativeCurvature::Fallback,
             sigma_shrink: SIGMA_SHRINK,
             inner_steps: NEWTON_CG_INNER_STEPS,
+            line_curvature: false,
         }
     }
 }
@@ -288,13 +292,14 @@ const BOX2: Settings = Settings {
 /// to 6 of the image's 8 units and the squares scatter (0 of 10 seeds converged).
 ///
 /// The adaptive presets start wider (σ 1.0), shrink by 0.8, take 24 pairs and one
-/// inner CG step (the model minimum along the gradient): NewtonCG-FR then reaches 99 %
-/// parameter-error reduction in 20 of 20 seeds (19 of seeds 20–39), median 1 536
-/// evaluations (1 536 on 20–39), against 10 of 20 with the settings above and three
-/// inner steps (a wider start keeps squares from settling on one another; cheap
-/// iterations with many pairs shorten the noisy end game). Shrink 0.6–0.8 all give
-/// 1 440–1 632; 0.3, best with central-difference HVPs, loses 5 seeds with forward
-/// ones. BENCHMARKS.md, "BOX10: Newton-CG on FR22 gradients".
+/// inner CG step (the model minimum along the gradient), its curvature from f on a
+/// line along ĝ (2–3 evaluations, not an HVP's 48): NewtonCG-FR then reaches 99 %
+/// parameter-error reduction in 18 of 20 seeds (20 of seeds 20–39), median 918
+/// evaluations (918 on 20–39); with the HVP 20 of 20 (19), median 1 536 (1 536), and
+/// with the settings above and three inner steps 10 of 20 (a wider start keeps
+/// squares from settling on one another; cheap iterations with many pairs shorten the
+/// noisy end game). BENCHMARKS.md, "BOX10: Newton-CG on FR22 gradients" and "BOX10:
+/// curvature from a line".
 const BOX10: Settings = Settings {
     pairs: 16,
     sigma_start: 0.6,
@@ -308,6 +313,7 @@ const BOX10: Settings = Settings {
         sigma_start: 1.0,
         sigma_shrink: 0.8,
         inner_steps: 1,
+        line_curvature: true,
     }),
 };
 

@@ -15,7 +15,8 @@ fn converged(preset: Preset) -> usize {
 /// Aggregate gradients blur every square with N₁ and Newton-CG settles squares on one
 /// another (hiding a misplaced square halves its cost); FR22's gradients blur the
 /// other coordinates with p_G, and the same optimiser reaches every target. Measured on
-/// seeds 0..10: NewtonCG-FR 10, NewtonCG-AS 6 (20 seeds: 20 and 12).
+/// seeds 0..10 with BOX10's line curvature: NewtonCG-FR 9, NewtonCG-AS 2 (20 seeds: 18
+/// and 7; with HVPs 20 and 12).
 #[test]
 fn newton_cg_on_fr22_gradients_solves_box10() {
     let fr = converged(Preset::NewtonCgFr22);

@@ -87,6 +87,7 @@ fn mug_converges_from_plateau_starts() {
         negative_curvature: NegativeCurvature::Fallback,
         sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
         inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
+        line_curvature: false,
     };
     let wins = (0..20)
         .filter(|&seed| {
@@ -115,6 +116,7 @@ fn shadow_method(pairs: usize, ls: usize, nc: NegativeCurvature) -> (Method<f64>
         negative_curvature: nc,
         sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
         inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
+        line_curvature: false,
     };
     (Preset::OurHvpa.method(&h), h)
 }

@@ -22,6 +22,7 @@ fn hyper<T: Real>(sigma: f64, trust: f64) -> Hyper<T> {
         negative_curvature: NegativeCurvature::Fallback,
         sigma_shrink: T::from_f64(hodr_core::optim::preset::SIGMA_SHRINK),
         inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
+        line_curvature: false,
     }
 }
 

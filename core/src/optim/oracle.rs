@@ -39,7 +39,7 @@ pub(crate) struct Oracle<'a, 'w, T, R, O: ?Sized> {
     /// f(θ) at the current θ if known (a deterministic objective evaluated there).
     pub value_at_theta: Option<T>,
     /// f(θ) at the current θ evaluated with this noise seed this iteration
-    /// ([`Oracle::pair_curvature`]).
+    /// ([`Oracle::pair_curvature`], [`Oracle::line_curvature`]).
     #[cfg(feature = "cg")]
     pub centre_sample: Option<(T, NoiseSeed)>,
     /// [`Oracle::settle`] moved θ this iteration and set `value_at_theta` for it.
@@ -198,15 +198,82 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         if rise == T::ZERO {
             return Ok(c.is_finite().then_some(c));
         }
-        // m = (ĝ·t)/(‖t‖·D) = 2σ(ĝ·t)/(f(θ + σt) − f(θ − σt)).
         let gt = g.iter().zip(t).fold(T::ZERO, |s, (&gi, &ti)| s + gi * ti);
-        let m = T::TWO * sigma * gt / rise;
+        let m = weight(sigma * gt, rise);
         let scaled = m * c;
         Ok((m > T::ZERO && scaled.is_finite()).then_some(scaled))
     }
 
+    /// The curvature along the gradient estimate `g` (≠ 0) from f on the line through θ
+    /// along û = ĝ/‖ĝ‖ ([`super::NewtonCg::line_curvature`]): the second difference
+    /// c = (f(θ + hû) + f(θ − hû) − 2f(θ))/h² at h = σ√n, in the estimator's scale m·c
+    /// with m = ‖ĝ‖/D, D = (f(θ + hû) − f(θ − hû))/(2h) the line's slope, so that the
+    /// model step ‖ĝ‖/(m·c) = D/c is the minimum of the parabola through the three
+    /// values (exact on quadratics). Where the line does not fall along −ĝ (D ≤ 0) the
+    /// result is 0: no model minimum, and Newton-CG takes its fallback step.
+    ///
+    /// The three points share one noise seed, the iteration's lowest sample's (its
+    /// first's before any), so renderer noise cancels from the differences; f(θ) is the
+    /// remembered value of a deterministic objective, else evaluated (kept for
+    /// [`Oracle::settle`]). Costs 2 or 3 evaluations, counted here.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteObjective`] (the point stays in the workspace).
+    #[cfg(feature = "cg")]
+    pub fn line_curvature(&mut self, theta: &[T], g: &[T]) -> Result<T, Error> {
+        let n = self.ws.dim;
+        let seed = match self.ws.batch.best.value {
+            Some(_) => self.ws.batch.best.seed,
+            None => self.ws.batch.seeds[0],
+        };
+        let known = self.known_value(Some(seed));
+        let count = if known.is_some() { 2 } else { 3 };
+        let h = self.estimator.sigma() * T::from_usize(n).sqrt();
+        let scale = h / norm(g);
+        let b = &mut self.ws.batch;
+        for (k, side) in [T::ONE, -T::ONE, T::ZERO]
+            .into_iter()
+            .take(count)
+            .enumerate()
+        {
+            for ((x, &t), &gi) in b.points[k * n..(k + 1) * n].iter_mut().zip(theta).zip(g) {
+                *x = t + side * scale * gi;
+            }
+        }
+        b.seeds[..count].fill(seed);
+        let batch = Batch::new(&b.points[..count * n], &b.seeds[..count], n)?;
+        self.objective
+            .evaluate_batch(&batch, &mut b.values[..count]);
+        self.evaluations += count;
+        if let Some(k) = b.values[..count].iter().position(|v| !v.is_finite()) {
+            b.failed = Some(k);
+            return Err(Error::NonFiniteObjective { sample: k });
+        }
+        let (plus, minus) = (b.values[0], b.values[1]);
+        let centre = match known {
+            Some(v) => v,
+            None => {
+                let v = b.values[2];
+                if self.objective.deterministic() {
+                    self.value_at_theta = Some(v);
+                }
+                self.centre_sample = Some((v, seed));
+                v
+            }
+        };
+        let rise = plus - minus;
+        if rise <= T::ZERO {
+            return Ok(T::ZERO);
+        }
+        let c = (plus + minus - T::TWO * centre) / h.sq();
+        // ĝ·(hû) = h‖ĝ‖.
+        let scaled = weight(h * norm(g), rise) * c;
+        Ok(if scaled.is_finite() { scaled } else { T::ZERO })
+    }
+
     /// f(θ) where it is known without evaluating it: a deterministic objective's
-    /// remembered value, else the value [`Oracle::pair_curvature`] evaluated this
+    /// remembered value, else the value [`Oracle::pair_curvature`] or
+    /// [`Oracle::line_curvature`] evaluated this
     /// iteration with noise seed `seed` (with any seed for `None`).
     #[cfg(feature = "cg")]
     fn known_value(&self, seed: Option<NoiseSeed>) -> Option<T> {
@@ -333,6 +400,14 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         }
         Ok(best)
     }
+}
+
+/// The estimator's scale m along an offset s from θ: m = (ĝ·s)/(‖s‖·D) with
+/// D = (f(θ + s) − f(θ − s))/(2‖s‖) the slope f shows along s, i.e.
+/// m = 2(ĝ·s)/(f(θ + s) − f(θ − s)) for `gs` = ĝ·s and `rise` = f(θ + s) − f(θ − s).
+#[cfg(feature = "cg")]
+fn weight<T: Real>(gs: T, rise: T) -> T {
+    T::TWO * gs / rise
 }
 
 /// a < b by more than `margin` × the larger magnitude (else they tie).

@@ -31,7 +31,9 @@
 //! iteration's gradient is one antithetic pair along its offset (the aggregate
 //! estimator with one pair, any estimator in one dimension), they take the curvature
 //! along it from the pair and f(θ) instead ([`NewtonCg::pair_curvature`]): QUAD-far
-//! NewtonCG-ASC 246 → 148, BOX2-REF 48 → 41.
+//! NewtonCG-ASC 246 → 148, BOX2-REF 48 → 41. With [`Hyper::line_curvature`] the
+//! first curvature of an iteration with several pairs comes from f on a line along ĝ
+//! ([`NewtonCg::line_curvature`]): BOX10 NewtonCG-FR 1 536 → 918.
 
 use super::{Adam, Curvature, Method, Ncg, NegativeCurvature, Newton, NewtonCg, Schedule};
 use crate::estimate::{Draws, GradientMethod, HessianMethod, HvpMethod};
@@ -73,6 +75,10 @@ pub struct Hyper<T> {
     /// the step the model minimum along the gradient, capped by the trust radius.
     /// Default: [`NEWTON_CG_INNER_STEPS`].
     pub inner_steps: usize,
+    /// The reusing Newton-CG presets (NewtonCG-A, -AS, -ASC, -FR, -LS) take their first
+    /// inner step's curvature from f on a line along ĝ rather than an HVP
+    /// ([`NewtonCg::line_curvature`]). Default: `false`.
+    pub line_curvature: bool,
 }
 
 /// Default [`Hyper::sigma_shrink`].
@@ -215,12 +221,14 @@ impl Preset {
             negative_curvature: h.negative_curvature,
             compare_samples: false,
             pair_curvature: false,
+            line_curvature: false,
         };
         // Newton-CG on one sample set per iteration, CRN forward-difference HVPs of the
         // same gradient estimator (from the iteration's ĝ(θ)).
         let reusing = |gradient| NewtonCg {
             reuse_samples: true,
             pair_curvature: true,
+            line_curvature: h.line_curvature,
             ..newton_cg(gradient, HvpMethod::ForwardDifference { gradient })
         };
         match self {

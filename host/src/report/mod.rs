@@ -60,6 +60,8 @@ pub struct Overrides {
     pub sigma_shrink: Option<f64>,
     /// Newton-CG's inner CG steps per iteration.
     pub inner_steps: Option<usize>,
+    /// Newton-CG's first curvature from f on a line along ĝ.
+    pub line_curvature: Option<bool>,
 }
 
 /// `--set negative_curvature=` names, both ways.
@@ -120,6 +122,9 @@ impl Overrides {
         if let Some(v) = self.inner_steps {
             h.inner_steps = v;
         }
+        if let Some(v) = self.line_curvature {
+            h.line_curvature = v;
+        }
         h
     }
 
@@ -145,6 +150,7 @@ impl Overrides {
             "crn" => self.common_random_numbers = Some(value.parse().with_context(bad)?),
             "sigma_shrink" => self.sigma_shrink = Some(value.parse().with_context(bad)?),
             "inner_steps" => self.inner_steps = Some(value.parse().with_context(bad)?),
+            "line_curvature" => self.line_curvature = Some(value.parse().with_context(bad)?),
             "negative_curvature" => {
                 let named = NEGATIVE_CURVATURE_NAMES
                     .iter()
@@ -154,7 +160,7 @@ impl Overrides {
                     Some(named.with_context(|| format!("{} (fallback or two-sided)", bad()))?);
             }
             other => bail!(
-                "unknown hyper-parameter `{other}` (pairs, sigma_start, sigma_end, trust_radius, ls_iters, recompute, lr, crn, negative_curvature, sigma_shrink, inner_steps)"
+                "unknown hyper-parameter `{other}` (pairs, sigma_start, sigma_end, trust_radius, ls_iters, recompute, lr, crn, negative_curvature, sigma_shrink, inner_steps, line_curvature)"
             ),
         }
         Ok(())

@@ -108,6 +108,7 @@ pub fn quad_hyper() -> Hyper<f64> {
         negative_curvature: NegativeCurvature::Fallback,
         sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
         inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
+        line_curvature: false,
     }
 }
 
@@ -129,6 +130,7 @@ pub fn box2ref_hyper(preset: Preset) -> Hyper<f64> {
         negative_curvature: NegativeCurvature::Fallback,
         sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
         inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
+        line_curvature: false,
     }
 }
 
@@ -299,6 +301,7 @@ impl Task for RasterTask {
                 sigma_start: a.sigma_start,
                 sigma_shrink: a.sigma_shrink,
                 inner_steps: a.inner_steps,
+                line_curvature: a.line_curvature,
                 ..h
             },
             None => low_dim_pairs(h, self.dim()),
@@ -401,6 +404,7 @@ impl Task for PathTask {
             negative_curvature: NegativeCurvature::Fallback,
             sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
             inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
+            line_curvature: false,
         }
     }
     /// [`low_dim_pairs`], except on SHADOW: 8 pairs and σ from 1.0. NewtonCG-ASC then

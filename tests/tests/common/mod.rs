@@ -26,6 +26,7 @@ pub fn one_pair(sigma_start: f64, trust_radius: f64) -> Hyper<f64> {
         negative_curvature: NegativeCurvature::Fallback,
         sigma_shrink: SIGMA_SHRINK,
         inner_steps: NEWTON_CG_INNER_STEPS,
+        line_curvature: false,
     }
 }
 
