@@ -325,30 +325,46 @@ fn saddle_is_only_descended() {
     }
 }
 
+/// Every preset, and the Newton-CG presets also with their first curvature from a line
+/// along ĝ (`Hyper::line_curvature`): (preset, line curvature).
+fn variants() -> impl Iterator<Item = (Preset, bool)> {
+    Preset::ALL
+        .into_iter()
+        .flat_map(|p| [(p, false), (p, true)])
+}
+
+/// `hyper(sigma, trust)` with the line curvature on or off.
+fn hyper_with<T: Real>(sigma: f64, trust: f64, line: bool) -> Hyper<T> {
+    Hyper {
+        line_curvature: line,
+        ..hyper(sigma, trust)
+    }
+}
+
 /// A constant objective and a step 10σ away: zero gradients and curvatures must not
 /// divide by zero, and the iterate stays put (within the trust radius of noise).
 #[test]
 fn plateaus_give_no_division_by_zero() {
-    for preset in Preset::ALL {
-        let h = hyper::<f64>(0.1, 2.0);
+    for (preset, line) in variants() {
+        let h = hyper_with::<f64>(0.1, 2.0, line);
         let mut flat = |_: &[f64]| 3.0;
         let (theta, result) = optimise(preset, &h, &mut flat, &[1.0, -1.0], 10, |_| {});
         result.unwrap();
-        assert_eq!(theta, [1.0, -1.0], "{}", preset.name());
+        assert_eq!(theta, [1.0, -1.0], "{} line={line}", preset.name());
         let mut step = |x: &[f64]| if x[0] > 2.0 { 1.0 } else { 0.0 };
         let (theta, result) = optimise(preset, &h, &mut step, &[1.0, 0.0], 10, |_| {});
         result.unwrap();
         assert!(
             finite(&theta) && dist(&theta, &[1.0, 0.0]) < 2.0,
-            "{}: {theta:?}",
+            "{} line={line}: {theta:?}",
             preset.name()
         );
         // Single precision too.
-        let h32 = hyper::<f32>(0.1, 2.0);
+        let h32 = hyper_with::<f32>(0.1, 2.0, line);
         let mut flat32 = |_: &[f32]| 3.0f32;
         let (theta, result) = optimise(preset, &h32, &mut flat32, &[1.0f32, -1.0], 5, |_| {});
         result.unwrap();
-        assert_eq!(theta, [1.0f32, -1.0], "{} f32", preset.name());
+        assert_eq!(theta, [1.0f32, -1.0], "{} f32 line={line}", preset.name());
     }
 }
 
@@ -358,15 +374,15 @@ fn plateaus_give_no_division_by_zero() {
 fn extreme_scales_give_finite_results_or_typed_errors() {
     for sigma in [1e-12, 1e-6, 1.0, 1e6, 1e12] {
         for (offset, scale) in [(0.0, 1.0), (1e8, 1.0), (0.0, 1e30), (0.0, 1e-30)] {
-            for preset in Preset::ALL {
-                let h = hyper::<f64>(sigma, 2.0);
+            for (preset, line) in variants() {
+                let h = hyper_with::<f64>(sigma, 2.0, line);
                 let mut f =
                     |x: &[f64]| scale * ((x[0] - offset).powi(2) + 2.0 * (x[1] - offset).powi(2));
                 let start = [offset + 1.0, offset - 1.0];
                 let (theta, result) = optimise(preset, &h, &mut f, &start, 5, |_| {});
                 assert!(
                     finite(&theta),
-                    "σ={sigma:e} offset={offset:e} scale={scale:e} {}",
+                    "σ={sigma:e} offset={offset:e} scale={scale:e} {} line={line}",
                     preset.name()
                 );
                 if let Err(e) = result {
@@ -378,7 +394,7 @@ fn extreme_scales_give_finite_results_or_typed_errors() {
                         "{e}"
                     );
                 }
-                let h32 = hyper::<f32>(sigma, 2.0);
+                let h32 = hyper_with::<f32>(sigma, 2.0, line);
                 let (o32, s32) = (offset as f32, scale as f32);
                 let mut f32q = |x: &[f32]| {
                     s32 * ((x[0] - o32) * (x[0] - o32) + 2.0 * (x[1] - o32) * (x[1] - o32))
@@ -387,7 +403,7 @@ fn extreme_scales_give_finite_results_or_typed_errors() {
                 let (theta, result) = optimise(preset, &h32, &mut f32q, &start32, 5, |_| {});
                 assert!(
                     finite(&theta),
-                    "f32 σ={sigma:e} offset={offset:e} scale={scale:e} {}",
+                    "f32 σ={sigma:e} offset={offset:e} scale={scale:e} {} line={line}",
                     preset.name()
                 );
                 if let Err(e) = result {
@@ -408,8 +424,8 @@ fn extreme_scales_give_finite_results_or_typed_errors() {
 /// the iteration, and the last good parameters remain available.
 #[test]
 fn non_finite_objective_stops_with_the_iteration_and_keeps_parameters() {
-    for preset in Preset::ALL {
-        let h = hyper::<f64>(0.3, 2.0);
+    for (preset, line) in variants() {
+        let h = hyper_with::<f64>(0.3, 2.0, line);
         let mut f = |x: &[f64]| {
             if x[0] > 1.5 {
                 f64::NAN
@@ -418,7 +434,7 @@ fn non_finite_objective_stops_with_the_iteration_and_keeps_parameters() {
             }
         };
         let (theta, result) = optimise(preset, &h, &mut f, &[0.0, 0.5], 200, |_| {});
-        let failed = result.expect_err(preset.name());
+        let failed = result.expect_err(&format!("{} line={line}", preset.name()));
         assert!(failed.iteration >= 1);
         assert!(
             matches!(failed.error, Error::NonFiniteObjective { .. }),
@@ -426,7 +442,7 @@ fn non_finite_objective_stops_with_the_iteration_and_keeps_parameters() {
         );
         assert!(
             finite(&theta) && theta[0] <= 1.5 + 10.0 * 0.3,
-            "{}: {theta:?}",
+            "{} line={line}: {theta:?}",
             preset.name()
         );
         assert!(format!("{failed}").contains(&format!("iteration {}", failed.iteration)));

@@ -241,19 +241,13 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
             }
         }
         b.seeds[..count].fill(seed);
-        let batch = Batch::new(&b.points[..count * n], &b.seeds[..count], n)?;
-        self.objective
-            .evaluate_batch(&batch, &mut b.values[..count]);
-        self.evaluations += count;
-        if let Some(k) = b.values[..count].iter().position(|v| !v.is_finite()) {
-            b.failed = Some(k);
-            return Err(Error::NonFiniteObjective { sample: k });
-        }
-        let (plus, minus) = (b.values[0], b.values[1]);
+        self.evaluate_rows(count)?;
+        let values = &self.ws.batch.values;
+        let (plus, minus) = (values[0], values[1]);
         let centre = match known {
             Some(v) => v,
             None => {
-                let v = b.values[2];
+                let v = values[2];
                 if self.objective.deterministic() {
                     self.value_at_theta = Some(v);
                 }
@@ -337,14 +331,8 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
             *c = x;
         }
         b.seeds[..2].fill(b.best.seed);
-        let batch = Batch::new(&b.points[..count * n], &b.seeds[..count], n)?;
-        self.objective
-            .evaluate_batch(&batch, &mut b.values[..count]);
-        self.evaluations += count;
-        if let Some(k) = b.values[..count].iter().position(|v| !v.is_finite()) {
-            b.failed = Some(k);
-            return Err(Error::NonFiniteObjective { sample: k });
-        }
+        self.evaluate_rows(count)?;
+        let b = &self.ws.batch;
         let at_model = b.values[0];
         let at_current = known.unwrap_or(b.values[1]);
         let (verdict, moved, value) =
@@ -361,6 +349,26 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         self.value_at_theta = deterministic.then_some(value);
         self.settled = true;
         Ok((verdict, moved))
+    }
+
+    /// Evaluates the workspace batch's first `count` points at their noise seeds into
+    /// its values, counting the evaluations.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteObjective`] (the point stays in the workspace).
+    #[cfg(feature = "cg")]
+    fn evaluate_rows(&mut self, count: usize) -> Result<(), Error> {
+        let n = self.ws.dim;
+        let b = &mut self.ws.batch;
+        let batch = Batch::new(&b.points[..count * n], &b.seeds[..count], n)?;
+        self.objective
+            .evaluate_batch(&batch, &mut b.values[..count]);
+        self.evaluations += count;
+        if let Some(k) = b.values[..count].iter().position(|v| !v.is_finite()) {
+            b.failed = Some(k);
+            return Err(Error::NonFiniteObjective { sample: k });
+        }
+        Ok(())
     }
 
     /// The index of the lowest of `K` candidate points by objective value, all evaluated
@@ -384,14 +392,8 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
             place(k, &mut b.points[k * n..(k + 1) * n]);
             b.seeds[k] = seed;
         }
-        let batch = Batch::new(&b.points[..K * n], &b.seeds[..K], n)?;
-        self.objective.evaluate_batch(&batch, &mut b.values[..K]);
-        self.evaluations += K;
-        let values = &b.values[..K];
-        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
-            b.failed = Some(k);
-            return Err(Error::NonFiniteObjective { sample: k });
-        }
+        self.evaluate_rows(K)?;
+        let values = &self.ws.batch.values[..K];
         let mut best = 0;
         for k in 1..K {
             if values[k] < values[best] {
