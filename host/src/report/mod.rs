@@ -12,7 +12,10 @@
 //! * `results.csv` (one row per run) and `results.json` (settings, summary, every point).
 //!
 //! Timing policy: runs execute one at a time; inside a run the objective may use both
-//! cores (batch evaluation); the clock is paused while the error probe runs. An
+//! cores (batch evaluation); the clock is paused while the error probe runs. Within a
+//! task the methods take turns seed by seed (seed 0 of every method, then seed 1, …),
+//! so that a slow drift of the machine's speed (other tenants, clock boosts) falls on
+//! every method alike rather than on whichever ran during it. An
 //! interrupt (Ctrl-C) stops the current run at its next iteration, and the report is
 //! written from the runs finished so far.
 
@@ -225,8 +228,8 @@ pub fn report(config: &Config, interrupt: &AtomicBool, progress: bool) -> Result
     );
     let mut runs = Vec::new();
     'outer: for t in &tasks {
-        for &m in &methods {
-            for seed in 0..config.seeds {
+        for seed in 0..config.seeds {
+            for &m in &methods {
                 if interrupt.load(Ordering::Relaxed) {
                     break 'outer;
                 }
@@ -241,6 +244,17 @@ pub fn report(config: &Config, interrupt: &AtomicBool, progress: bool) -> Result
         }
     }
     bar.finish_and_clear();
+    // Rows by task, method, seed (the order they were asked for).
+    let task_names: Vec<&str> = tasks.iter().map(|t| t.name()).collect();
+    let method_names: Vec<&str> = methods.iter().map(|m| m.name()).collect();
+    let index = |names: &[&str], name: &str| names.iter().position(|n| *n == name);
+    runs.sort_by_key(|r| {
+        (
+            index(&task_names, &r.task),
+            index(&method_names, &r.method),
+            r.seed,
+        )
+    });
     write_outputs(
         config,
         &tasks,
@@ -267,7 +281,8 @@ fn write_outputs(
         "Seeds: {} per task × method{}. Cells: median wall time / objective evaluations to 90, 99 and 99.9 % \
          reduction of the image error (the loss at a fixed noise seed) and of the parameter error ‖θ − θ*‖; \
          \"—\" where half or more of the seeds never got there. ×best: median time to 99 % parameter-error \
-         reduction over the best method's. Runs execute one at a time; the clock excludes the error probes.\n",
+         reduction over the best method's. Runs execute one at a time, the methods taking turns seed by seed; \
+         the clock excludes the error probes.\n",
         config.seeds,
         if config.settings.quick {
             " (quick budgets)"
