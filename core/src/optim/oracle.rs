@@ -182,13 +182,11 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
                     b.failed = Some(0);
                     return Err(Error::NonFiniteObjective { sample: 0 });
                 }
-                if self.objective.deterministic() {
-                    self.value_at_theta = Some(v);
-                }
-                self.centre_sample = Some((v, seed));
+                self.remember_centre(v, seed);
                 v
             }
         };
+        let b = &self.ws.batch;
         let t = &b.offsets[..n];
         let sigma = self.estimator.sigma();
         let tt = t.iter().fold(T::ZERO, |s, &x| s + x.sq());
@@ -229,7 +227,8 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         let known = self.known_value(Some(seed));
         let count = if known.is_some() { 2 } else { 3 };
         let h = self.estimator.sigma() * T::from_usize(n).sqrt();
-        let scale = h / norm(g);
+        let gradient_norm = norm(g);
+        let scale = h / gradient_norm;
         let b = &mut self.ws.batch;
         for (k, side) in [T::ONE, -T::ONE, T::ZERO]
             .into_iter()
@@ -248,10 +247,7 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
             Some(v) => v,
             None => {
                 let v = values[2];
-                if self.objective.deterministic() {
-                    self.value_at_theta = Some(v);
-                }
-                self.centre_sample = Some((v, seed));
+                self.remember_centre(v, seed);
                 v
             }
         };
@@ -261,8 +257,19 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         }
         let c = (plus + minus - T::TWO * centre) / h.sq();
         // ĝ·(hû) = h‖ĝ‖.
-        let scaled = weight(h * norm(g), rise) * c;
+        let scaled = weight(h * gradient_norm, rise) * c;
         Ok(if scaled.is_finite() { scaled } else { T::ZERO })
+    }
+
+    /// Keeps f(θ) = `value`, evaluated this iteration with noise seed `seed`: for this
+    /// iteration's comparison, and for later iterations while θ stays if the objective
+    /// is deterministic.
+    #[cfg(feature = "cg")]
+    fn remember_centre(&mut self, value: T, seed: NoiseSeed) {
+        if self.objective.deterministic() {
+            self.value_at_theta = Some(value);
+        }
+        self.centre_sample = Some((value, seed));
     }
 
     /// f(θ) where it is known without evaluating it: a deterministic objective's
