@@ -57,7 +57,7 @@
 #![no_std]
 #![deny(missing_docs)]
 
-#[cfg(any(feature = "hessian", feature = "regression"))]
+#[cfg(any(feature = "hessian", feature = "regression", feature = "auto"))]
 mod cholesky;
 mod error;
 pub mod estimate;

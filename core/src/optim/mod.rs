@@ -16,6 +16,8 @@
 //! σ follows a [`Schedule`] over the [`Budget`]'s progress. Memory is the caller's: θ and
 //! one buffer of [`Method::buffer_len`] floats.
 
+#[cfg(feature = "auto")]
+pub mod auto;
 mod first_order;
 #[cfg(feature = "cg")]
 mod ncg;
@@ -40,6 +42,8 @@ use core::fmt;
 
 use rand_core::Rng;
 
+#[cfg(feature = "auto")]
+pub use auto::{Auto, AutoOptions, AutoReport, AutoStep, AutoTermination, NonFinite};
 pub use first_order::{Adam, GradientDescent};
 #[cfg(feature = "cg")]
 pub use ncg::{Curvature, Ncg};

@@ -1,0 +1,1018 @@
+//! `Auto`: hodr's default optimiser. It needs a start x₀ and a scale σ₀ — the distance
+//! over which the parameters matter, as CMA-ES asks for — and optionally box bounds;
+//! nothing else.
+//!
+//! Auto is a trust-region method on a smoothed quadratic model that remembers its
+//! evaluations:
+//!
+//! * **Memory.** Every evaluation is kept (up to [`Auto::history_len`] points; when full,
+//!   the point farthest from θ gives way). Each iteration fits the model
+//!   m(θ + σu) = c + gᵀu + ½uᵀHu to the remembered points within reach, weighted by
+//!   w = exp(−½(z/ρ)²), z = ‖x − θ‖/(σ√n), ρ = [`REACH`], by ridge regression towards the
+//!   previous iteration's model (the `model` module): an overdetermined fit averages the
+//!   points over a Gaussian of width ~σ, as hodr's estimators average samples, so the
+//!   model is that of the *smoothed* objective; an underdetermined one changes the
+//!   curvature least, as Powell's NEWUOA does, so curvature learnt earlier is kept.
+//!   A full Hessian is modelled for n ≤ [`FULL_MODEL_MAX_DIM`], a diagonal one above.
+//! * **Samples.** Where fewer than n + 1 remembered points lie within z ≤ ρ, the
+//!   iteration evaluates antithetic pairs θ ± σ√n·b along the columns b of a random
+//!   orthonormal frame (2n points, with θ, on the first iteration). The two halves of a
+//!   pair share a noise seed.
+//! * **Step.** The model's minimiser within ‖s‖ ≤ σ√n (the `trust` module: exact for
+//!   indefinite H, so a non-PSD model steps along its negative curvature), projected into
+//!   the bounds, is evaluated. It replaces θ when f is lower there; a stochastic
+//!   objective ([`Objective::deterministic`] false) is evaluated at θ and at the trial
+//!   point with one noise seed, so that the comparison is on common random numbers.
+//! * **σ is the trust radius** and follows the ratio ρ̂ of actual to predicted decrease:
+//!   ρ̂ < 0.1 halves σ; ρ̂ ≥ 0.7 with a step to the boundary doubles it; a step shorter
+//!   than half the radius shrinks σ towards twice its length (at most halving it). Where
+//!   the remembered values within reach tie (a plateau), σ doubles and a new pair is
+//!   drawn at the wider scale: where a model-based method sees zero slope, the wider
+//!   kernel reaches the slope.
+//! * **Anytime.** Nothing depends on a budget: the first k evaluations of a run are the
+//!   same whatever its [`AutoOptions::max_evaluations`], which only stops it (never
+//!   exceeded, even inside an iteration). The run ends converged when σ falls below
+//!   [`AutoOptions::tolerance`]·σ₀ (or below what T resolves at θ), or stagnated after
+//!   [`AutoOptions::patience`] iterations without a lower f(θ).
+//!
+//! Memory: one caller buffer of [`Auto::buffer_len`] floats, O(n² + m²) for m =
+//! [`Auto::history_len`] remembered points. Cost per iteration: O(m²n + m³) for the fit,
+//! O(n³) for the full model's eigen-decomposition.
+
+mod model;
+mod trust;
+
+use core::fmt;
+
+use rand_core::Rng;
+
+use crate::error::Error;
+use crate::objective::{Batch, NoiseSeed, Objective};
+use crate::optim::vector::{distance, dot, norm};
+use crate::real::Real;
+use crate::sample::normal;
+use model::Shape;
+
+/// Largest n for which the model has a full Hessian; above it, a diagonal one (2n + 1
+/// coefficients instead of (n+1)(n+2)/2, so memory and fitting stay affordable).
+pub const FULL_MODEL_MAX_DIM: usize = 20;
+
+/// ρ: the kernel's reach in units of σ√n (the distance of a fresh sample). Points with
+/// z ≤ ρ count as nearby; points with z ≤ 2ρ are fitted, with weight exp(−½(z/ρ)²) ≥ e⁻².
+pub const REACH: f64 = 2.0;
+
+/// Points evaluated per noise-seed chunk of one batch (a stack array of seeds).
+const CHUNK: usize = 64;
+
+/// What to do with an objective value that is NaN or ±∞.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum NonFinite {
+    /// The point counts as worse than any finite value: it is not fitted, a trial point
+    /// there is rejected. Default.
+    #[default]
+    Worst,
+    /// [`Auto::step`] returns [`Error::NonFiniteObjective`]; θ is unchanged.
+    Error,
+}
+
+/// Auto's options. Every one has a default; none is required.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct AutoOptions<T> {
+    /// The run ends converged once σ < `tolerance`·σ₀. Default: 1e-9.
+    pub tolerance: T,
+    /// The run ends stagnated after this many iterations without a lower f(θ).
+    /// Default: `None`, meaning 20 + 10n.
+    pub patience: Option<usize>,
+    /// Objective evaluations after which the run stops; never exceeded. Default: none.
+    pub max_evaluations: Option<usize>,
+    /// Policy for NaN/±∞ objective values. Default: [`NonFinite::Worst`].
+    pub non_finite: NonFinite,
+}
+
+impl<T: Real> Default for AutoOptions<T> {
+    fn default() -> Self {
+        AutoOptions {
+            tolerance: T::from_f64(1e-9),
+            patience: None,
+            max_evaluations: None,
+            non_finite: NonFinite::Worst,
+        }
+    }
+}
+
+impl<T: Real> AutoOptions<T> {
+    /// Sets [`AutoOptions::tolerance`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidSetting`] unless 0 < `tolerance` < 1.
+    pub fn with_tolerance(mut self, tolerance: T) -> Result<Self, Error> {
+        if !(tolerance > T::ZERO && tolerance < T::ONE) {
+            return Err(Error::InvalidSetting { name: "tolerance" });
+        }
+        self.tolerance = tolerance;
+        Ok(self)
+    }
+
+    /// Sets [`AutoOptions::patience`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidSetting`] for 0.
+    pub fn with_patience(mut self, patience: usize) -> Result<Self, Error> {
+        if patience == 0 {
+            return Err(Error::InvalidSetting { name: "patience" });
+        }
+        self.patience = Some(patience);
+        Ok(self)
+    }
+
+    /// Sets [`AutoOptions::max_evaluations`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidSetting`] for 0.
+    pub fn with_max_evaluations(mut self, max: usize) -> Result<Self, Error> {
+        if max == 0 {
+            return Err(Error::InvalidSetting {
+                name: "max_evaluations",
+            });
+        }
+        self.max_evaluations = Some(max);
+        Ok(self)
+    }
+
+    /// Sets [`AutoOptions::non_finite`].
+    pub fn with_non_finite(mut self, policy: NonFinite) -> Self {
+        self.non_finite = policy;
+        self
+    }
+}
+
+/// Why an Auto run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum AutoTermination {
+    /// σ fell below [`AutoOptions::tolerance`]·σ₀, or below what T resolves at θ.
+    Converged,
+    /// [`AutoOptions::patience`] iterations passed without a lower f(θ).
+    Stagnated,
+    /// [`AutoOptions::max_evaluations`] were used.
+    MaxEvaluations,
+}
+
+impl fmt::Display for AutoTermination {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            AutoTermination::Converged => "converged (σ below tolerance)",
+            AutoTermination::Stagnated => "stagnated (no lower value within the patience)",
+            AutoTermination::MaxEvaluations => "evaluation budget used",
+        })
+    }
+}
+
+/// What an iteration did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AutoStep {
+    /// The values within reach tied: σ widened, no step.
+    Plateau,
+    /// The model's minimum is at θ (no predicted decrease): σ shrank, nothing evaluated.
+    AtModelMinimum,
+    /// The trial point had a lower value and replaced θ.
+    Accepted,
+    /// The trial point was no better; θ stayed.
+    Rejected,
+    /// The budget ran out before the iteration could compare a step.
+    OutOfBudget,
+}
+
+/// One iteration's plain-data report.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AutoReport<T> {
+    /// 1-based iteration number.
+    pub iteration: usize,
+    /// Objective evaluations so far (all iterations).
+    pub evaluations: usize,
+    /// σ this iteration used (its trust radius is σ√n).
+    pub sigma: T,
+    /// σ for the next iteration.
+    pub next_sigma: T,
+    /// f(θ) after the iteration, when known and finite.
+    pub value: Option<T>,
+    /// Distance θ moved (including a move to a lower sample).
+    pub step_length: T,
+    /// Actual over predicted decrease of the trial step, when one was evaluated.
+    pub ratio: Option<T>,
+    /// What the iteration did.
+    pub kind: AutoStep,
+    /// Set when this iteration ended the run.
+    pub termination: Option<AutoTermination>,
+}
+
+/// Regions of the caller's buffer.
+struct Memory<'b, T> {
+    lower: &'b mut [T],
+    upper: &'b mut [T],
+    /// Remembered points (rows of n) and their values.
+    xs: &'b mut [T],
+    fs: &'b mut [T],
+    /// The fit's rows u, √w, residuals, and its m×m system.
+    u: &'b mut [T],
+    sw: &'b mut [T],
+    r: &'b mut [T],
+    gram: &'b mut [T],
+    /// The model (standardised units) and the prior (parameter units, at `c0`).
+    g: &'b mut [T],
+    h: &'b mut [T],
+    g0: &'b mut [T],
+    h0: &'b mut [T],
+    c0: &'b mut [T],
+    /// Trust-region scratch.
+    a: &'b mut [T],
+    v: &'b mut [T],
+    gamma: &'b mut [T],
+    lambda: &'b mut [T],
+    s: &'b mut [T],
+    tmp: &'b mut [T],
+    /// Orthonormal sampling frame (columns as rows of n).
+    frame: &'b mut [T],
+    /// Points of the current batch and their values.
+    stage: &'b mut [T],
+    stage_f: &'b mut [T],
+}
+
+/// Region lengths for dimension n, in [`Memory`]'s order.
+fn regions(n: usize) -> [usize; 22] {
+    let shape = Shape::for_dim(n);
+    let m = history_len(n);
+    let hl = shape.hessian_len(n);
+    let full = if shape == Shape::Full { n * n } else { 0 };
+    let rows = stage_rows(n);
+    [
+        n,
+        n,
+        m * n,
+        m,
+        m * n,
+        m,
+        m,
+        m * m,
+        n,
+        hl,
+        n,
+        hl,
+        n,
+        full,
+        full,
+        n,
+        n,
+        n,
+        n,
+        n * n,
+        rows * n,
+        rows,
+    ]
+}
+
+fn history_len(n: usize) -> usize {
+    Shape::for_dim(n).coefficients(n) + n + 1
+}
+
+/// Points one batch can hold: the first iteration's 2n samples and θ, or a trial point
+/// and θ.
+fn stage_rows(n: usize) -> usize {
+    2 * n + 2
+}
+
+fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
+    let lens = regions(n);
+    let mut rest = buffer;
+    let mut parts: [&'b mut [T]; 22] = Default::default();
+    for (part, &len) in parts.iter_mut().zip(&lens) {
+        let (head, tail) = core::mem::take(&mut rest).split_at_mut(len);
+        *part = head;
+        rest = tail;
+    }
+    let [
+        lower,
+        upper,
+        xs,
+        fs,
+        u,
+        sw,
+        r,
+        gram,
+        g,
+        h,
+        g0,
+        h0,
+        c0,
+        a,
+        v,
+        gamma,
+        lambda,
+        s,
+        tmp,
+        frame,
+        stage,
+        stage_f,
+    ] = parts;
+    Memory {
+        lower,
+        upper,
+        xs,
+        fs,
+        u,
+        sw,
+        r,
+        gram,
+        g,
+        h,
+        g0,
+        h0,
+        c0,
+        a,
+        v,
+        gamma,
+        lambda,
+        s,
+        tmp,
+        frame,
+        stage,
+        stage_f,
+    }
+}
+
+/// Auto's state between iterations.
+#[derive(Clone, Copy, Debug)]
+struct State<T> {
+    sigma: T,
+    sigma0: T,
+    iteration: usize,
+    evaluations: usize,
+    /// f(θ) when known and finite.
+    value: Option<T>,
+    /// θ has been evaluated (its value may be non-finite).
+    centre_known: bool,
+    /// Remembered points.
+    count: usize,
+    has_prior: bool,
+    /// Next unused column of the sampling frame (n: draw a new frame).
+    frame_next: usize,
+    /// Draw a pair this iteration whatever the count of nearby points: σ widened on a
+    /// plateau, or a step failed on a model the nearby points did not determine.
+    resample: bool,
+    /// Iterations since f(θ) last fell.
+    stale: usize,
+    bounded: bool,
+    finished: Option<AutoTermination>,
+}
+
+/// Auto: a resumable run over θ (borrowed, updated in place to the best point found).
+pub struct Auto<'b, T, R> {
+    theta: &'b mut [T],
+    mem: Memory<'b, T>,
+    rng: R,
+    options: AutoOptions<T>,
+    shape: Shape,
+    st: State<T>,
+}
+
+impl<T: Real, R> fmt::Debug for Auto<'_, T, R> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Auto")
+            .field("theta", &self.theta)
+            .field("sigma", &self.st.sigma)
+            .field("value", &self.st.value)
+            .field("iteration", &self.st.iteration)
+            .field("evaluations", &self.st.evaluations)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
+    /// Floats of buffer [`Auto::new`] needs in dimension n:
+    /// m(2n + 3) + m² + O(n²) for m = [`Auto::history_len`]`(n)`.
+    pub fn buffer_len(n: usize) -> usize {
+        regions(n).iter().sum()
+    }
+
+    /// Points remembered in dimension n: the model's coefficient count
+    /// ((n+1)(n+2)/2 for a full Hessian, 2n + 1 for a diagonal one) plus n + 1.
+    pub fn history_len(n: usize) -> usize {
+        history_len(n)
+    }
+
+    /// A run from `theta` (x₀; updated in place to the best point found) with scale
+    /// `sigma0` > 0 and default options, drawing its samples from `rng`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidSigma`] for σ₀ not finite and positive, [`Error::NonFiniteInput`]
+    /// for a non-finite x₀, [`Error::DimensionMismatch`] for an empty x₀,
+    /// [`Error::WorkspaceTooSmall`] for a buffer shorter than [`Auto::buffer_len`].
+    pub fn new(theta: &'b mut [T], sigma0: T, buffer: &'b mut [T], rng: R) -> Result<Self, Error> {
+        let n = theta.len();
+        if n == 0 {
+            return Err(Error::DimensionMismatch {
+                expected: 1,
+                found: 0,
+            });
+        }
+        if !(sigma0.is_finite() && sigma0 > T::ZERO) {
+            return Err(Error::InvalidSigma);
+        }
+        if let Some(index) = theta.iter().position(|x| !x.is_finite()) {
+            return Err(Error::NonFiniteInput { index });
+        }
+        let needed = Self::buffer_len(n);
+        if buffer.len() < needed {
+            return Err(Error::WorkspaceTooSmall {
+                needed,
+                available: buffer.len(),
+            });
+        }
+        let buffer = &mut buffer[..needed];
+        buffer.fill(T::ZERO);
+        let mem = carve(buffer, n);
+        mem.lower.fill(-T::MAX);
+        mem.upper.fill(T::MAX);
+        Ok(Auto {
+            theta,
+            mem,
+            rng,
+            options: AutoOptions::default(),
+            shape: Shape::for_dim(n),
+            st: State {
+                sigma: sigma0,
+                sigma0,
+                iteration: 0,
+                evaluations: 0,
+                value: None,
+                centre_known: false,
+                count: 0,
+                has_prior: false,
+                frame_next: n,
+                resample: false,
+                stale: 0,
+                bounded: false,
+                finished: None,
+            },
+        })
+    }
+
+    /// Keeps every evaluated point within lower ≤ x ≤ upper (x₀ is projected into the
+    /// box). Call before the first [`Auto::step`].
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] for bounds of the wrong length,
+    /// [`Error::NonFiniteInput`] for a NaN bound, [`Error::InvalidSetting`] (`bounds`)
+    /// where lower > upper.
+    pub fn with_bounds(self, lower: &[T], upper: &[T]) -> Result<Self, Error> {
+        let n = self.theta.len();
+        for b in [lower, upper] {
+            if b.len() != n {
+                return Err(Error::DimensionMismatch {
+                    expected: n,
+                    found: b.len(),
+                });
+            }
+        }
+        for (i, (&l, &u)) in lower.iter().zip(upper).enumerate() {
+            if l.partial_cmp(&u).is_none() {
+                return Err(Error::NonFiniteInput { index: i });
+            }
+            if l > u {
+                return Err(Error::InvalidSetting { name: "bounds" });
+            }
+        }
+        let mut this = self;
+        for i in 0..n {
+            this.mem.lower[i] = lower[i].max(-T::MAX);
+            this.mem.upper[i] = upper[i].min(T::MAX);
+            this.theta[i] = this.theta[i].max(this.mem.lower[i]).min(this.mem.upper[i]);
+        }
+        this.st.bounded = true;
+        Ok(this)
+    }
+
+    /// Replaces the options (see [`AutoOptions`]).
+    pub fn with_options(mut self, options: AutoOptions<T>) -> Self {
+        self.options = options;
+        self
+    }
+
+    /// The best point found so far (x₀ before the first step).
+    pub fn theta(&self) -> &[T] {
+        self.theta
+    }
+
+    /// f at [`Auto::theta`], once evaluated and finite.
+    pub fn value(&self) -> Option<T> {
+        self.st.value
+    }
+
+    /// σ for the next iteration.
+    pub fn sigma(&self) -> T {
+        self.st.sigma
+    }
+
+    /// Objective evaluations used.
+    pub fn evaluations(&self) -> usize {
+        self.st.evaluations
+    }
+
+    /// Iterations completed.
+    pub fn iteration(&self) -> usize {
+        self.st.iteration
+    }
+
+    /// Why the run ended, once it has.
+    pub fn termination(&self) -> Option<AutoTermination> {
+        self.st.finished
+    }
+
+    /// Steps until the run ends, calling `observe` after every iteration.
+    ///
+    /// # Errors
+    /// As [`Auto::step`].
+    pub fn run<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        mut observe: impl FnMut(&AutoReport<T>, &[T]),
+    ) -> Result<AutoTermination, Error> {
+        while let Some(report) = self.step(objective)? {
+            observe(&report, self.theta);
+        }
+        Ok(self.st.finished.unwrap_or(AutoTermination::MaxEvaluations))
+    }
+
+    /// One iteration; `Ok(None)` without evaluating anything once the run has ended.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteObjective`] (with [`NonFinite::Error`]) naming the evaluation
+    /// of this iteration that was not finite; θ keeps its value and the run may go on.
+    pub fn step<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+    ) -> Result<Option<AutoReport<T>>, Error> {
+        if self.st.finished.is_some() {
+            return Ok(None);
+        }
+        if self.remaining() == 0 {
+            self.st.finished = Some(AutoTermination::MaxEvaluations);
+            return Ok(None);
+        }
+        let n = self.theta.len();
+        let sigma = self.st.sigma;
+        let start_value = self.st.value;
+        self.mem.tmp.copy_from_slice(self.theta);
+        let mut spent = 0;
+        let mut kind = self.sample(objective, &mut spent)?;
+        self.st.resample = false;
+        let mut ratio = None;
+        if kind.is_none() {
+            let (k, r) = self.model_step(objective, &mut spent)?;
+            kind = Some(k);
+            ratio = r;
+        }
+        let kind = kind.unwrap_or(AutoStep::OutOfBudget);
+        self.st.iteration += 1;
+        self.st.resample |= kind == AutoStep::Plateau;
+        let improved = match (self.st.value, start_value) {
+            (Some(v), Some(s)) => v < s,
+            (Some(_), None) => true,
+            _ => false,
+        };
+        self.st.stale = if improved { 0 } else { self.st.stale + 1 };
+        let step_length = distance(self.mem.tmp, self.theta);
+        let patience = self.options.patience.unwrap_or(20 + 10 * n);
+        let scale = self.theta.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
+        let resolvable = T::from_f64(8.0) * T::EPSILON * scale;
+        let termination = if kind == AutoStep::OutOfBudget || self.remaining() == 0 {
+            Some(AutoTermination::MaxEvaluations)
+        } else if self.st.sigma < self.options.tolerance * self.st.sigma0
+            || self.st.sigma <= resolvable
+        {
+            Some(AutoTermination::Converged)
+        } else if self.st.stale >= patience {
+            Some(AutoTermination::Stagnated)
+        } else {
+            None
+        };
+        self.st.finished = termination;
+        Ok(Some(AutoReport {
+            iteration: self.st.iteration,
+            evaluations: self.st.evaluations,
+            sigma,
+            next_sigma: self.st.sigma,
+            value: self.st.value,
+            step_length,
+            ratio,
+            kind,
+            termination,
+        }))
+    }
+
+    /// Evaluations left in the budget (`usize::MAX` without one).
+    fn remaining(&self) -> usize {
+        self.options
+            .max_evaluations
+            .map_or(usize::MAX, |m| m.saturating_sub(self.st.evaluations))
+    }
+
+    /// The centre's value and the samples the model needs; `Some(kind)` when the
+    /// iteration ends here (a plateau, or the budget).
+    fn sample<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        spent: &mut usize,
+    ) -> Result<Option<AutoStep>, Error> {
+        let n = self.theta.len();
+        let sigma = self.st.sigma;
+        let first = !self.st.centre_known;
+        let mut rows = 0;
+        if first {
+            self.mem.stage[..n].copy_from_slice(self.theta);
+            rows = 1;
+        }
+        let near = self.count_within(T::from_f64(REACH));
+        let pairs = if first {
+            n
+        } else if self.st.resample {
+            1
+        } else {
+            (n + 1).saturating_sub(near).div_ceil(2)
+        };
+        let radius = sigma * T::from_usize(n).sqrt();
+        for _ in 0..pairs {
+            let k = self.next_direction();
+            for sign in [T::ONE, -T::ONE] {
+                for i in 0..n {
+                    let x = self.theta[i] + sign * radius * self.mem.frame[k * n + i];
+                    self.mem.stage[rows * n + i] = x.max(self.mem.lower[i]).min(self.mem.upper[i]);
+                }
+                rows += 1;
+            }
+        }
+        let allowed = rows.min(self.remaining());
+        if allowed == 0 {
+            return Ok(None);
+        }
+        // Both halves of a pair share a seed; θ has its own.
+        let seed_base = self.rng.next_u64();
+        let centre_rows = usize::from(first);
+        self.evaluate(objective, allowed, spent, |row| {
+            if row < centre_rows {
+                seed_base
+            } else {
+                seed_base.wrapping_add(1 + ((row - centre_rows) / 2) as u64)
+            }
+        })?;
+        // Remember the points and move θ to the lowest when it beats f(θ).
+        let mut lowest: Option<(usize, T)> = None;
+        for row in 0..allowed {
+            let f = self.mem.stage_f[row];
+            if !f.is_finite() {
+                continue;
+            }
+            self.remember(row, f);
+            if lowest.is_none_or(|(_, b)| f < b) {
+                lowest = Some((row, f));
+            }
+        }
+        if first {
+            self.st.centre_known = true;
+            let f = self.mem.stage_f[0];
+            self.st.value = f.is_finite().then_some(f);
+        }
+        let trust_samples = objective.deterministic() || self.st.value.is_none();
+        if let Some((row, f)) = lowest {
+            if trust_samples && self.st.value.is_none_or(|v| f < v) {
+                let (theta, stage) = (&mut *self.theta, &self.mem.stage);
+                theta.copy_from_slice(&stage[row * n..(row + 1) * n]);
+                self.st.value = Some(f);
+            }
+        }
+        if allowed < rows {
+            return Ok(Some(AutoStep::OutOfBudget));
+        }
+        // A plateau: every value within reach ties with f(θ).
+        let spread = self.spread(T::from_f64(REACH));
+        let tie = self
+            .st
+            .value
+            .map_or(T::MAX, |v| T::from_f64(16.0) * T::EPSILON * v.abs());
+        if self.st.value.is_none() || spread <= tie {
+            self.st.sigma = self.widened_sigma();
+            return Ok(Some(AutoStep::Plateau));
+        }
+        Ok(None)
+    }
+
+    /// Fits the model, evaluates its step and updates σ; returns what happened and the
+    /// ratio of actual to predicted decrease.
+    fn model_step<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        spent: &mut usize,
+    ) -> Result<(AutoStep, Option<T>), Error> {
+        let n = self.theta.len();
+        let sigma = self.st.sigma;
+        let root_n = T::from_usize(n).sqrt();
+        let Some(value) = self.st.value else {
+            return Ok((AutoStep::Plateau, None));
+        };
+        let scale = self.spread(T::from_f64(2.0 * REACH));
+        let Some((noise, fitted)) = self.fit(value, scale) else {
+            self.st.sigma = sigma * T::HALF;
+            return Ok((AutoStep::Rejected, None));
+        };
+        self.save_prior(scale, sigma);
+        let radius = root_n;
+        let ok = trust::solve(
+            self.shape,
+            self.mem.g,
+            self.mem.h,
+            radius,
+            trust::Scratch {
+                a: self.mem.a,
+                v: self.mem.v,
+                gamma: self.mem.gamma,
+                lambda: self.mem.lambda,
+            },
+            self.mem.s,
+        );
+        // Project the trial point into the box; the step is what remains of s.
+        for i in 0..n {
+            let x = (self.theta[i] + sigma * self.mem.s[i])
+                .max(self.mem.lower[i])
+                .min(self.mem.upper[i]);
+            self.mem.stage[i] = x;
+            self.mem.s[i] = (x - self.theta[i]) / sigma;
+        }
+        let predicted = if ok {
+            self.predicted_decrease()
+        } else {
+            T::ZERO
+        };
+        let length = norm(self.mem.s);
+        if predicted <= T::ZERO || !predicted.is_finite() || length <= T::from_f64(1e-3) * radius {
+            self.st.sigma = sigma * T::HALF;
+            return Ok((AutoStep::AtModelMinimum, None));
+        }
+        let compare = !objective.deterministic();
+        let rows = if compare { 2 } else { 1 };
+        if self.remaining() < rows {
+            return Ok((AutoStep::OutOfBudget, None));
+        }
+        if compare {
+            self.mem.stage[n..2 * n].copy_from_slice(self.theta);
+        }
+        let seed = self.rng.next_u64();
+        self.evaluate(objective, rows, spent, |_| seed)?;
+        let trial = self.mem.stage_f[0];
+        let reference = if compare { self.mem.stage_f[1] } else { value };
+        for row in 0..rows {
+            let f = self.mem.stage_f[row];
+            if f.is_finite() {
+                self.remember(row, f);
+            }
+        }
+        let ratio = if trial.is_finite() && reference.is_finite() {
+            (reference - trial) / (scale * predicted)
+        } else {
+            -T::MAX
+        };
+        let accepted = trial.is_finite() && reference.is_finite() && trial < reference;
+        if !accepted && trial - reference <= T::TWO * noise * scale {
+            // The trial is no worse than the fit's scatter: the step did not leave a flat
+            // (or rough) piece of f. Look wider, as on a plateau.
+            self.st.sigma = self.widened_sigma();
+            return Ok((AutoStep::Plateau, Some(ratio)));
+        }
+        let boundary = length >= T::from_f64(0.9) * radius;
+        let determined = fitted > self.shape.coefficients(n);
+        self.st.sigma = if ratio < T::from_f64(0.1) && !determined && !accepted {
+            // Too few points to blame the scale: sample more at this σ first.
+            self.st.resample = true;
+            sigma
+        } else if ratio < T::from_f64(0.1) {
+            sigma * T::HALF
+        } else if ratio >= T::from_f64(0.7) && boundary {
+            self.widened_sigma()
+        } else if length < T::HALF * radius {
+            sigma * (T::TWO * length / radius).max(T::HALF)
+        } else {
+            sigma
+        };
+        if accepted {
+            self.theta.copy_from_slice(&self.mem.stage[..n]);
+            self.st.value = Some(trial);
+            Ok((AutoStep::Accepted, Some(ratio)))
+        } else {
+            Ok((AutoStep::Rejected, Some(ratio)))
+        }
+    }
+
+    /// 2σ, capped at 2²⁰σ₀ and, with bounds, at the box's widest side.
+    fn widened_sigma(&self) -> T {
+        let mut cap = self.st.sigma0 * T::from_f64(1_048_576.0);
+        if self.st.bounded {
+            let width = (0..self.theta.len())
+                .fold(T::ZERO, |w, i| w.max(self.mem.upper[i] - self.mem.lower[i]));
+            if width > T::ZERO && width.is_finite() {
+                cap = cap.min(width);
+            }
+        }
+        (self.st.sigma * T::TWO).min(cap).max(self.st.sigma)
+    }
+
+    /// The next column of the sampling frame, drawing a new random orthonormal frame
+    /// (Gram–Schmidt on Gaussian vectors) when the last is used up.
+    fn next_direction(&mut self) -> usize {
+        let n = self.theta.len();
+        if self.st.frame_next >= n {
+            for k in 0..n {
+                loop {
+                    for i in 0..n {
+                        self.mem.frame[k * n + i] =
+                            normal::quantile(T::uniform_open(&mut self.rng));
+                    }
+                    let (done, row) = self.mem.frame.split_at_mut(k * n);
+                    let row = &mut row[..n];
+                    for j in 0..k {
+                        let b = &done[j * n..(j + 1) * n];
+                        let p = dot(row, b);
+                        for i in 0..n {
+                            row[i] -= p * b[i];
+                        }
+                    }
+                    let len = norm(row);
+                    if len > T::from_f64(1e-3) {
+                        for x in row.iter_mut() {
+                            *x /= len;
+                        }
+                        break;
+                    }
+                }
+            }
+            self.st.frame_next = 0;
+        }
+        self.st.frame_next += 1;
+        self.st.frame_next - 1
+    }
+
+    /// Evaluates the first `rows` staged points with the given seeds, in chunks.
+    fn evaluate<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        rows: usize,
+        spent: &mut usize,
+        seed: impl Fn(usize) -> NoiseSeed,
+    ) -> Result<(), Error> {
+        let n = self.theta.len();
+        let mut seeds = [0 as NoiseSeed; CHUNK];
+        let mut start = 0;
+        while start < rows {
+            let len = (rows - start).min(CHUNK);
+            for (k, s) in seeds[..len].iter_mut().enumerate() {
+                *s = seed(start + k);
+            }
+            let batch = Batch::new(
+                &self.mem.stage[start * n..(start + len) * n],
+                &seeds[..len],
+                n,
+            )?;
+            objective.evaluate_batch(&batch, &mut self.mem.stage_f[start..start + len]);
+            start += len;
+        }
+        self.st.evaluations += rows;
+        let first = *spent;
+        *spent += rows;
+        if self.options.non_finite == NonFinite::Error {
+            if let Some(k) = self.mem.stage_f[..rows].iter().position(|f| !f.is_finite()) {
+                return Err(Error::NonFiniteObjective { sample: first + k });
+            }
+        }
+        Ok(())
+    }
+
+    /// Remembers staged point `row` with value f, replacing the point farthest from θ
+    /// once the memory is full.
+    fn remember(&mut self, row: usize, f: T) {
+        let n = self.theta.len();
+        let cap = history_len(n);
+        let slot = if self.st.count < cap {
+            self.st.count += 1;
+            self.st.count - 1
+        } else {
+            let mut far = (0, -T::ONE);
+            for k in 0..cap {
+                let d = distance(&self.mem.xs[k * n..(k + 1) * n], self.theta);
+                if d > far.1 {
+                    far = (k, d);
+                }
+            }
+            far.0
+        };
+        self.mem.xs[slot * n..(slot + 1) * n]
+            .copy_from_slice(&self.mem.stage[row * n..(row + 1) * n]);
+        self.mem.fs[slot] = f;
+    }
+
+    /// z = ‖x − θ‖/(σ√n) of remembered point k.
+    fn reach_of(&self, k: usize) -> T {
+        let n = self.theta.len();
+        distance(&self.mem.xs[k * n..(k + 1) * n], self.theta)
+            / (self.st.sigma * T::from_usize(n).sqrt())
+    }
+
+    fn count_within(&self, z: T) -> usize {
+        (0..self.st.count)
+            .filter(|&k| self.reach_of(k) <= z)
+            .count()
+    }
+
+    /// max |f − f(θ)| over remembered points within z (0 when f(θ) is unknown).
+    fn spread(&self, z: T) -> T {
+        let Some(v) = self.st.value else {
+            return T::ZERO;
+        };
+        (0..self.st.count)
+            .filter(|&k| self.reach_of(k) <= z)
+            .fold(T::ZERO, |s, k| s.max((self.mem.fs[k] - v).abs()))
+    }
+
+    /// Fits the model around θ to the remembered points within 2ρ, values scaled by
+    /// `scale`, from the prior moved to θ and σ. Returns the fit's noise level and the
+    /// number of points fitted; `None` when the fit failed.
+    fn fit(&mut self, value: T, scale: T) -> Option<(T, usize)> {
+        let n = self.theta.len();
+        let sigma = self.st.sigma;
+        let shape = self.shape;
+        let hl = shape.hessian_len(n);
+        // The prior in standardised units: g = σ(g₀ + H₀(θ − c₀))/F, H = σ²H₀/F.
+        if self.st.has_prior {
+            for i in 0..n {
+                self.mem.s[i] = self.theta[i] - self.mem.c0[i];
+            }
+            shape.apply(self.mem.h0, self.mem.s, self.mem.g);
+            for i in 0..n {
+                self.mem.g[i] = sigma * (self.mem.g0[i] + self.mem.g[i]) / scale;
+            }
+            for k in 0..hl {
+                self.mem.h[k] = sigma * sigma * self.mem.h0[k] / scale;
+            }
+        } else {
+            self.mem.g.fill(T::ZERO);
+            self.mem.h.fill(T::ZERO);
+        }
+        let limit = T::from_f64(2.0 * REACH);
+        let reach = T::from_f64(REACH);
+        let mut m = 0;
+        for k in 0..self.st.count {
+            let z = self.reach_of(k);
+            if z > limit {
+                continue;
+            }
+            let row = &mut self.mem.u[m * n..(m + 1) * n];
+            let x = &self.mem.xs[k * n..(k + 1) * n];
+            for ((ui, &xi), &ti) in row.iter_mut().zip(x).zip(self.theta.iter()) {
+                *ui = (xi - ti) / sigma;
+            }
+            let sw = (-(z / reach).sq() / T::from_f64(4.0)).exp();
+            let prior = dot(self.mem.g, row) + shape.half_quadratic(self.mem.h, row);
+            self.mem.sw[m] = sw;
+            self.mem.r[m] = sw * ((self.mem.fs[k] - value) / scale - prior);
+            m += 1;
+        }
+        model::fit(
+            shape,
+            n,
+            m,
+            self.mem.u,
+            self.mem.sw,
+            self.mem.r,
+            self.mem.gram,
+            self.mem.g,
+            self.mem.h,
+        )
+        .map(|noise| (noise, m))
+    }
+
+    /// −(gᵀs + ½sᵀHs) of the model for the step in `s` (standardised units).
+    fn predicted_decrease(&self) -> T {
+        -(dot(self.mem.g, self.mem.s) + self.shape.half_quadratic(self.mem.h, self.mem.s))
+    }
+
+    /// Keeps this iteration's model, in parameter units at θ, as the next prior.
+    fn save_prior(&mut self, scale: T, sigma: T) {
+        let n = self.theta.len();
+        for i in 0..n {
+            self.mem.g0[i] = scale * self.mem.g[i] / sigma;
+            self.mem.c0[i] = self.theta[i];
+        }
+        for k in 0..self.shape.hessian_len(n) {
+            self.mem.h0[k] = scale * self.mem.h[k] / (sigma * sigma);
+        }
+        self.st.has_prior = true;
+    }
+}

@@ -1,0 +1,293 @@
+//! The local quadratic model: a kernel ridge regression of f on the remembered points.
+//!
+//! In standardised offsets u = (x − θ)/σ, with values v = (f(x) − f(θ))/F scaled by the
+//! spread F of the nearby values, the model is
+//!
+//! m(u) = c + gᵀu + ½uᵀHu,
+//!
+//! fitted by weighted ridge regression towards a prior model m₀ (the previous
+//! iteration's, moved to the current θ and σ):
+//!
+//! minimise Σᵢ wᵢ (m(uᵢ) − vᵢ)² + λ_c (c − c₀)² + λ_g ‖g − g₀‖² + λ_H ‖H − H₀‖_F².
+//!
+//! Where the points determine the model, the data decide; where they do not (fewer
+//! points than the (n+1)(n+2)/2 coefficients of a full quadratic), the model changes
+//! least from the prior: the least-change principle of Powell's NEWUOA, so curvature
+//! learnt on earlier iterations is kept. With the weights wᵢ, a Gaussian of the distance
+//! to θ at the scale of σ, an overdetermined fit is a local polynomial regression whose
+//! linear and quadratic coefficients estimate the smoothed function's gradient and
+//! Hessian: points averaged over the kernel, as hodr's estimators average samples.
+//!
+//! The regression is solved in its dual (kernel) form, an m×m system for m points, so
+//! that its cost does not depend on the number of coefficients: with ψᵢ = √wᵢ φ(uᵢ) the
+//! features and Λ the penalties, α solves (ΨΛ⁻¹Ψᵀ + I)α = √w ⊙ (v − m₀(u)), and the
+//! coefficients move by Λ⁻¹Ψᵀα. The features' inner product under Λ⁻¹ has a closed form:
+//! for the full Hessian with the Frobenius penalty, 1/λ_c + a·b/λ_g + (a·b)²/(4λ_H); for a
+//! diagonal Hessian (large n), the last term is Σⱼ aⱼ²bⱼ²/(4λ_H). The Hessian then moves
+//! by (1/(2λ_H)) Σᵢ √wᵢ αᵢ uᵢuᵢᵀ (its diagonal only, for the diagonal model).
+
+use crate::cholesky;
+use crate::real::Real;
+
+/// Which Hessian the model has.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Shape {
+    /// A full symmetric n×n Hessian (n ≤ [`super::FULL_MODEL_MAX_DIM`]).
+    Full,
+    /// A diagonal Hessian: 2n + 1 coefficients, for large n.
+    Diagonal,
+}
+
+impl Shape {
+    /// The shape used in dimension n.
+    pub(super) fn for_dim(n: usize) -> Shape {
+        if n <= super::FULL_MODEL_MAX_DIM {
+            Shape::Full
+        } else {
+            Shape::Diagonal
+        }
+    }
+
+    /// Floats of a Hessian of this shape.
+    pub(super) fn hessian_len(self, n: usize) -> usize {
+        match self {
+            Shape::Full => n * n,
+            Shape::Diagonal => n,
+        }
+    }
+
+    /// Coefficients of the model: 1 + n + n(n+1)/2 (full) or 1 + 2n (diagonal).
+    pub(super) fn coefficients(self, n: usize) -> usize {
+        match self {
+            Shape::Full => 1 + n + n * (n + 1) / 2,
+            Shape::Diagonal => 1 + 2 * n,
+        }
+    }
+
+    /// ½uᵀHu.
+    pub(super) fn half_quadratic<T: Real>(self, h: &[T], u: &[T]) -> T {
+        let n = u.len();
+        let mut s = T::ZERO;
+        match self {
+            Shape::Full => {
+                for i in 0..n {
+                    let mut row = T::ZERO;
+                    for j in 0..n {
+                        row += h[i * n + j] * u[j];
+                    }
+                    s += u[i] * row;
+                }
+            }
+            Shape::Diagonal => {
+                for i in 0..n {
+                    s += h[i] * u[i].sq();
+                }
+            }
+        }
+        T::HALF * s
+    }
+
+    /// y ← H·x.
+    pub(super) fn apply<T: Real>(self, h: &[T], x: &[T], y: &mut [T]) {
+        let n = x.len();
+        match self {
+            Shape::Full => {
+                for i in 0..n {
+                    y[i] = (0..n).fold(T::ZERO, |s, j| s + h[i * n + j] * x[j]);
+                }
+            }
+            Shape::Diagonal => {
+                for i in 0..n {
+                    y[i] = h[i] * x[i];
+                }
+            }
+        }
+    }
+}
+
+/// The ridge penalties (λ_c, λ_g, λ_H) for precision T: √ε for the intercept and the
+/// gradient, 16√ε for the Hessian, so that the fit is close to interpolation where the
+/// points determine it, a change of curvature costs more than a change of slope where
+/// they do not, and the dual system stays well within T's precision.
+fn penalties<T: Real>() -> (T, T, T) {
+    let root = T::EPSILON.sqrt();
+    (root, root, T::from_f64(16.0) * root)
+}
+
+/// Fits the model's change from its prior. On entry `u` holds m rows of n standardised
+/// offsets, `sw` the m square-root weights √wᵢ, `r` the m weighted residuals of the prior
+/// √wᵢ(vᵢ − m₀(uᵢ)); `g` and `h` hold the prior's g₀ and H₀ (H in `shape`'s layout).
+/// On success `g` and `h` hold the fitted coefficients; `gram` (m² floats) and `r` are
+/// overwritten. Returns the fit's noise level η — the root-mean-square weighted residual
+/// √(Σᵢ (√wᵢ·resᵢ)² / Σᵢ wᵢ · m/(m − p)) for m points and p coefficients, 0 when m ≤ p
+/// (the points are interpolated, their roughness unseen) — or `None`, leaving `g` and `h`
+/// at the prior, when the system cannot be factored (non-finite inputs).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn fit<T: Real>(
+    shape: Shape,
+    n: usize,
+    m: usize,
+    u: &[T],
+    sw: &[T],
+    r: &mut [T],
+    gram: &mut [T],
+    g: &mut [T],
+    h: &mut [T],
+) -> Option<T> {
+    if m == 0 {
+        return Some(T::ZERO);
+    }
+    let (lc, lg, lh) = penalties::<T>();
+    let quarter_lh = T::ONE / (T::from_f64(4.0) * lh);
+    let gram = &mut gram[..m * m];
+    for i in 0..m {
+        let ui = &u[i * n..(i + 1) * n];
+        for k in 0..=i {
+            let uk = &u[k * n..(k + 1) * n];
+            let d = ui.iter().zip(uk).fold(T::ZERO, |s, (&a, &b)| s + a * b);
+            let q = match shape {
+                Shape::Full => d.sq() * quarter_lh,
+                Shape::Diagonal => {
+                    ui.iter()
+                        .zip(uk)
+                        .fold(T::ZERO, |s, (&a, &b)| s + (a * b).sq())
+                        * quarter_lh
+                }
+            };
+            let mut kik = sw[i] * sw[k] * (T::ONE / lc + d / lg + q);
+            if i == k {
+                kik += T::ONE;
+            }
+            gram[i * m + k] = kik;
+        }
+    }
+    if !cholesky::factor_in_place(gram, m, T::ZERO) {
+        return None;
+    }
+    let alpha = &mut r[..m];
+    cholesky::solve(gram, m, alpha);
+    if alpha.iter().any(|a| !a.is_finite()) {
+        return None;
+    }
+    // The weighted residuals of the fit are α itself: r − (K − I)α = α.
+    let p = shape.coefficients(n);
+    let noise = if m > p {
+        let weight = sw[..m].iter().fold(T::ZERO, |s, &x| s + x.sq());
+        let sum = alpha.iter().fold(T::ZERO, |s, &a| s + a.sq());
+        (sum / weight * T::from_usize(m) / T::from_usize(m - p)).sqrt()
+    } else {
+        T::ZERO
+    };
+    let half_lh = T::ONE / (T::TWO * lh);
+    for i in 0..m {
+        let c = sw[i] * alpha[i];
+        let ui = &u[i * n..(i + 1) * n];
+        for j in 0..n {
+            g[j] += c * ui[j] / lg;
+        }
+        match shape {
+            Shape::Full => {
+                for j in 0..n {
+                    let cj = c * ui[j] * half_lh;
+                    for l in 0..n {
+                        h[j * n + l] += cj * ui[l];
+                    }
+                }
+            }
+            Shape::Diagonal => {
+                for j in 0..n {
+                    h[j] += c * ui[j].sq() * half_lh;
+                }
+            }
+        }
+    }
+    g.iter()
+        .chain(h.iter())
+        .all(|x| x.is_finite())
+        .then_some(noise)
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use std::vec;
+    use std::vec::Vec;
+
+    use super::*;
+
+    /// A quadratic is recovered from enough points, whatever the prior.
+    #[test]
+    fn recovers_a_quadratic_from_enough_points() {
+        let n = 3;
+        let g_true = [1.0, -2.0, 0.5];
+        let h_true = [4.0, 1.0, 0.0, 1.0, 3.0, -0.5, 0.0, -0.5, 2.0];
+        let f = |u: &[f64]| {
+            let lin: f64 = u.iter().zip(&g_true).map(|(a, b)| a * b).sum();
+            lin + Shape::Full.half_quadratic(&h_true, u)
+        };
+        // 20 pseudo-random points (more than the 10 coefficients).
+        let m = 20;
+        let mut state = 12345u64;
+        let u: Vec<f64> = (0..m * n)
+            .map(|_| {
+                state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                (state >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
+            })
+            .collect();
+        let sw = vec![1.0; m];
+        let mut r: Vec<f64> = (0..m).map(|i| f(&u[i * n..(i + 1) * n])).collect();
+        let mut gram = vec![0.0; m * m];
+        let (mut g, mut h) = (vec![0.0; n], vec![0.0; n * n]);
+        assert!(
+            fit(
+                Shape::Full,
+                n,
+                m,
+                &u,
+                &sw,
+                &mut r,
+                &mut gram,
+                &mut g,
+                &mut h
+            )
+            .is_some()
+        );
+        for j in 0..n {
+            assert!((g[j] - g_true[j]).abs() < 1e-5, "g = {g:?}");
+        }
+        for k in 0..n * n {
+            assert!((h[k] - h_true[k]).abs() < 1e-5, "H = {h:?}");
+        }
+    }
+
+    /// With one point along e₀ and its mirror, the prior's curvature across survives.
+    #[test]
+    fn keeps_the_prior_where_points_say_nothing() {
+        let n = 2;
+        let u = [1.0, 0.0, -1.0, 0.0];
+        let sw = [1.0, 1.0];
+        // f = u₀ + u₀² ; prior H = diag(0, 5): the second coordinate is not sampled.
+        let (mut g, mut h) = (vec![0.0; 2], vec![0.0, 0.0, 0.0, 5.0]);
+        let prior = |x: &[f64]| Shape::Full.half_quadratic(&[0.0, 0.0, 0.0, 5.0], x);
+        let mut r = [2.0 - prior(&u[..2]), 0.0 - prior(&u[2..])];
+        let mut gram = [0.0; 4];
+        assert!(
+            fit(
+                Shape::Full,
+                n,
+                2,
+                &u,
+                &sw,
+                &mut r,
+                &mut gram,
+                &mut g,
+                &mut h
+            )
+            .is_some()
+        );
+        assert!((g[0] - 1.0).abs() < 1e-3, "g = {g:?}");
+        assert!((h[3] - 5.0).abs() < 1e-6, "H = {h:?}");
+    }
+}
