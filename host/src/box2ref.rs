@@ -24,6 +24,9 @@ const HALF: f64 = 50.0;
 const CLAMP_LO: f64 = 50.0;
 const CLAMP_HI: f64 = 450.0;
 
+/// The box [50, 450]² beyond which θ changes nothing (the paper's clamp).
+pub const BOUNDS: [f64; 2] = [CLAMP_LO, CLAMP_HI];
+
 /// The most pixels a square's support spans along one axis (2·46.65 rounded up, plus
 /// slack).
 const SPAN: usize = 96;

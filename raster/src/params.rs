@@ -86,6 +86,22 @@ impl Binding {
         self
     }
 
+    /// The interval of θ coordinate values over which the attribute changes: where the
+    /// binding clamps, the θ range mapping onto [lo, hi]; for a colour or opacity, the
+    /// θ range mapping onto [0, 1]; otherwise (−∞, ∞).
+    pub fn domain(&self) -> [f64; 2] {
+        let range = match (self.clamp, self.attribute) {
+            (Some(c), _) => c,
+            (None, Attribute::Red | Attribute::Green | Attribute::Blue | Attribute::Alpha) => {
+                [0.0, 1.0]
+            }
+            (None, _) => return [f64::NEG_INFINITY, f64::INFINITY],
+        };
+        let a = (range[0] - self.offset) / self.scale;
+        let b = (range[1] - self.offset) / self.scale;
+        [a.min(b), a.max(b)]
+    }
+
     /// The attribute value for θ coordinate `t`.
     #[inline]
     pub fn value(&self, t: f64) -> f64 {
@@ -152,6 +168,15 @@ impl ParamMap {
     /// n, the dimension of θ.
     pub fn dim(&self) -> usize {
         self.bindings.len()
+    }
+
+    /// Lower and upper bounds of θ: each binding's [`Binding::domain`].
+    pub fn bounds(&self) -> (Vec<f64>, Vec<f64>) {
+        self.bindings
+            .iter()
+            .map(|b| b.domain())
+            .map(|[a, b]| (a, b))
+            .unzip()
     }
 
     /// The θ that reproduces `scene`'s attribute values (translations read as 0).

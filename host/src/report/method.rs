@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::Result;
 use hodr_core::optim::preset::Preset;
-use hodr_core::optim::{Budget, Optimiser};
+use hodr_core::optim::{Auto, AutoOptions, Budget, Optimiser};
 use hodr_core::{Estimator, GradientMethod, Workspace};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
@@ -23,18 +23,21 @@ use super::task::Task;
 /// A method of the comparison.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Method {
+    /// hodr's default optimiser ([`hodr_core::optim::Auto`]): the task's scale σ₀ and
+    /// bounds, nothing else.
+    Auto,
     /// A hodr-core preset.
     Preset(Preset),
-    /// CMA-ES (Hansen), initial step σ_start of the task, default population.
+    /// CMA-ES (Hansen), initial step σ₀ of the task, default population.
     CmaEs,
 }
 
 impl Method {
-    /// Every method: the presets, then CMA-ES.
+    /// Every method: Auto, the presets, then CMA-ES.
     pub fn all() -> Vec<Method> {
-        Preset::ALL
-            .iter()
-            .map(|&p| Method::Preset(p))
+        [Method::Auto]
+            .into_iter()
+            .chain(Preset::ALL.iter().map(|&p| Method::Preset(p)))
             .chain([Method::CmaEs])
             .collect()
     }
@@ -42,6 +45,7 @@ impl Method {
     /// Display name.
     pub fn name(&self) -> &'static str {
         match self {
+            Method::Auto => "Auto",
             Method::Preset(p) => p.name(),
             Method::CmaEs => "CMA-ES",
         }
@@ -51,6 +55,9 @@ impl Method {
     pub fn from_name(name: &str) -> Option<Method> {
         if name.eq_ignore_ascii_case("cma-es") || name.eq_ignore_ascii_case("cmaes") {
             return Some(Method::CmaEs);
+        }
+        if name.eq_ignore_ascii_case("auto") {
+            return Some(Method::Auto);
         }
         Preset::from_name(name).map(Method::Preset)
     }
@@ -235,11 +242,49 @@ pub fn run_observed(
             }
             opt.theta().to_vec()
         }
+        Method::Auto => {
+            let n = task.dim();
+            let mut theta = start.clone();
+            let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)];
+            let options = AutoOptions::default().with_max_evaluations(budget)?;
+            let mut auto = Auto::new(
+                &mut theta,
+                task.scale(),
+                &mut buffer,
+                Xoshiro256PlusPlus::seed_from_u64(seed),
+            )?
+            .with_options(options);
+            if let Some((lower, upper)) = task.bounds() {
+                auto = auto.with_bounds(&lower, &upper)?;
+            }
+            let mut elapsed = Duration::ZERO;
+            loop {
+                if interrupt.load(Ordering::Relaxed) {
+                    stopped = Some("interrupted".to_string());
+                    break;
+                }
+                let clock = Instant::now();
+                let step = auto.step(objective.as_mut());
+                elapsed += clock.elapsed();
+                match step {
+                    Ok(Some(report)) => record(
+                        elapsed,
+                        report.evaluations,
+                        report.sigma,
+                        auto.theta(),
+                        &mut points,
+                    ),
+                    Ok(None) => break,
+                    Err(error) => {
+                        stopped = Some(error.to_string());
+                        break;
+                    }
+                }
+            }
+            auto.theta().to_vec()
+        }
         Method::CmaEs => {
-            let sigma = settings
-                .overrides
-                .apply(task.hyper(Preset::OurHvpa))
-                .sigma_start;
+            let sigma = task.scale();
             let mut noise = 0u64;
             let mut f = move |x: &cmaes::DVector<f64>| {
                 noise = noise.wrapping_add(1);

@@ -44,6 +44,16 @@ pub trait Task: Send + Sync {
             h
         }
     }
+    /// σ₀: the distance over which the parameters matter, the scale every method that
+    /// takes only a problem statement starts from (Auto, CMA-ES). Default: the paper's
+    /// σ_start for the task (DESIGN §3).
+    fn scale(&self) -> f64 {
+        self.hyper(Preset::OurHvpa).sigma_start
+    }
+    /// Box bounds (lower, upper) on θ, if the task has any. Default: none.
+    fn bounds(&self) -> Option<(Vec<f64>, Vec<f64>)> {
+        None
+    }
     /// Objective evaluations per run (`quick`: the smaller budget of `--quick`).
     fn budget(&self, quick: bool) -> usize;
     /// A fresh objective (the loss being optimised).
@@ -241,6 +251,10 @@ impl Task for Box2RefTask {
             ..low_dim_pairs(h, self.dim())
         }
     }
+    fn bounds(&self) -> Option<(Vec<f64>, Vec<f64>)> {
+        let [lo, hi] = box2ref::BOUNDS;
+        Some((vec![lo; 2], vec![hi; 2]))
+    }
     fn budget(&self, quick: bool) -> usize {
         if quick { 1500 } else { 4000 }
     }
@@ -321,6 +335,11 @@ impl Task for RasterTask {
             },
             None => low_dim_pairs(h, self.dim()),
         }
+    }
+    /// Where each binding's clamp, or a colour's [0, 1], ends (the parameter map's
+    /// bounds): beyond them θ changes nothing.
+    fn bounds(&self) -> Option<(Vec<f64>, Vec<f64>)> {
+        Some(self.task.map().bounds())
     }
     fn budget(&self, quick: bool) -> usize {
         let base = 600 * self.task.dim().max(2);

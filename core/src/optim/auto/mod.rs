@@ -641,9 +641,18 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             (n + 1).saturating_sub(near).div_ceil(2)
         };
-        let radius = sigma * T::from_usize(n).sqrt();
+        let root_n = T::from_usize(n).sqrt();
+        let exploring = !first && self.st.resample;
         for _ in 0..pairs {
             let k = self.next_direction();
+            // Geometry pairs lie at the samples' typical distance σ√n; a pair drawn to
+            // explore (a plateau, a failed step) at a Gaussian sample's distance σ‖t‖,
+            // t ~ N(0, I), so that every scale below σ is searched too.
+            let radius = if exploring {
+                sigma * self.gaussian_length(n)
+            } else {
+                sigma * root_n
+            };
             for sign in [T::ONE, -T::ONE] {
                 for i in 0..n {
                     let x = self.theta[i] + sign * radius * self.mem.frame[k * n + i];
@@ -812,17 +821,26 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
     }
 
-    /// 2σ, capped at 2²⁰σ₀ and, with bounds, at the box's widest side.
+    /// 2σ, capped at 2²⁰σ₀ and, with bounds, at half the box's widest side.
     fn widened_sigma(&self) -> T {
         let mut cap = self.st.sigma0 * T::from_f64(1_048_576.0);
         if self.st.bounded {
             let width = (0..self.theta.len())
                 .fold(T::ZERO, |w, i| w.max(self.mem.upper[i] - self.mem.lower[i]));
             if width > T::ZERO && width.is_finite() {
-                cap = cap.min(width);
+                cap = cap.min(T::HALF * width);
             }
         }
         (self.st.sigma * T::TWO).min(cap).max(self.st.sigma)
+    }
+
+    /// ‖t‖ for t ~ N(0, I) in n dimensions (a χ_n draw).
+    fn gaussian_length(&mut self, n: usize) -> T {
+        (0..n)
+            .fold(T::ZERO, |s, _| {
+                s + normal::quantile(T::uniform_open(&mut self.rng)).sq()
+            })
+            .sqrt()
     }
 
     /// The next column of the sampling frame, drawing a new random orthonormal frame
