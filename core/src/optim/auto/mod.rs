@@ -61,6 +61,12 @@ pub const FULL_MODEL_MAX_DIM: usize = 20;
 /// z ≤ ρ count as nearby; points with z ≤ 2ρ are fitted, with weight exp(−½(z/ρ)²) ≥ e⁻².
 pub const REACH: f64 = 2.0;
 
+/// A fit whose residual scatter η exceeds this fraction of the spread F of the values
+/// it fits finds f rough at σ: a failed step that lands within 2η of f(θ) then widens σ
+/// instead of shrinking it. A smooth f's residuals (its Taylor remainder) are a
+/// fraction of F that falls with σ, so a smooth f never reaches it for long.
+const ROUGH: f64 = 0.25;
+
 /// Points evaluated per noise-seed chunk of one batch (a stack array of seeds).
 const CHUNK: usize = 64;
 
@@ -790,10 +796,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             -T::MAX
         };
-        let accepted = trial.is_finite() && reference.is_finite() && trial < reference;
-        if !accepted && trial - reference <= T::TWO * noise * scale {
-            // The trial is no worse than the fit's scatter: the step did not leave a flat
-            // (or rough) piece of f. Look wider, as on a plateau.
+        // A tie is accepted: on a flat piece of f the smoothed model's minimum is the
+        // better guess (the middle of a zero-loss region, the continuous optimum of a
+        // rounded function).
+        let accepted = trial.is_finite() && reference.is_finite() && trial <= reference;
+        let tie = accepted && trial == reference;
+        if !accepted && noise > T::from_f64(ROUGH) && trial - reference <= T::TWO * noise * scale {
+            // f is rough at this scale — the fit leaves scatter comparable to the values'
+            // spread — and the trial is no worse than that scatter: look wider, where
+            // the smoothed function has a slope to see.
             self.st.sigma = self.widened_sigma();
             return Ok((AutoStep::Plateau, Some(ratio)));
         }
@@ -803,7 +814,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             // Too few points to blame the scale: sample more at this σ first.
             self.st.resample = true;
             sigma
-        } else if ratio < T::from_f64(0.1) {
+        } else if ratio < T::from_f64(0.1) && !tie {
             sigma * T::HALF
         } else if ratio >= T::from_f64(0.7) && boundary {
             self.widened_sigma()
