@@ -67,6 +67,14 @@ pub const REACH: f64 = 2.0;
 /// fraction of F that falls with σ, so a smooth f never reaches it for long.
 const ROUGH: f64 = 0.25;
 
+/// σ/σ₀ beyond which a plateau no longer widens σ: the run keeps drawing pairs at
+/// Gaussian distances within that reach instead, since samples scattered ever wider
+/// meet a distant basin ever more rarely. σ₀ states where the parameters matter.
+const PLATEAU_WIDTH: f64 = 16.0;
+
+/// σ/σ₀ beyond which a confirmed step to the trust boundary no longer widens σ.
+const GROWTH_WIDTH: f64 = 1_048_576.0;
+
 /// Points evaluated per noise-seed chunk of one batch (a stack array of seeds).
 const CHUNK: usize = 64;
 
@@ -243,10 +251,15 @@ struct Memory<'b, T> {
     /// Points of the current batch and their values.
     stage: &'b mut [T],
     stage_f: &'b mut [T],
+    /// The trust step over the coordinates no bound holds: their gradient, Hessian
+    /// and step.
+    rg: &'b mut [T],
+    rh: &'b mut [T],
+    rs: &'b mut [T],
 }
 
 /// Region lengths for dimension n, in [`Memory`]'s order.
-fn regions(n: usize) -> [usize; 22] {
+fn regions(n: usize) -> [usize; 25] {
     let shape = Shape::for_dim(n);
     let m = history_len(n);
     let hl = shape.hessian_len(n);
@@ -275,6 +288,9 @@ fn regions(n: usize) -> [usize; 22] {
         n * n,
         rows * n,
         rows,
+        n,
+        hl,
+        n,
     ]
 }
 
@@ -291,7 +307,7 @@ fn stage_rows(n: usize) -> usize {
 fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
     let lens = regions(n);
     let mut rest = buffer;
-    let mut parts: [&'b mut [T]; 22] = Default::default();
+    let mut parts: [&'b mut [T]; 25] = Default::default();
     for (part, &len) in parts.iter_mut().zip(&lens) {
         let (head, tail) = core::mem::take(&mut rest).split_at_mut(len);
         *part = head;
@@ -320,6 +336,9 @@ fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         frame,
         stage,
         stage_f,
+        rg,
+        rh,
+        rs,
     ] = parts;
     Memory {
         lower,
@@ -344,6 +363,9 @@ fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         frame,
         stage,
         stage_f,
+        rg,
+        rh,
+        rs,
     }
 }
 
@@ -716,7 +738,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             .value
             .map_or(T::MAX, |v| T::from_f64(16.0) * T::EPSILON * v.abs());
         if self.st.value.is_none() || spread <= tie {
-            self.st.sigma = self.widened_sigma();
+            self.st.sigma = self.widened_sigma(PLATEAU_WIDTH);
             return Ok(Some(AutoStep::Plateau));
         }
         Ok(None)
@@ -742,19 +764,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         };
         self.save_prior(scale, sigma);
         let radius = root_n;
-        let ok = trust::solve(
-            self.shape,
-            self.mem.g,
-            self.mem.h,
-            radius,
-            trust::Scratch {
-                a: self.mem.a,
-                v: self.mem.v,
-                gamma: self.mem.gamma,
-                lambda: self.mem.lambda,
-            },
-            self.mem.s,
-        );
+        let ok = self.trust_step(radius);
         // Project the trial point into the box; the step is what remains of s.
         for i in 0..n {
             let x = (self.theta[i] + sigma * self.mem.s[i])
@@ -805,7 +815,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             // f is rough at this scale — the fit leaves scatter comparable to the values'
             // spread — and the trial is no worse than that scatter: look wider, where
             // the smoothed function has a slope to see.
-            self.st.sigma = self.widened_sigma();
+            self.st.sigma = self.widened_sigma(PLATEAU_WIDTH);
             return Ok((AutoStep::Plateau, Some(ratio)));
         }
         let boundary = length >= T::from_f64(0.9) * radius;
@@ -817,7 +827,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else if ratio < T::from_f64(0.1) && !tie {
             sigma * T::HALF
         } else if ratio >= T::from_f64(0.7) && boundary {
-            self.widened_sigma()
+            self.widened_sigma(GROWTH_WIDTH)
         } else if length < T::HALF * radius {
             sigma * (T::TWO * length / radius).max(T::HALF)
         } else {
@@ -832,9 +842,73 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
     }
 
-    /// 2σ, capped at 2²⁰σ₀ and, with bounds, at half the box's widest side.
-    fn widened_sigma(&self) -> T {
-        let mut cap = self.st.sigma0 * T::from_f64(1_048_576.0);
+    /// Writes to `s` the model's minimiser within ‖s‖ ≤ `radius` over the coordinates
+    /// not held by a bound: a coordinate at its lower (upper) bound whose model slope is
+    /// positive (negative) stays put, so that the step spends its length where it can
+    /// move. False when the model is not finite.
+    fn trust_step(&mut self, radius: T) -> bool {
+        let n = self.theta.len();
+        let shape = self.shape;
+        let m = &mut self.mem;
+        let theta = &*self.theta;
+        let held = |i: usize| {
+            (theta[i] <= m.lower[i] && m.g[i] > T::ZERO)
+                || (theta[i] >= m.upper[i] && m.g[i] < T::ZERO)
+        };
+        let free = (0..n).filter(|&i| !held(i)).count();
+        if free == n {
+            return trust::solve(
+                shape,
+                m.g,
+                m.h,
+                radius,
+                trust::Scratch {
+                    a: m.a,
+                    v: m.v,
+                    gamma: m.gamma,
+                    lambda: m.lambda,
+                },
+                m.s,
+            );
+        }
+        m.s.fill(T::ZERO);
+        if free == 0 {
+            return true;
+        }
+        for (a, i) in (0..n).filter(|&i| !held(i)).enumerate() {
+            m.rg[a] = m.g[i];
+            match shape {
+                Shape::Full => {
+                    for (b, j) in (0..n).filter(|&j| !held(j)).enumerate() {
+                        m.rh[a * free + b] = m.h[i * n + j];
+                    }
+                }
+                Shape::Diagonal => m.rh[a] = m.h[i],
+            }
+        }
+        let ok = trust::solve(
+            shape,
+            &m.rg[..free],
+            &m.rh[..shape.hessian_len(free)],
+            radius,
+            trust::Scratch {
+                a: m.a,
+                v: m.v,
+                gamma: m.gamma,
+                lambda: m.lambda,
+            },
+            &mut m.rs[..free],
+        );
+        let steps: &[T] = m.rs;
+        for (a, i) in (0..n).filter(|&i| !held(i)).enumerate() {
+            m.s[i] = steps[a];
+        }
+        ok
+    }
+
+    /// 2σ, capped at `width`·σ₀ and, with bounds, at half the box's widest side.
+    fn widened_sigma(&self, width: f64) -> T {
+        let mut cap = self.st.sigma0 * T::from_f64(width);
         if self.st.bounded {
             let width = (0..self.theta.len())
                 .fold(T::ZERO, |w, i| w.max(self.mem.upper[i] - self.mem.lower[i]));
