@@ -390,6 +390,9 @@ struct State<T> {
     resample: bool,
     /// Iterations since f(θ) last fell.
     stale: usize,
+    /// f(θ) fell since the last restart (or the run began): a stagnation restarts at σ₀
+    /// instead of ending the run.
+    may_restart: bool,
     bounded: bool,
     finished: Option<AutoTermination>,
 }
@@ -480,6 +483,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 frame_next: n,
                 resample: false,
                 stale: 0,
+                may_restart: false,
                 bounded: false,
                 finished: None,
             },
@@ -609,7 +613,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             (Some(_), None) => true,
             _ => false,
         };
-        self.st.stale = if improved { 0 } else { self.st.stale + 1 };
+        if improved {
+            self.st.stale = 0;
+            self.st.may_restart = true;
+        } else {
+            self.st.stale += 1;
+        }
         let step_length = distance(self.mem.tmp, self.theta);
         let patience = self.options.patience.unwrap_or(20 + 10 * n);
         let scale = self.theta.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
@@ -620,9 +629,17 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             || self.st.sigma <= resolvable
         {
             Some(AutoTermination::Converged)
-        } else if self.st.stale >= patience {
+        } else if self.st.stale >= patience && !self.st.may_restart {
             Some(AutoTermination::Stagnated)
         } else {
+            if self.st.stale >= patience {
+                // Once per improvement: look again from the best point at the scale
+                // σ₀ the caller stated, before calling the run stagnated.
+                self.st.may_restart = false;
+                self.st.stale = 0;
+                self.st.sigma = self.st.sigma0;
+                self.st.resample = true;
+            }
             None
         };
         self.st.finished = termination;
