@@ -2,7 +2,8 @@
 //!
 //! hodr on a host (std): the CPU path tracer ([`render`]) and its 3D tasks ([`tasks`]),
 //! the report harness ([`report`]) behind the `hodr` command line, BOX2-REF, closed-form
-//! test problems, and the estimator and optimiser studies ([`variance`], [`runtime`]).
+//! test problems, the estimator and optimiser studies ([`variance`], [`runtime`]), and the
+//! generalisation suite ([`suite`]).
 
 #![deny(missing_docs)]
 
@@ -12,5 +13,6 @@ pub mod problems;
 pub mod render;
 pub mod report;
 pub mod runtime;
+pub mod suite;
 pub mod tasks;
 pub mod variance;

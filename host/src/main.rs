@@ -72,8 +72,8 @@ enum Command {
         /// The task.
         #[arg(long)]
         task: String,
-        /// The method (a preset name or CMA-ES).
-        #[arg(long, default_value = "OurHVPA")]
+        /// The method: Auto (hodr's default), a preset name, or CMA-ES.
+        #[arg(long, default_value = "Auto")]
         method: String,
         /// Seed (start and sampling).
         #[arg(long, default_value_t = 0)]
@@ -111,6 +111,31 @@ enum Command {
         /// Repetitions per table cell.
         #[arg(long, default_value_t = 2000, value_parser = clap::value_parser!(u64).range(2..))]
         repeats: u64,
+    },
+    /// Generalisation suite: Auto, CMA-ES, BOBYQA and FR22 on BBOB functions, plateaus,
+    /// integer plateaus, a flat direction and BOX2 (suite.md, suite.csv, ecdf.png).
+    Suite {
+        /// Families (comma-separated; default all): bbob, plateau, integer, flat, tasks.
+        #[arg(long, value_delimiter = ',')]
+        families: Vec<String>,
+        /// Dimensions to keep (comma-separated; default every family's own).
+        #[arg(long, value_delimiter = ',')]
+        dims: Vec<usize>,
+        /// Methods (comma-separated; default all): Auto, CMA-ES, BOBYQA, FR22.
+        #[arg(long, value_delimiter = ',')]
+        methods: Vec<String>,
+        /// Seeds per problem (default 5, or 2 with --quick).
+        #[arg(long)]
+        seeds: Option<usize>,
+        /// Evaluations per dimension (default 1000, or 200 with --quick).
+        #[arg(long)]
+        budget_per_dim: Option<usize>,
+        /// n ≤ 5 (and the 6-D flat problem), 2 seeds, 2 instances, small budgets.
+        #[arg(long)]
+        quick: bool,
+        /// Output directory.
+        #[arg(long, default_value = "suite")]
+        out: PathBuf,
     },
     /// Error against run time of every preset on QUAD, BOX2-REF and stiff quadratics.
     Runtime {
@@ -302,6 +327,32 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
         }
         Command::Variance { repeats } => {
             print!("{}", hodr_host::variance::study(repeats as usize));
+        }
+        Command::Suite {
+            families,
+            dims,
+            methods,
+            seeds,
+            budget_per_dim,
+            quick,
+            out,
+        } => {
+            use hodr_host::suite;
+            let config = suite::Config::from_args(
+                &families,
+                &dims,
+                &methods,
+                seeds,
+                budget_per_dim,
+                quick,
+                out,
+            )?;
+            let outcome = suite::run(&config, interrupt, true)?;
+            if outcome.interrupted {
+                eprintln!("interrupted: wrote the finished runs");
+            }
+            print!("{}", outcome.table());
+            println!("suite written to {}", config.out.join("suite.md").display());
         }
         Command::Runtime { seeds, crn } => {
             use hodr_host::runtime::{Problem, table};

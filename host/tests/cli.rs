@@ -28,6 +28,7 @@ fn help_everywhere() {
         &["fit2d"],
         &["variance"],
         &["runtime"],
+        &["suite"],
     ] {
         let mut args = sub.to_vec();
         args.push("--help");

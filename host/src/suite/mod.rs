@@ -1,0 +1,355 @@
+//! The generalisation suite behind `hodr suite` (DESIGN §6): optimisers judged on
+//! problems nobody tuned for, against baselines in the same run.
+//!
+//! * A [`Problem`] is one definition — f, f*, x*, the start distribution, σ₀, bounds,
+//!   budget — and says nothing about any method. Families: BBOB noiseless functions
+//!   ([`bbob`]), disc and integer plateaus ([`plateau`]), a flat direction ([`flat`]),
+//!   and the built-in BOX2 task ([`tasks`]). [`catalogue`] lists them.
+//! * A [`Method`] (Auto, CMA-ES, BOBYQA, FR22; [`methods`]) sees x₀, σ₀, bounds and
+//!   budget, and evaluates through one counting wrapper ([`trace`]) that records every
+//!   new best, so all are measured alike.
+//! * [`summary`] turns runs into evaluations to targets, success rates and family
+//!   aggregates; [`output`] and [`plot`] write `suite.md`, `suite.csv` and `ecdf.png`.
+//!
+//! Order and seeds: problems run in catalogue order; within a problem the methods take
+//! turns seed by seed (seed 0 of every method, then seed 1, …), so a slow drift of the
+//! machine falls on every method alike. Run seed s of a problem is a function of the
+//! problem's name and s only ([`problem::run_seed`]); every method of that seed starts
+//! from the same x₀. Runs execute one at a time; a method may use both cores inside a
+//! run (CMA-ES generations, hodr-core batches).
+
+pub mod bbob;
+pub mod flat;
+pub mod methods;
+pub mod output;
+pub mod plateau;
+pub mod plot;
+pub mod problem;
+pub mod random;
+pub mod summary;
+pub mod tasks;
+pub mod trace;
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use anyhow::{Context, Result, bail};
+use indicatif::{ProgressBar, ProgressStyle};
+
+pub use methods::Method;
+pub use problem::{Family, Problem};
+pub use summary::{FamilyRow, Row, Run};
+
+/// Instances per function and dimension (BBOB) or per dimension (the other generated
+/// families).
+pub const INSTANCES: usize = 5;
+/// Default seeds per problem.
+pub const SEEDS: usize = 5;
+/// Default evaluations per dimension.
+pub const BUDGET_PER_DIM: usize = 1000;
+/// Seeds per problem with `--quick`.
+pub const QUICK_SEEDS: usize = 2;
+/// Evaluations per dimension with `--quick`.
+pub const QUICK_BUDGET_PER_DIM: usize = 200;
+/// Instances per function and dimension with `--quick`.
+pub const QUICK_INSTANCES: usize = 2;
+/// Largest dimension with `--quick` (the flat-direction problem, defined only at n = 6,
+/// is kept).
+pub const QUICK_MAX_DIM: usize = 5;
+
+/// What `hodr suite` runs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Config {
+    /// Families, in [`Family::ALL`] order.
+    pub families: Vec<Family>,
+    /// Dimensions to keep; `None`: every dimension of each family (with `quick`, those
+    /// up to [`QUICK_MAX_DIM`], and the flat problem).
+    pub dims: Option<Vec<usize>>,
+    /// Methods, in [`Method::ALL`] order.
+    pub methods: Vec<Method>,
+    /// Seeds per problem.
+    pub seeds: usize,
+    /// Evaluations per dimension: a problem's budget is this times n.
+    pub budget_per_dim: usize,
+    /// Instances per function (BBOB) or per dimension (the other generated families).
+    pub instances: usize,
+    /// Whether `--quick` chose the defaults.
+    pub quick: bool,
+    /// Output directory.
+    pub out: PathBuf,
+}
+
+impl Config {
+    /// The configuration of the command line's arguments: empty lists mean "all";
+    /// `seeds` and `budget_per_dim` default to [`SEEDS`] and [`BUDGET_PER_DIM`], or
+    /// [`QUICK_SEEDS`] and [`QUICK_BUDGET_PER_DIM`] with `quick`.
+    ///
+    /// # Errors
+    /// A one-line message naming the culprit: an unknown or repeated family or method,
+    /// a dimension no selected family has, zero seeds or budget.
+    pub fn from_args(
+        families: &[String],
+        dims: &[usize],
+        methods: &[String],
+        seeds: Option<usize>,
+        budget_per_dim: Option<usize>,
+        quick: bool,
+        out: PathBuf,
+    ) -> Result<Config> {
+        let families = parse_list(families, "family", Family::from_name, &Family::ALL)?;
+        let methods = parse_list(methods, "method", Method::from_name, &Method::ALL)?;
+        let dims = if dims.is_empty() {
+            None
+        } else {
+            for &d in dims {
+                if !families.iter().any(|f| f.dims().contains(&d)) {
+                    let have: Vec<String> = families
+                        .iter()
+                        .map(|f| format!("{f} {:?}", f.dims()))
+                        .collect();
+                    bail!(
+                        "no selected family has dimension {d} (families: {})",
+                        have.join(", ")
+                    );
+                }
+            }
+            Some(dims.to_vec())
+        };
+        let seeds = seeds.unwrap_or(if quick { QUICK_SEEDS } else { SEEDS });
+        if seeds == 0 {
+            bail!("--seeds must be at least 1");
+        }
+        let budget_per_dim = budget_per_dim.unwrap_or(if quick {
+            QUICK_BUDGET_PER_DIM
+        } else {
+            BUDGET_PER_DIM
+        });
+        if budget_per_dim == 0 {
+            bail!("--budget-per-dim must be at least 1");
+        }
+        Ok(Config {
+            families,
+            dims,
+            methods,
+            seeds,
+            budget_per_dim,
+            instances: if quick { QUICK_INSTANCES } else { INSTANCES },
+            quick,
+            out,
+        })
+    }
+
+    /// Whether problems of dimension n of `family` run.
+    fn keeps(&self, family: Family, n: usize) -> bool {
+        match &self.dims {
+            Some(d) => d.contains(&n),
+            None => !self.quick || n <= QUICK_MAX_DIM || family == Family::Flat,
+        }
+    }
+}
+
+/// Parses a comma-separated selection: each name must be known and listed once; an empty
+/// list selects `all`. The result follows `all`'s order.
+fn parse_list<T: Copy + PartialEq>(
+    names: &[String],
+    what: &str,
+    parse: impl Fn(&str) -> Option<T>,
+    all: &[T],
+) -> Result<Vec<T>> {
+    if names.is_empty() {
+        return Ok(all.to_vec());
+    }
+    let mut chosen = Vec::new();
+    for name in names {
+        let Some(x) = parse(name) else {
+            bail!("unknown {what} `{name}`");
+        };
+        if chosen.contains(&x) {
+            bail!("{what} `{name}` listed twice");
+        }
+        chosen.push(x);
+    }
+    Ok(all.iter().copied().filter(|x| chosen.contains(x)).collect())
+}
+
+/// Every problem `config` selects, in run order: family, then (BBOB) function, then
+/// dimension, then instance 1, 2, ….
+///
+/// # Errors
+/// When a built-in task cannot be built.
+pub fn catalogue(config: &Config) -> Result<Vec<Problem>> {
+    let b = config.budget_per_dim;
+    let instances = 1..=config.instances as u64;
+    let mut out = Vec::new();
+    for &family in &config.families {
+        let dims: Vec<usize> = family
+            .dims()
+            .iter()
+            .copied()
+            .filter(|&n| config.keeps(family, n))
+            .collect();
+        match family {
+            Family::Bbob => {
+                for id in bbob::IDS {
+                    for &n in &dims {
+                        for i in instances.clone() {
+                            out.push(bbob::problem(id, n, i, b));
+                        }
+                    }
+                }
+            }
+            Family::Plateau => {
+                for &n in &dims {
+                    for i in instances.clone() {
+                        out.push(plateau::discs(n, i, b));
+                    }
+                }
+            }
+            Family::Integer => {
+                for &n in &dims {
+                    for i in instances.clone() {
+                        out.push(plateau::integer(n, i, b));
+                    }
+                }
+            }
+            Family::Flat => {
+                if !dims.is_empty() {
+                    for i in instances.clone() {
+                        out.push(flat::problem(i, b));
+                    }
+                }
+            }
+            Family::Tasks => {
+                if !dims.is_empty() {
+                    out.push(tasks::box2(b)?);
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// What a suite run produced.
+#[derive(Debug)]
+pub struct Outcome {
+    /// The problems, indexed by [`Run::problem`].
+    pub problems: Vec<Problem>,
+    /// Every finished run, in run order.
+    pub runs: Vec<Run>,
+    /// Per problem × method.
+    pub rows: Vec<Row>,
+    /// Per family × method.
+    pub families: Vec<FamilyRow>,
+    /// The method ratios are taken against: CMA-ES when it ran, else the first method.
+    pub reference: Method,
+    /// True when Ctrl-C stopped the run early.
+    pub interrupted: bool,
+}
+
+impl Outcome {
+    /// The short per-family table for stdout.
+    pub fn table(&self) -> String {
+        output::family_table(&self.families, self.reference)
+    }
+}
+
+/// Runs the suite and writes `suite.md`, `suite.csv` and `ecdf.png` to `config.out`.
+/// `interrupt` stops it before the next run; the files then hold the finished runs.
+/// `progress` shows a progress bar on stderr.
+///
+/// # Errors
+/// When a problem cannot be built or a file cannot be written.
+pub fn run(config: &Config, interrupt: &AtomicBool, progress: bool) -> Result<Outcome> {
+    let problems = catalogue(config)?;
+    if problems.is_empty() {
+        bail!("no problem matches the selected families and dimensions");
+    }
+    let total = (problems.len() * config.seeds * config.methods.len()) as u64;
+    let bar = if progress {
+        ProgressBar::new(total)
+    } else {
+        ProgressBar::hidden()
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} runs  {msg}  [{elapsed_precise}]")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let mut runs = Vec::new();
+    let mut interrupted = false;
+    'problems: for (index, p) in problems.iter().enumerate() {
+        bar.set_message(p.name.clone());
+        for s in 0..config.seeds {
+            let seed = problem::run_seed(&p.name, s);
+            let x0 = p.start(seed);
+            for &m in &config.methods {
+                if interrupt.load(Ordering::Relaxed) {
+                    interrupted = true;
+                    break 'problems;
+                }
+                let trace = m.run(p, &x0, seed);
+                runs.push(Run {
+                    problem: index,
+                    method: m,
+                    seed: s,
+                    trace,
+                });
+                bar.inc(1);
+            }
+        }
+    }
+    bar.finish_and_clear();
+    let reference = if config.methods.contains(&Method::CmaEs) {
+        Method::CmaEs
+    } else {
+        config.methods[0]
+    };
+    let rows = summary::rows(&problems, &config.methods, &runs);
+    let families = summary::families(&problems, &config.methods, reference, &rows, &runs);
+    write(
+        config,
+        &problems,
+        &runs,
+        &rows,
+        &families,
+        reference,
+        interrupted,
+    )?;
+    Ok(Outcome {
+        problems,
+        runs,
+        rows,
+        families,
+        reference,
+        interrupted,
+    })
+}
+
+fn write(
+    config: &Config,
+    problems: &[Problem],
+    runs: &[Run],
+    rows: &[Row],
+    families: &[FamilyRow],
+    reference: Method,
+    interrupted: bool,
+) -> Result<()> {
+    let out: &Path = &config.out;
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    output::write_csv(&out.join("suite.csv"), problems, runs)?;
+    output::write_markdown(
+        &out.join("suite.md"),
+        config,
+        problems,
+        rows,
+        families,
+        reference,
+        interrupted,
+    )?;
+    plot::ecdf_plot(
+        &out.join("ecdf.png"),
+        problems,
+        &config.methods,
+        runs,
+        config.budget_per_dim as f64,
+    )
+}

@@ -1,0 +1,214 @@
+//! The suite's files and its stdout table: `suite.csv` (one row per problem × method ×
+//! seed × target), `suite.md` (header, per-family aggregates, per-problem tables) and
+//! `ecdf.png` ([`super::plot`]).
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::process::Command;
+
+use anyhow::{Context, Result};
+
+use super::Config;
+use super::methods::Method;
+use super::problem::{Family, Problem};
+use super::summary::{Cell, FamilyRow, Row, Run, target_labels};
+
+/// `suite.csv`: problem, family, n, method, seed, target, evaluations (empty when not
+/// reached), then the run's wall time, best f − f* and why it stopped before its budget
+/// (empty when it used the budget; commas replaced by semicolons).
+///
+/// # Errors
+/// When the file cannot be written.
+pub fn write_csv(path: &Path, problems: &[Problem], runs: &[Run]) -> Result<()> {
+    let labels = target_labels();
+    let mut csv =
+        String::from("problem,family,n,method,seed,target,evaluations,time_s,best_f,stopped\n");
+    for r in runs {
+        let p = &problems[r.problem];
+        for (label, e) in labels.iter().zip(r.reached()) {
+            let _ = writeln!(
+                csv,
+                "{},{},{},{},{},{},{},{},{:e},{}",
+                p.name,
+                p.family,
+                p.n,
+                r.method,
+                r.seed,
+                label,
+                e.map_or(String::new(), |e| e.to_string()),
+                r.trace.time,
+                r.trace.best(),
+                r.trace.stopped.as_deref().unwrap_or("").replace(',', ";"),
+            );
+        }
+    }
+    std::fs::write(path, csv).with_context(|| format!("writing {}", path.display()))
+}
+
+/// The commit of the checkout this binary was built from (its crate directory, so the
+/// answer does not depend on the working directory), with "+ uncommitted changes" when
+/// tracked files differ from it; `None` when that directory is not a git checkout.
+pub fn commit() -> Option<String> {
+    let dir = env!("CARGO_MANIFEST_DIR");
+    let head = Command::new("git")
+        .args(["-C", dir, "rev-parse", "--short", "HEAD"])
+        .output()
+        .ok()
+        .filter(|o| o.status.success())?;
+    let mut s = String::from_utf8_lossy(&head.stdout).trim().to_string();
+    let dirty = Command::new("git")
+        .args(["-C", dir, "status", "--porcelain", "--untracked-files=no"])
+        .output()
+        .is_ok_and(|o| o.status.success() && !o.stdout.is_empty());
+    if dirty {
+        s.push_str(" + uncommitted changes");
+    }
+    Some(s)
+}
+
+/// Evaluations in a compact form: 1234, 12.3k, 1.23M.
+fn evals(x: f64) -> String {
+    if x < 1e4 {
+        format!("{x:.0}")
+    } else if x < 1e6 {
+        format!("{:.1}k", x / 1e3)
+    } else {
+        format!("{:.2}M", x / 1e6)
+    }
+}
+
+/// Seconds with three significant digits in a fitting unit.
+pub fn seconds(t: f64) -> String {
+    if !t.is_finite() {
+        "—".into()
+    } else if t < 1e-3 {
+        format!("{:.0} µs", t * 1e6)
+    } else if t < 1.0 {
+        format!("{:.1} ms", t * 1e3)
+    } else {
+        format!("{t:.2} s")
+    }
+}
+
+fn cell(c: &Cell) -> String {
+    match c.median {
+        Some(m) => format!("{} ({}/{})", evals(m), c.successes, c.runs),
+        None => format!("— ({}/{})", c.successes, c.runs),
+    }
+}
+
+fn ratio(r: &FamilyRow) -> String {
+    match r.ratio {
+        Some(x) => format!("{x:.2} ({}/{})", r.ratio_problems, r.problems),
+        None => format!("— (0/{})", r.problems),
+    }
+}
+
+/// The per-family table (Markdown), as printed to stdout and at the top of suite.md.
+pub fn family_table(families: &[FamilyRow], reference: Method) -> String {
+    let mut s = format!(
+        "| family | method | problems | runs at 1e-8 | targets reached | evals ÷ {reference} (problems) | median time |\n|---|---|---|---|---|---|---|\n"
+    );
+    for r in families {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {}/{} | {:.0} % | {} | {} |",
+            r.family,
+            r.method,
+            r.problems,
+            r.final_successes,
+            r.runs,
+            100.0 * r.targets_reached as f64 / r.targets.max(1) as f64,
+            ratio(r),
+            seconds(r.median_time),
+        );
+    }
+    s
+}
+
+/// `suite.md`.
+///
+/// # Errors
+/// When the file cannot be written.
+pub fn write_markdown(
+    path: &Path,
+    config: &Config,
+    problems: &[Problem],
+    rows: &[Row],
+    families: &[FamilyRow],
+    reference: Method,
+    interrupted: bool,
+) -> Result<()> {
+    let mut md = String::from("# hodr generalisation suite\n\n");
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let _ = writeln!(
+        md,
+        "* seeds per problem: {}; budget: {} evaluations per dimension; instances per function and dimension: {}",
+        config.seeds, config.budget_per_dim, config.instances
+    );
+    let _ = writeln!(
+        md,
+        "* methods: {}",
+        config
+            .methods
+            .iter()
+            .map(|m| m.name())
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let _ = writeln!(
+        md,
+        "* commit: {}",
+        commit().unwrap_or_else(|| "unknown".into())
+    );
+    let _ = writeln!(
+        md,
+        "* machine: {threads} hardware threads, rayon pool of {}",
+        rayon::current_num_threads()
+    );
+    if config.quick {
+        md.push_str("* `--quick`: small dimensions, 2 seeds, 2 instances, small budgets\n");
+    }
+    if interrupted {
+        md.push_str("* **interrupted**: only the runs finished before Ctrl-C\n");
+    }
+    md.push_str(
+        "\nEvaluations are counted through one wrapper for every method; targets are judged \
+         on the best point so far. Medians count a run that never reaches a target as +∞ \
+         (\"—\": half or more never did); (s/N) is runs reaching it. The ratio column is the \
+         geometric mean over problems of a method's median evaluations over the reference's, \
+         each problem at the hardest f-target both reach (so read it with the success counts); \
+         (k/m): problems with such a target. `paramNN`: NN % parameter-error reduction.\n\n",
+    );
+    md.push_str("## By family\n\n");
+    md.push_str(&family_table(families, reference));
+    md.push_str("\n![ECDF](ecdf.png)\n");
+    let labels = target_labels();
+    for family in Family::ALL {
+        let mine: Vec<&Row> = rows
+            .iter()
+            .filter(|r| problems[r.problem].family == family)
+            .collect();
+        if mine.is_empty() {
+            continue;
+        }
+        let _ = write!(
+            md,
+            "\n## {family}: median evaluations to f − f* ≤ target (runs reaching it)\n\n| problem | method |"
+        );
+        for l in &labels {
+            let _ = write!(md, " {l} |");
+        }
+        md.push_str(" median time |\n|---|---|");
+        md.push_str(&"---|".repeat(labels.len() + 1));
+        md.push('\n');
+        for r in mine {
+            let _ = write!(md, "| {} | {} |", problems[r.problem].name, r.method);
+            for c in &r.cells {
+                let _ = write!(md, " {} |", cell(c));
+            }
+            let _ = writeln!(md, " {} |", seconds(r.median_time));
+        }
+    }
+    std::fs::write(path, md).with_context(|| format!("writing {}", path.display()))
+}

@@ -1,0 +1,245 @@
+//! A suite problem: one definition holding everything a run may know about it, and
+//! nothing about any method (DESIGN §6).
+
+use std::fmt;
+
+use super::random;
+
+/// f: ℝⁿ → ℝ, pure (equal points give equal values) and safe to call from several
+/// threads at once.
+pub type Function = Box<dyn Fn(&[f64]) -> f64 + Send + Sync>;
+
+/// The start distribution: θ₀ as a pure function of a run seed.
+pub type StartFn = Box<dyn Fn(u64) -> Vec<f64> + Send + Sync>;
+
+/// A family of problems, selected together on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Family {
+    /// BBOB noiseless functions (Hansen et al. 2009), [`super::bbob`].
+    Bbob,
+    /// Discs on a point-sampled image, started off their targets, [`super::plateau`].
+    Plateau,
+    /// A smooth function of round(x), [`super::plateau::integer`].
+    Integer,
+    /// A stiff quadratic with one ignored coordinate, [`super::flat`].
+    Flat,
+    /// Built-in rendering tasks (BOX2), [`super::tasks`].
+    Tasks,
+}
+
+impl Family {
+    /// Every family, in run order.
+    pub const ALL: [Family; 5] = [
+        Family::Bbob,
+        Family::Plateau,
+        Family::Integer,
+        Family::Flat,
+        Family::Tasks,
+    ];
+
+    /// The name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Family::Bbob => "bbob",
+            Family::Plateau => "plateau",
+            Family::Integer => "integer",
+            Family::Flat => "flat",
+            Family::Tasks => "tasks",
+        }
+    }
+
+    /// The family called `name` (case-insensitive).
+    pub fn from_name(name: &str) -> Option<Family> {
+        Family::ALL
+            .into_iter()
+            .find(|f| f.name().eq_ignore_ascii_case(name.trim()))
+    }
+
+    /// The dimensions the family is defined at.
+    pub fn dims(self) -> &'static [usize] {
+        match self {
+            Family::Bbob => &[2, 5, 10, 20],
+            Family::Plateau => &[2, 4, 8],
+            Family::Integer => &[2, 5, 10],
+            Family::Flat => &[super::flat::DIM],
+            Family::Tasks => &[2],
+        }
+    }
+}
+
+impl fmt::Display for Family {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// How the distance of a point x to the optimum x* is measured (the parameter error).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Measure {
+    /// ‖x − x*‖.
+    Euclidean,
+    /// ‖round(x) − x*‖: on a function of round(x) every point of the optimum's unit
+    /// cell is optimal, so only the rounded point is judged.
+    Rounded,
+    /// ‖x − x*‖ over the first `k` coordinates: the others do not affect f.
+    Leading(usize),
+    /// x lists `n / 2` interchangeable 2-D positions: min over assignments π of
+    /// √(Σₖ ‖xₖ − x*_π(k)‖²).
+    UnorderedPairs,
+}
+
+impl Measure {
+    /// The parameter error of `x` against `x_opt`.
+    pub fn error(&self, x: &[f64], x_opt: &[f64]) -> f64 {
+        let dist = |a: &[f64], b: &[f64]| {
+            a.iter()
+                .zip(b)
+                .map(|(p, q)| (p - q) * (p - q))
+                .sum::<f64>()
+                .sqrt()
+        };
+        match self {
+            Measure::Euclidean => dist(x, x_opt),
+            Measure::Rounded => {
+                let r: Vec<f64> = x.iter().map(|v| v.round()).collect();
+                dist(&r, x_opt)
+            }
+            Measure::Leading(k) => dist(&x[..*k], &x_opt[..*k]),
+            Measure::UnorderedPairs => {
+                let k = x.len() / 2;
+                random::permutations(k)
+                    .iter()
+                    .map(|perm| {
+                        perm.iter()
+                            .enumerate()
+                            .map(|(i, &j)| {
+                                (x[2 * i] - x_opt[2 * j]).powi(2)
+                                    + (x[2 * i + 1] - x_opt[2 * j + 1]).powi(2)
+                            })
+                            .sum::<f64>()
+                    })
+                    .fold(f64::INFINITY, f64::min)
+                    .sqrt()
+            }
+        }
+    }
+}
+
+/// Box bounds lower ≤ x ≤ upper, per coordinate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bounds {
+    /// Lower bounds.
+    pub lower: Vec<f64>,
+    /// Upper bounds.
+    pub upper: Vec<f64>,
+}
+
+impl Bounds {
+    /// The same interval [lo, hi] on each of n coordinates.
+    pub fn cube(n: usize, lo: f64, hi: f64) -> Bounds {
+        Bounds {
+            lower: vec![lo; n],
+            upper: vec![hi; n],
+        }
+    }
+
+    /// x clamped into the box, coordinate by coordinate.
+    pub fn clamp(&self, x: &mut [f64]) {
+        for ((v, lo), hi) in x.iter_mut().zip(&self.lower).zip(&self.upper) {
+            *v = v.clamp(*lo, *hi);
+        }
+    }
+
+    /// x reflected into the box, coordinate by coordinate: across a violated bound, and
+    /// again across the other for points more than one box width out — the periodic
+    /// mirror y = lo + L − |L − ((x − lo) mod 2L)|, L = hi − lo. The identity inside the
+    /// box and on coordinates with an infinite bound. Unlike clamping, it leaves no
+    /// region outside the box where f stops depending on x.
+    pub fn reflect(&self, x: &mut [f64]) {
+        for ((v, &lo), &hi) in x.iter_mut().zip(&self.lower).zip(&self.upper) {
+            let width = hi - lo;
+            if (lo..=hi).contains(v) || !width.is_finite() || width <= 0.0 {
+                continue;
+            }
+            let t = (*v - lo).rem_euclid(2.0 * width);
+            *v = (lo + width - (width - t).abs()).clamp(lo, hi);
+        }
+    }
+
+    /// The smallest upper − lower over the coordinates.
+    pub fn narrowest(&self) -> f64 {
+        self.lower
+            .iter()
+            .zip(&self.upper)
+            .map(|(lo, hi)| hi - lo)
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// One problem of the suite: f, its optimum, how runs start and what they may spend.
+pub struct Problem {
+    /// Unique name, e.g. `bbob-f08-n05-i2`; seeds derive from it.
+    pub name: String,
+    /// The family.
+    pub family: Family,
+    /// Dimension n.
+    pub n: usize,
+    /// f.
+    pub f: Function,
+    /// f* = min f, the value runs are judged against (f − f*).
+    pub f_opt: f64,
+    /// A minimiser x*, for the parameter error.
+    pub x_opt: Vec<f64>,
+    /// How the parameter error is measured.
+    pub measure: Measure,
+    /// θ₀ from a run seed.
+    pub start: StartFn,
+    /// σ₀: the distance over which the parameters matter (CMA-ES's initial step size).
+    pub sigma0: f64,
+    /// Box bounds, if the problem has them.
+    pub bounds: Option<Bounds>,
+    /// Objective evaluations per run.
+    pub budget: usize,
+}
+
+impl Problem {
+    /// f(x).
+    pub fn value(&self, x: &[f64]) -> f64 {
+        (self.f)(x)
+    }
+
+    /// The parameter error of x ([`Problem::measure`]).
+    pub fn param_error(&self, x: &[f64]) -> f64 {
+        self.measure.error(x, &self.x_opt)
+    }
+
+    /// The start of run `seed` (already a run seed, see [`run_seed`]).
+    pub fn start(&self, seed: u64) -> Vec<f64> {
+        (self.start)(seed)
+    }
+}
+
+impl fmt::Debug for Problem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Problem")
+            .field("name", &self.name)
+            .field("family", &self.family)
+            .field("n", &self.n)
+            .field("f_opt", &self.f_opt)
+            .field("sigma0", &self.sigma0)
+            .field("bounds", &self.bounds)
+            .field("budget", &self.budget)
+            .finish_non_exhaustive()
+    }
+}
+
+/// The seed of run `index` on the problem called `name`: a function of these two only,
+/// so adding methods, problems or seeds never changes another run.
+pub fn run_seed(name: &str, index: usize) -> u64 {
+    random::seed_of(name, &[index as u64])
+}
+
+/// A start uniform in the open cube (lo, hi)ⁿ drawn from the run seed.
+pub fn uniform_start(n: usize, lo: f64, hi: f64) -> StartFn {
+    Box::new(move |seed| random::uniform(n, lo, hi, random::seed_of("start", &[seed])))
+}

@@ -1,0 +1,206 @@
+//! Metrics over seeds: evaluations to targets, success rates, wall time, and the
+//! per-family aggregate against a reference method.
+//!
+//! * Targets: f − f* ≤ 10ᵏ for k = 1, 0, −1, …, −8 ([`F_TARGETS`]), and a 99 % reduction
+//!   of the parameter error from the start's ([`PARAM_REDUCTION`]), all judged on the
+//!   best point so far ([`super::trace`]).
+//! * Per problem, method and target: the median over seeds of the evaluations to reach
+//!   it, a run that never does counting as +∞ — so the median exists only when at least
+//!   half the runs got there (upper median for an even count: "at least half the runs
+//!   reached it by then") — and the number of runs that did.
+//! * Per family and method: the geometric mean over problems of (median evaluations /
+//!   the reference method's), each problem taken at the hardest f-target both medians
+//!   reach (problems where they share none are left out and counted separately); the
+//!   runs reaching the final target 10⁻⁸; the fraction of (problem, seed, f-target)
+//!   triples reached; the median wall time of a run.
+
+use super::methods::Method;
+use super::problem::{Family, Problem};
+use super::trace::Trace;
+use crate::metrics::median;
+
+/// The exponents k of the f-targets 10ᵏ, easiest first.
+pub const F_TARGETS: [i32; 10] = [1, 0, -1, -2, -3, -4, -5, -6, -7, -8];
+
+/// The parameter-error reduction reported beside the f-targets.
+pub const PARAM_REDUCTION: f64 = 0.99;
+
+/// Labels of the targets, f-targets then the parameter target, as in tables and CSV.
+pub fn target_labels() -> Vec<String> {
+    F_TARGETS
+        .iter()
+        .map(|k| format!("1e{k}"))
+        .chain([format!("param{}", (PARAM_REDUCTION * 100.0).round())])
+        .collect()
+}
+
+/// One finished run.
+#[derive(Clone, Debug)]
+pub struct Run {
+    /// Index of the problem in the suite's list.
+    pub problem: usize,
+    /// The method.
+    pub method: Method,
+    /// Seed index (0-based; the run seed derives from it and the problem's name).
+    pub seed: usize,
+    /// What the run recorded.
+    pub trace: Trace,
+}
+
+impl Run {
+    /// The evaluations to reach each target, in [`target_labels`] order.
+    pub fn reached(&self) -> Vec<Option<usize>> {
+        F_TARGETS
+            .iter()
+            .map(|&k| self.trace.reaching_f(10f64.powi(k)))
+            .chain([self.trace.reaching_param(PARAM_REDUCTION)])
+            .collect()
+    }
+}
+
+/// One target's result over seeds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cell {
+    /// Median evaluations (a miss counts as +∞); `None` when half or more missed.
+    pub median: Option<f64>,
+    /// Runs that reached the target.
+    pub successes: usize,
+    /// Runs.
+    pub runs: usize,
+}
+
+/// One problem × method over its seeds.
+#[derive(Clone, Debug)]
+pub struct Row {
+    /// Index of the problem.
+    pub problem: usize,
+    /// The method.
+    pub method: Method,
+    /// One cell per target, in [`target_labels`] order.
+    pub cells: Vec<Cell>,
+    /// Median wall time of a run, seconds.
+    pub median_time: f64,
+}
+
+/// The rows of every problem × method that has runs, in problem then `methods` order.
+pub fn rows(problems: &[Problem], methods: &[Method], runs: &[Run]) -> Vec<Row> {
+    let mut out = Vec::new();
+    for p in 0..problems.len() {
+        for &m in methods {
+            let mine: Vec<&Run> = runs
+                .iter()
+                .filter(|r| r.problem == p && r.method == m)
+                .collect();
+            if mine.is_empty() {
+                continue;
+            }
+            let reached: Vec<Vec<Option<usize>>> = mine.iter().map(|r| r.reached()).collect();
+            let cells = (0..=F_TARGETS.len())
+                .map(|t| {
+                    let v: Vec<Option<f64>> =
+                        reached.iter().map(|r| r[t].map(|e| e as f64)).collect();
+                    Cell {
+                        median: median(&v),
+                        successes: v.iter().filter(|x| x.is_some()).count(),
+                        runs: v.len(),
+                    }
+                })
+                .collect();
+            let times: Vec<Option<f64>> = mine.iter().map(|r| Some(r.trace.time)).collect();
+            out.push(Row {
+                problem: p,
+                method: m,
+                cells,
+                median_time: median(&times).unwrap_or(f64::NAN),
+            });
+        }
+    }
+    out
+}
+
+/// One family × method aggregate.
+#[derive(Clone, Debug)]
+pub struct FamilyRow {
+    /// The family.
+    pub family: Family,
+    /// The method.
+    pub method: Method,
+    /// Problems with runs of this method.
+    pub problems: usize,
+    /// Geometric mean of the ratio to the reference, if any problem had a common target.
+    pub ratio: Option<f64>,
+    /// Problems that entered the ratio.
+    pub ratio_problems: usize,
+    /// Runs reaching the final target 10⁻⁸.
+    pub final_successes: usize,
+    /// Runs.
+    pub runs: usize,
+    /// (problem, seed, f-target) triples reached.
+    pub targets_reached: usize,
+    /// (problem, seed, f-target) triples.
+    pub targets: usize,
+    /// Median wall time of a run, seconds.
+    pub median_time: f64,
+}
+
+/// The per-family aggregates of `methods` against `reference`, in family then method
+/// order.
+pub fn families(
+    problems: &[Problem],
+    methods: &[Method],
+    reference: Method,
+    rows: &[Row],
+    runs: &[Run],
+) -> Vec<FamilyRow> {
+    let last = F_TARGETS.len() - 1;
+    let mut out = Vec::new();
+    for family in Family::ALL {
+        for &m in methods {
+            let mine: Vec<&Row> = rows
+                .iter()
+                .filter(|r| r.method == m && problems[r.problem].family == family)
+                .collect();
+            if mine.is_empty() {
+                continue;
+            }
+            let mut logs = Vec::new();
+            for r in &mine {
+                let Some(base) = rows
+                    .iter()
+                    .find(|b| b.problem == r.problem && b.method == reference)
+                else {
+                    continue;
+                };
+                let common = (0..F_TARGETS.len())
+                    .rev()
+                    .find_map(|t| Some((r.cells[t].median?, base.cells[t].median?)));
+                if let Some((a, b)) = common {
+                    logs.push((a / b).ln());
+                }
+            }
+            let my_runs: Vec<&Run> = runs
+                .iter()
+                .filter(|r| r.method == m && problems[r.problem].family == family)
+                .collect();
+            let reached: Vec<Vec<Option<usize>>> = my_runs.iter().map(|r| r.reached()).collect();
+            let times: Vec<Option<f64>> = my_runs.iter().map(|r| Some(r.trace.time)).collect();
+            out.push(FamilyRow {
+                family,
+                method: m,
+                problems: mine.len(),
+                ratio: (!logs.is_empty())
+                    .then(|| (logs.iter().sum::<f64>() / logs.len() as f64).exp()),
+                ratio_problems: logs.len(),
+                final_successes: reached.iter().filter(|r| r[last].is_some()).count(),
+                runs: my_runs.len(),
+                targets_reached: reached
+                    .iter()
+                    .map(|r| r[..F_TARGETS.len()].iter().filter(|x| x.is_some()).count())
+                    .sum(),
+                targets: my_runs.len() * F_TARGETS.len(),
+                median_time: median(&times).unwrap_or(f64::NAN),
+            });
+        }
+    }
+    out
+}

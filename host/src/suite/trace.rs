@@ -1,0 +1,184 @@
+//! The counting wrapper every method evaluates through, and the trace it records, so
+//! that every method is measured identically.
+//!
+//! Each evaluation is numbered 1, 2, … in the order the method asks for it. The point
+//! is first clamped into the problem's bounds (a no-op for methods that stay inside);
+//! f and the parameter error are those of the clamped point. Whenever f − f* falls
+//! below the best so far, the trace records (evaluation number, f − f*, parameter
+//! error). Evaluations after the budget still return f (so a method can finish its
+//! iteration) but are not recorded or counted.
+
+use hodr_core::{Batch, NoiseSeed, Objective};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use super::problem::Problem;
+
+/// A new best point of a run.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Event {
+    /// 1-based number of the evaluation that found it.
+    pub evaluation: usize,
+    /// f − f* there.
+    pub f: f64,
+    /// Its parameter error.
+    pub param_error: f64,
+}
+
+/// The record of one run.
+#[derive(Clone, Debug, Serialize)]
+pub struct Trace {
+    /// Each new best, in order.
+    pub events: Vec<Event>,
+    /// Evaluations counted (at most the budget).
+    pub evaluations: usize,
+    /// The parameter error of the start θ₀ (clamped into the bounds).
+    pub initial_error: f64,
+    /// Wall time of the run, seconds.
+    pub time: f64,
+    /// Why the run ended before its budget, if it did and said why (e.g. the method's own
+    /// convergence test, or an error).
+    pub stopped: Option<String>,
+}
+
+impl Trace {
+    /// The first evaluation at which f − f* ≤ `target`, if any.
+    pub fn reaching_f(&self, target: f64) -> Option<usize> {
+        self.events
+            .iter()
+            .find(|e| e.f <= target)
+            .map(|e| e.evaluation)
+    }
+
+    /// The first evaluation whose new best has parameter error at most
+    /// (1 − `reduction`) × the start's (e.g. 0.99: a 99 % reduction), if any.
+    pub fn reaching_param(&self, reduction: f64) -> Option<usize> {
+        let goal = (1.0 - reduction) * self.initial_error;
+        self.events
+            .iter()
+            .find(|e| e.param_error <= goal)
+            .map(|e| e.evaluation)
+    }
+
+    /// The best f − f* of the run (+∞ when nothing was evaluated).
+    pub fn best(&self) -> f64 {
+        self.events.last().map_or(f64::INFINITY, |e| e.f)
+    }
+}
+
+/// A problem's f at points clamped into its bounds: pure and shareable between threads.
+#[derive(Clone, Copy, Debug)]
+pub struct Clamped<'p>(pub &'p Problem);
+
+impl Clamped<'_> {
+    /// x clamped into the problem's bounds.
+    pub fn point(&self, x: &[f64]) -> Vec<f64> {
+        let mut y = x.to_vec();
+        if let Some(b) = &self.0.bounds {
+            b.clamp(&mut y);
+        }
+        y
+    }
+
+    /// f at x clamped into the bounds.
+    pub fn value(&self, x: &[f64]) -> f64 {
+        self.0.value(&self.point(x))
+    }
+}
+
+/// The counting wrapper around a problem's f for one run.
+pub struct Counter<'p> {
+    problem: &'p Problem,
+    budget: usize,
+    count: usize,
+    best: f64,
+    events: Vec<Event>,
+}
+
+impl<'p> Counter<'p> {
+    /// A fresh counter for a run of `budget` evaluations.
+    pub fn new(problem: &'p Problem, budget: usize) -> Self {
+        Counter {
+            problem,
+            budget,
+            count: 0,
+            best: f64::INFINITY,
+            events: Vec::new(),
+        }
+    }
+
+    /// f without counting, for evaluation on any thread; pair each value with
+    /// [`Counter::record`] in the method's order.
+    pub fn clamped(&self) -> Clamped<'p> {
+        Clamped(self.problem)
+    }
+
+    /// Counts one evaluation of x (unclamped, as the method asked) that gave `f`.
+    pub fn record(&mut self, x: &[f64], f: f64) {
+        if self.count >= self.budget {
+            return;
+        }
+        self.count += 1;
+        let gap = f - self.problem.f_opt;
+        if gap < self.best {
+            self.best = gap;
+            let y = self.clamped().point(x);
+            self.events.push(Event {
+                evaluation: self.count,
+                f: gap,
+                param_error: self.problem.param_error(&y),
+            });
+        }
+    }
+
+    /// Evaluates and counts x.
+    pub fn evaluate(&mut self, x: &[f64]) -> f64 {
+        let f = self.clamped().value(x);
+        self.record(x, f);
+        f
+    }
+
+    /// Evaluations counted so far.
+    pub fn count(&self) -> usize {
+        self.count
+    }
+
+    /// True once the budget is used.
+    pub fn exhausted(&self) -> bool {
+        self.count >= self.budget
+    }
+
+    /// The trace of the run so far, with the start's parameter error, wall time and
+    /// stopping reason supplied by the runner.
+    pub fn into_trace(self, initial_error: f64, time: f64, stopped: Option<String>) -> Trace {
+        Trace {
+            events: self.events,
+            evaluations: self.count,
+            initial_error,
+            time,
+            stopped,
+        }
+    }
+}
+
+/// hodr-core's objective interface: single points and batches, each batch evaluated in
+/// parallel (rayon) and counted in batch order. f is a function of θ alone.
+impl Objective<f64> for Counter<'_> {
+    fn evaluate(&mut self, theta: &[f64], _seed: NoiseSeed) -> f64 {
+        Counter::evaluate(self, theta)
+    }
+
+    fn evaluate_batch(&mut self, batch: &Batch<'_, f64>, out: &mut [f64]) {
+        let f = self.clamped();
+        out.par_iter_mut()
+            .enumerate()
+            .for_each(|(k, v)| *v = f.value(batch.point(k)));
+        for (k, &v) in out.iter().enumerate() {
+            self.record(batch.point(k), v);
+        }
+    }
+
+    fn deterministic(&self) -> bool {
+        true
+    }
+}

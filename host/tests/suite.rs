@@ -1,0 +1,278 @@
+//! The generalisation suite: problem definitions against hand-computed values, the
+//! counting wrapper, and `hodr suite` end to end with a tiny configuration.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+use hodr_host::suite::bbob::{self, Bbob};
+use hodr_host::suite::plateau::{self, Discs};
+use hodr_host::suite::{self, Config, Method, flat, random};
+
+/// Tolerances, each with its reason.
+mod tol {
+    /// f at x_opt: every function is exactly 0 there in exact arithmetic, and x − x_opt
+    /// is exactly 0 in floating point, so only rounding inside f remains.
+    pub const AT_OPTIMUM: f64 = 1e-9;
+    /// ‖RRᵀ − I‖_max after two passes of modified Gram–Schmidt on Gaussian rows.
+    pub const ORTHOGONAL: f64 = 1e-12;
+    /// (x_opt + d) − x_opt differs from d by an ulp of x_opt (|x_opt| ≤ 4); squared and
+    /// multiplied by at most 100·9 in the hand-computed values.
+    pub const HAND: f64 = 1e-9;
+}
+
+#[test]
+fn bbob_functions_vanish_at_their_optimum_and_are_positive_elsewhere() {
+    for id in bbob::IDS {
+        for n in [2, 5, 10, 20] {
+            for instance in 1..=3 {
+                let f = Bbob::new(id, n, instance);
+                let at = f.value(f.x_opt());
+                assert!(at.abs() <= tol::AT_OPTIMUM, "f{id} n={n}: f(x_opt) = {at}");
+                for k in 0..20 {
+                    let x = random::uniform(n, -5.0, 5.0, random::seed_of("t", &[k]));
+                    let v = f.value(&x);
+                    assert!(v > 0.0, "f{id} n={n} i={instance}: f = {v} at {x:?}");
+                }
+                // Near x_opt too, where f7's rounding and f6's sector switch act.
+                let mut x = f.x_opt().to_vec();
+                x[0] += 1e-3;
+                assert!(f.value(&x) > 0.0, "f{id} n={n}: zero next to x_opt");
+            }
+        }
+    }
+}
+
+#[test]
+fn bbob_optima_lie_where_the_definition_puts_them() {
+    for id in bbob::IDS {
+        let f = Bbob::new(id, 10, 1);
+        let limit = if id == 8 { 3.0 } else { 4.0 };
+        assert!(f.x_opt().iter().all(|v| v.abs() <= limit), "f{id}");
+    }
+}
+
+#[test]
+fn rotations_are_orthogonal() {
+    for n in [1, 2, 5, 10, 20, 40] {
+        for seed in 0..3 {
+            let r = random::rotation(n, seed);
+            for i in 0..n {
+                for j in 0..n {
+                    let d: f64 = (0..n).map(|k| r[i * n + k] * r[j * n + k]).sum();
+                    let want = if i == j { 1.0 } else { 0.0 };
+                    assert!((d - want).abs() <= tol::ORTHOGONAL, "n={n} ({i},{j}): {d}");
+                }
+            }
+        }
+    }
+    let f = Bbob::new(15, 7, 2);
+    assert_ne!(f.r(), f.q(), "R and Q come from different seeds");
+}
+
+#[test]
+fn sphere_and_rosenbrock_match_hand_computed_values() {
+    // f1 at x_opt + (1, 2): 1² + 2² = 5.
+    let f1 = Bbob::new(1, 2, 1);
+    let x: Vec<f64> = f1
+        .x_opt()
+        .iter()
+        .zip([1.0, 2.0])
+        .map(|(a, b)| a + b)
+        .collect();
+    assert!((f1.value(&x) - 5.0).abs() <= tol::HAND);
+
+    // f8, n = 2 (scale max(1, √2/8) = 1), x = x_opt + (1, 0): z = (2, 1),
+    // 100·(2² − 1)² + (2 − 1)² = 901.
+    let f8 = Bbob::new(8, 2, 1);
+    let x: Vec<f64> = f8
+        .x_opt()
+        .iter()
+        .zip([1.0, 0.0])
+        .map(|(a, b)| a + b)
+        .collect();
+    assert!((f8.value(&x) - 901.0).abs() <= tol::HAND);
+
+    // f8, n = 256 (scale √256/8 = 2), x = x_opt + ½e₁: z = (2, 1, 1, …): again 901.
+    let f8 = Bbob::new(8, 256, 1);
+    let mut x = f8.x_opt().to_vec();
+    x[0] += 0.5;
+    assert!((f8.value(&x) - 901.0).abs() <= tol::HAND);
+}
+
+#[test]
+fn oscillation_and_asymmetry_transforms_follow_the_definition() {
+    // T_osz(1) = exp(0 + 0.049·(sin 0 + sin 0)) = 1; odd-like sign handling.
+    assert_eq!(bbob::t_osz1(0.0), 0.0);
+    assert!((bbob::t_osz1(1.0) - 1.0).abs() < 1e-15);
+    let x = 2.5f64;
+    let xh = x.ln();
+    let want = (xh + 0.049 * ((10.0 * xh).sin() + (7.9 * xh).sin())).exp();
+    assert!((bbob::t_osz1(x) - want).abs() < 1e-12);
+    let want = -(xh + 0.049 * ((5.5 * xh).sin() + (3.1 * xh).sin())).exp();
+    assert!((bbob::t_osz1(-x) - want).abs() < 1e-12);
+    // T_asy^β leaves x₁ and negative entries alone; x_D > 0 gets exponent 1 + β√x_D.
+    let y = bbob::t_asy(&[4.0, -3.0, 4.0], 0.2);
+    assert_eq!(y[0], 4.0);
+    assert_eq!(y[1], -3.0);
+    assert!((y[2] - 4f64.powf(1.0 + 0.2 * 2.0)).abs() < 1e-12);
+}
+
+#[test]
+fn disc_plateau_is_zero_at_the_truth_and_flat_at_the_start() {
+    for n in [2, 4, 8] {
+        let p = plateau::discs(n, 1, 100);
+        assert_eq!(p.value(&p.x_opt), 0.0, "n={n}");
+        assert_eq!(p.param_error(&p.x_opt), 0.0);
+        for s in 0..5 {
+            let start = p.start(suite::problem::run_seed(&p.name, s));
+            let f0 = p.value(&start);
+            assert!(f0 > 0.0);
+            // The mismatch is symmetric: scoring the target against the start's discs
+            // (full-image construction) gives the same count as the bounding-box sum.
+            assert_eq!(Discs::new(&start).value(&p.x_opt), f0, "n={n} seed={s}");
+            // A plateau: moving every disc by a whole pixel (still clear of every
+            // target, as starts are ≥ 13 px from targets, and inside the image) changes
+            // nothing.
+            for (dx, dy) in [(1.0, 0.0), (0.0, -1.0), (-1.0, 0.0)] {
+                let moved: Vec<f64> = start
+                    .chunks_exact(2)
+                    .flat_map(|c| [c[0] + dx, c[1] + dy])
+                    .collect();
+                assert_eq!(p.value(&moved), f0, "n={n} seed={s} moved by ({dx}, {dy})");
+            }
+        }
+    }
+}
+
+#[test]
+fn disc_parameter_error_ignores_the_order_of_discs() {
+    let p = plateau::discs(4, 2, 100);
+    let swapped = [p.x_opt[2], p.x_opt[3], p.x_opt[0], p.x_opt[1]];
+    assert_eq!(p.value(&swapped), 0.0);
+    assert_eq!(p.param_error(&swapped), 0.0);
+}
+
+#[test]
+fn integer_plateau_is_constant_on_the_optimum_cell() {
+    let p = plateau::integer(5, 1, 100);
+    assert!(p.x_opt.iter().all(|v| v.fract() == 0.0));
+    assert_eq!(p.value(&p.x_opt), 0.0);
+    let near: Vec<f64> = p.x_opt.iter().map(|v| v + 0.3).collect();
+    assert_eq!(p.value(&near), 0.0);
+    assert_eq!(p.param_error(&near), 0.0);
+    let off: Vec<f64> = p.x_opt.iter().map(|v| v + 0.7).collect();
+    assert!(p.value(&off) > 0.0);
+}
+
+#[test]
+fn flat_problem_ignores_its_last_coordinate() {
+    let p = flat::problem(1, 100);
+    let mut x = p.x_opt.clone();
+    assert_eq!(p.value(&x), 0.0);
+    x[flat::DIM - 1] += 1e3;
+    assert_eq!(p.value(&x), 0.0);
+    assert_eq!(p.param_error(&x), 0.0);
+    x[0] += 1.0;
+    assert!(p.value(&x) > 0.0);
+}
+
+#[test]
+fn runs_are_deterministic_and_truncated_at_the_budget() {
+    let p = bbob::problem(10, 5, 1, 60);
+    let seed = suite::problem::run_seed(&p.name, 0);
+    let x0 = p.start(seed);
+    for m in [Method::CmaEs, Method::Bobyqa, Method::Fr22] {
+        let a = m.run(&p, &x0, seed);
+        let b = m.run(&p, &x0, seed);
+        assert_eq!(a.events, b.events, "{m}");
+        assert!(a.evaluations <= p.budget, "{m}");
+        assert!(a.events.iter().all(|e| e.evaluation <= p.budget));
+        assert!(a.events.windows(2).all(|w| w[1].f < w[0].f));
+    }
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("hodr-suite-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn hodr(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_hodr"))
+        .args(args)
+        .output()
+        .expect("hodr runs")
+}
+
+#[test]
+fn quick_suite_writes_its_files() {
+    let dir = scratch("quick");
+    let out = hodr(&[
+        "suite",
+        "--quick",
+        "--methods",
+        "CMA-ES,BOBYQA",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("| bbob | CMA-ES |"), "{stdout}");
+    let md = std::fs::read_to_string(dir.join("suite.md")).unwrap();
+    assert!(md.contains("## plateau") && md.contains("BOBYQA"));
+    let csv = std::fs::read_to_string(dir.join("suite.csv")).unwrap();
+    let config = Config::from_args(&[], &[], &[], None, None, true, dir.clone()).unwrap();
+    let problems = suite::catalogue(&config).unwrap().len();
+    let targets = suite::summary::target_labels().len();
+    assert_eq!(csv.lines().count(), 1 + problems * 2 * 2 * targets);
+    let fields = csv.lines().next().unwrap().split(',').count();
+    assert!(csv.lines().all(|l| l.split(',').count() == fields));
+    let png = std::fs::read(dir.join("ecdf.png")).unwrap();
+    assert!(png.starts_with(b"\x89PNG"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn bad_suite_arguments_fail_with_one_line() {
+    for (args, culprit) in [
+        (&["suite", "--methods", "Nelder"][..], "Nelder"),
+        (&["suite", "--families", "bbob,cec"][..], "cec"),
+        (&["suite", "--dims", "3"][..], "3"),
+        (&["suite", "--methods", "FR22,fr22"][..], "fr22"),
+        (&["suite", "--seeds", "0"][..], "seeds"),
+        (&["suite", "--seeds", "many"][..], "many"),
+    ] {
+        let out = hodr(args);
+        assert!(!out.status.success(), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains(culprit), "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn reflection_maps_into_the_box_and_keeps_the_inside() {
+    let b = suite::problem::Bounds::cube(1, -5.0, 5.0);
+    for (x, want) in [
+        (0.0, 0.0),
+        (5.0, 5.0),
+        (6.0, 4.0),
+        (-7.5, -2.5),
+        (16.0, -4.0),
+        (25.0, 5.0),
+        (-25.0, -5.0),
+    ] {
+        let mut v = [x];
+        b.reflect(&mut v);
+        assert!((v[0] - want).abs() < 1e-12, "{x} → {} not {want}", v[0]);
+    }
+    let open = suite::problem::Bounds::cube(1, f64::NEG_INFINITY, f64::INFINITY);
+    let mut v = [1e300];
+    open.reflect(&mut v);
+    assert_eq!(v[0], 1e300);
+}
