@@ -19,26 +19,36 @@
 //!   orthonormal frame (2n points, with θ, on the first iteration). The two halves of a
 //!   pair share a noise seed.
 //! * **Step.** The model's minimiser within ‖s‖ ≤ σ√n (the `trust` module: exact for
-//!   indefinite H, so a non-PSD model steps along its negative curvature), projected into
-//!   the bounds, is evaluated. It replaces θ when f is lower there; a stochastic
-//!   objective ([`Objective::deterministic`] false) is evaluated at θ and at the trial
-//!   point with one noise seed, so that the comparison is on common random numbers.
+//!   indefinite H, so a non-PSD model steps along its negative curvature), over the
+//!   coordinates no bound holds and projected into the bounds, is evaluated. It
+//!   replaces θ when f is no higher there (a tie moves to the smoothed model's minimum
+//!   of a flat piece of f); a stochastic objective ([`Objective::deterministic`] false)
+//!   is evaluated at θ and at the trial point with one noise seed, so that the
+//!   comparison is on common random numbers. A deterministic objective's lowest sample
+//!   replaces θ too.
 //! * **σ is the trust radius** and follows the ratio ρ̂ of actual to predicted decrease:
-//!   ρ̂ < 0.1 halves σ; ρ̂ ≥ 0.7 with a step to the boundary doubles it; a step shorter
-//!   than half the radius shrinks σ towards twice its length (at most halving it). Where
-//!   the remembered values within reach tie (a plateau), σ doubles and a new pair is
-//!   drawn at the wider scale: where a model-based method sees zero slope, the wider
-//!   kernel reaches the slope.
+//!   ρ̂ ≥ 0.7 with a step to the boundary doubles σ; a step shorter than half the radius
+//!   shrinks σ towards twice its length (at most halving it); ρ̂ < 0.1 halves σ — unless
+//!   fewer points than the model has coefficients determined it (then a pair is drawn
+//!   at the same σ first), or the fit finds f rough at this scale (residual scatter
+//!   above [`ROUGH`] of the values' spread) and the trial lies within twice that scatter
+//!   (then σ doubles, as on a plateau).
+//! * **Plateaus.** Where the remembered values within reach tie, σ doubles (up to
+//!   [`PLATEAU_WIDTH`]·σ₀) and an exploring pair is drawn at a Gaussian distance σ‖t‖,
+//!   t ~ N(0, I): where a model-based method sees zero slope, the wider kernel reaches
+//!   the slope.
 //! * **Anytime.** Nothing depends on a budget: the first k evaluations of a run are the
 //!   same whatever its [`AutoOptions::max_evaluations`], which only stops it (never
 //!   exceeded, even inside an iteration). The run ends converged when σ falls below
-//!   [`AutoOptions::tolerance`]·σ₀ (or below what T resolves at θ), or stagnated after
-//!   [`AutoOptions::patience`] iterations without a lower f(θ).
+//!   [`AutoOptions::tolerance`]·σ₀ (or below what T resolves at θ). After
+//!   [`AutoOptions::patience`] iterations without a lower f(θ) it restarts once at σ₀
+//!   from the best point, and ends stagnated if that finds nothing lower either.
 //!
 //! Memory: one caller buffer of [`Auto::buffer_len`] floats, O(n² + m²) for m =
 //! [`Auto::history_len`] remembered points. Cost per iteration: O(m²n + m³) for the fit,
 //! O(n³) for the full model's eigen-decomposition.
 
+mod metric;
 mod model;
 mod trust;
 
@@ -65,12 +75,12 @@ pub const REACH: f64 = 2.0;
 /// it fits finds f rough at σ: a failed step that lands within 2η of f(θ) then widens σ
 /// instead of shrinking it. A smooth f's residuals (its Taylor remainder) are a
 /// fraction of F that falls with σ, so a smooth f never reaches it for long.
-const ROUGH: f64 = 0.25;
+pub const ROUGH: f64 = 0.25;
 
 /// σ/σ₀ beyond which a plateau no longer widens σ: the run keeps drawing pairs at
 /// Gaussian distances within that reach instead, since samples scattered ever wider
 /// meet a distant basin ever more rarely. σ₀ states where the parameters matter.
-const PLATEAU_WIDTH: f64 = 16.0;
+pub const PLATEAU_WIDTH: f64 = 16.0;
 
 /// σ/σ₀ beyond which a confirmed step to the trust boundary no longer widens σ.
 const GROWTH_WIDTH: f64 = 1_048_576.0;
@@ -95,7 +105,8 @@ pub enum NonFinite {
 pub struct AutoOptions<T> {
     /// The run ends converged once σ < `tolerance`·σ₀. Default: 1e-9.
     pub tolerance: T,
-    /// The run ends stagnated after this many iterations without a lower f(θ).
+    /// Iterations without a lower f(θ) after which the run restarts at σ₀ from the best
+    /// point (once per improvement) or, when it already has, ends stagnated.
     /// Default: `None`, meaning 20 + 10n.
     pub patience: Option<usize>,
     /// Objective evaluations after which the run stops; never exceeded. Default: none.
@@ -256,10 +267,17 @@ struct Memory<'b, T> {
     rg: &'b mut [T],
     rh: &'b mut [T],
     rs: &'b mut [T],
+    /// The model's gradient and Hessian in parameter directions (bounded steps).
+    gx: &'b mut [T],
+    hx: &'b mut [T],
+    /// The sampling metric C = LLᵀ, L and L⁻¹ (full models only; see `metric`).
+    c: &'b mut [T],
+    l: &'b mut [T],
+    li: &'b mut [T],
 }
 
 /// Region lengths for dimension n, in [`Memory`]'s order.
-fn regions(n: usize) -> [usize; 25] {
+fn regions(n: usize) -> [usize; 30] {
     let shape = Shape::for_dim(n);
     let m = history_len(n);
     let hl = shape.hessian_len(n);
@@ -291,6 +309,11 @@ fn regions(n: usize) -> [usize; 25] {
         n,
         hl,
         n,
+        n,
+        hl,
+        full,
+        full,
+        full,
     ]
 }
 
@@ -307,7 +330,7 @@ fn stage_rows(n: usize) -> usize {
 fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
     let lens = regions(n);
     let mut rest = buffer;
-    let mut parts: [&'b mut [T]; 25] = Default::default();
+    let mut parts: [&'b mut [T]; 30] = Default::default();
     for (part, &len) in parts.iter_mut().zip(&lens) {
         let (head, tail) = core::mem::take(&mut rest).split_at_mut(len);
         *part = head;
@@ -339,6 +362,11 @@ fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         rg,
         rh,
         rs,
+        gx,
+        hx,
+        c,
+        l,
+        li,
     ] = parts;
     Memory {
         lower,
@@ -366,6 +394,11 @@ fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         rg,
         rh,
         rs,
+        gx,
+        hx,
+        c,
+        l,
+        li,
     }
 }
 
@@ -398,6 +431,26 @@ struct State<T> {
 }
 
 /// Auto: a resumable run over θ (borrowed, updated in place to the best point found).
+///
+/// ```
+/// use hodr_core::optim::{Auto, AutoOptions};
+/// use rand_xoshiro::{Xoshiro256PlusPlus, rand_core::SeedableRng};
+///
+/// // A staircase on a quadratic bowl: flat steps, no useful derivative anywhere.
+/// let mut f = |x: &[f64]| {
+///     let q = (x[0] - 1.0).powi(2) + 10.0 * (x[1] + 2.0).powi(2);
+///     (q * 20.0).floor() / 20.0
+/// };
+/// let mut theta = [4.0, 3.0];
+/// let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(2)];
+/// let mut auto = Auto::new(&mut theta, 1.0, &mut buffer, Xoshiro256PlusPlus::seed_from_u64(1))?
+///     .with_bounds(&[-5.0, -5.0], &[5.0, 5.0])?
+///     .with_options(AutoOptions::default().with_max_evaluations(500)?);
+/// let end = auto.run(&mut f, |_report, _theta| {})?;
+/// assert_eq!(auto.value(), Some(0.0));
+/// println!("{end} after {} evaluations at {:?}", auto.evaluations(), auto.theta());
+/// # Ok::<(), hodr_core::Error>(())
+/// ```
 pub struct Auto<'b, T, R> {
     theta: &'b mut [T],
     mem: Memory<'b, T>,
@@ -465,6 +518,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let mem = carve(buffer, n);
         mem.lower.fill(-T::MAX);
         mem.upper.fill(T::MAX);
+        for m in [&mut *mem.c, &mut *mem.l, &mut *mem.li] {
+            for k in 0..m.len() {
+                m[k] = if k % (n + 1) == 0 { T::ONE } else { T::ZERO };
+            }
+        }
         Ok(Auto {
             theta,
             mem,
@@ -700,7 +758,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             };
             for sign in [T::ONE, -T::ONE] {
                 for i in 0..n {
-                    let x = self.theta[i] + sign * radius * self.mem.frame[k * n + i];
+                    let b = &self.mem.frame[k * n..(k + 1) * n];
+                    let along = if self.shaped() {
+                        (0..n).fold(T::ZERO, |s, j| s + self.mem.l[i * n + j] * b[j])
+                    } else {
+                        b[i]
+                    };
+                    let x = self.theta[i] + sign * radius * along;
                     self.mem.stage[rows * n + i] = x.max(self.mem.lower[i]).min(self.mem.upper[i]);
                 }
                 rows += 1;
@@ -782,13 +846,25 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.save_prior(scale, sigma);
         let radius = root_n;
         let ok = self.trust_step(radius);
-        // Project the trial point into the box; the step is what remains of s.
+        // Project the trial point θ + σLs into the box; the step is what remains of s.
         for i in 0..n {
-            let x = (self.theta[i] + sigma * self.mem.s[i])
+            let along = if self.shaped() {
+                (0..n).fold(T::ZERO, |acc, j| {
+                    acc + self.mem.l[i * n + j] * self.mem.s[j]
+                })
+            } else {
+                self.mem.s[i]
+            };
+            let x = (self.theta[i] + sigma * along)
                 .max(self.mem.lower[i])
                 .min(self.mem.upper[i]);
             self.mem.stage[i] = x;
-            self.mem.s[i] = (x - self.theta[i]) / sigma;
+            self.mem.rs[i] = (x - self.theta[i]) / sigma;
+        }
+        if self.shaped() {
+            metric::whiten(self.mem.li, self.mem.rs, self.mem.s);
+        } else {
+            self.mem.s.copy_from_slice(self.mem.rs);
         }
         let predicted = if ok {
             self.predicted_decrease()
@@ -796,8 +872,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             T::ZERO
         };
         let length = norm(self.mem.s);
+        // A model that claims a minimum near θ must have seen θ's surroundings in
+        // enough directions before σ shrinks on its word.
+        let validated = self.count_within(T::from_f64(REACH)) > 2 * n;
         if predicted <= T::ZERO || !predicted.is_finite() || length <= T::from_f64(1e-3) * radius {
-            self.st.sigma = sigma * T::HALF;
+            if validated {
+                self.st.sigma = sigma * T::HALF;
+            } else {
+                self.st.resample = true;
+            }
             return Ok((AutoStep::AtModelMinimum, None));
         }
         let compare = !objective.deterministic();
@@ -845,12 +928,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             sigma * T::HALF
         } else if ratio >= T::from_f64(0.7) && boundary {
             self.widened_sigma(GROWTH_WIDTH)
-        } else if length < T::HALF * radius {
+        } else if length < T::HALF * radius && validated {
             sigma * (T::TWO * length / radius).max(T::HALF)
         } else {
             sigma
         };
         if accepted {
+            if ratio >= T::from_f64(0.1) {
+                // The model predicted the decrease: trust its curvature's shape.
+                self.learn_metric();
+            }
             self.theta.copy_from_slice(&self.mem.stage[..n]);
             self.st.value = Some(trial);
             Ok((AutoStep::Accepted, Some(ratio)))
@@ -866,13 +953,24 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     fn trust_step(&mut self, radius: T) -> bool {
         let n = self.theta.len();
         let shape = self.shape;
+        let shaped = self.shaped();
         let m = &mut self.mem;
+        // The model in parameter directions v = (x − θ)/σ: g_v = L⁻ᵀg, H_v = L⁻ᵀHL⁻¹.
+        if shaped {
+            for i in 0..n {
+                m.gx[i] = metric::column(m.li, n, i)
+                    .zip(m.g.iter())
+                    .fold(T::ZERO, |acc, (a, &b)| acc + a * b);
+            }
+        } else {
+            m.gx.copy_from_slice(m.g);
+        }
         let theta = &*self.theta;
-        let held = |i: usize| {
-            (theta[i] <= m.lower[i] && m.g[i] > T::ZERO)
-                || (theta[i] >= m.upper[i] && m.g[i] < T::ZERO)
+        let held = |i: usize, gx: &[T]| {
+            (theta[i] <= m.lower[i] && gx[i] > T::ZERO)
+                || (theta[i] >= m.upper[i] && gx[i] < T::ZERO)
         };
-        let free = (0..n).filter(|&i| !held(i)).count();
+        let free = (0..n).filter(|&i| !held(i, m.gx)).count();
         if free == n {
             return trust::solve(
                 shape,
@@ -892,22 +990,32 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if free == 0 {
             return true;
         }
-        for (a, i) in (0..n).filter(|&i| !held(i)).enumerate() {
-            m.rg[a] = m.g[i];
+        // Some coordinates sit on a bound they are pushed against: step in parameter
+        // directions over the others, within the metric's longest axis.
+        let reach = if shaped {
+            metric::congruence(m.li, m.h, n, m.a, m.hx);
+            radius * metric::longest_axis(m.l, n)
+        } else {
+            m.hx[..shape.hessian_len(n)].copy_from_slice(m.h);
+            radius
+        };
+        let gx: &[T] = m.gx;
+        for (a, i) in (0..n).filter(|&i| !held(i, gx)).enumerate() {
+            m.rg[a] = gx[i];
             match shape {
                 Shape::Full => {
-                    for (b, j) in (0..n).filter(|&j| !held(j)).enumerate() {
-                        m.rh[a * free + b] = m.h[i * n + j];
+                    for (b, j) in (0..n).filter(|&j| !held(j, gx)).enumerate() {
+                        m.rh[a * free + b] = m.hx[i * n + j];
                     }
                 }
-                Shape::Diagonal => m.rh[a] = m.h[i],
+                Shape::Diagonal => m.rh[a] = m.hx[i],
             }
         }
         let ok = trust::solve(
             shape,
             &m.rg[..free],
             &m.rh[..shape.hessian_len(free)],
-            radius,
+            reach,
             trust::Scratch {
                 a: m.a,
                 v: m.v,
@@ -916,9 +1024,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             },
             &mut m.rs[..free],
         );
-        let steps: &[T] = m.rs;
-        for (a, i) in (0..n).filter(|&i| !held(i)).enumerate() {
-            m.s[i] = steps[a];
+        // Scatter the step to v, then to u = L⁻¹v.
+        m.hx[..n].fill(T::ZERO);
+        for (a, i) in (0..n).filter(|&i| !held(i, gx)).enumerate() {
+            m.hx[i] = m.rs[a];
+        }
+        if shaped {
+            metric::whiten(m.li, &m.hx[..n], m.s);
+        } else {
+            m.s.copy_from_slice(&m.hx[..n]);
         }
         ok
     }
@@ -1026,7 +1140,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             let mut far = (0, -T::ONE);
             for k in 0..cap {
-                let d = distance(&self.mem.xs[k * n..(k + 1) * n], self.theta);
+                let d = self.reach_of(k);
                 if d > far.1 {
                     far = (k, d);
                 }
@@ -1038,11 +1152,21 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.mem.fs[slot] = f;
     }
 
-    /// z = ‖x − θ‖/(σ√n) of remembered point k.
+    /// z = ‖L⁻¹(x − θ)‖/(σ√n) of remembered point k.
     fn reach_of(&self, k: usize) -> T {
         let n = self.theta.len();
-        distance(&self.mem.xs[k * n..(k + 1) * n], self.theta)
-            / (self.st.sigma * T::from_usize(n).sqrt())
+        let x = &self.mem.xs[k * n..(k + 1) * n];
+        let d = if self.shaped() {
+            metric::whitened_distance(self.mem.li, x, self.theta)
+        } else {
+            distance(x, self.theta)
+        };
+        d / (self.st.sigma * T::from_usize(n).sqrt())
+    }
+
+    /// True when the model learns a sampling metric (full Hessian models).
+    fn shaped(&self) -> bool {
+        self.shape == Shape::Full
     }
 
     fn count_within(&self, z: T) -> usize {
@@ -1069,17 +1193,33 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let sigma = self.st.sigma;
         let shape = self.shape;
         let hl = shape.hessian_len(n);
-        // The prior in standardised units: g = σ(g₀ + H₀(θ − c₀))/F, H = σ²H₀/F.
+        // The prior in standardised units: g = σLᵀ(g₀ + H₀(θ − c₀))/F, H = σ²LᵀH₀L/F.
         if self.st.has_prior {
             for i in 0..n {
                 self.mem.s[i] = self.theta[i] - self.mem.c0[i];
             }
-            shape.apply(self.mem.h0, self.mem.s, self.mem.g);
+            shape.apply(self.mem.h0, self.mem.s, self.mem.rs);
             for i in 0..n {
-                self.mem.g[i] = sigma * (self.mem.g0[i] + self.mem.g[i]) / scale;
+                self.mem.rs[i] += self.mem.g0[i];
             }
-            for k in 0..hl {
-                self.mem.h[k] = sigma * sigma * self.mem.h0[k] / scale;
+            if self.shaped() {
+                for i in 0..n {
+                    let lg = metric::column(self.mem.l, n, i)
+                        .zip(self.mem.rs.iter())
+                        .fold(T::ZERO, |acc, (a, &b)| acc + a * b);
+                    self.mem.g[i] = sigma * lg / scale;
+                }
+                metric::congruence(self.mem.l, self.mem.h0, n, self.mem.a, self.mem.h);
+                for k in 0..hl {
+                    self.mem.h[k] = sigma * sigma * self.mem.h[k] / scale;
+                }
+            } else {
+                for i in 0..n {
+                    self.mem.g[i] = sigma * self.mem.rs[i] / scale;
+                }
+                for k in 0..hl {
+                    self.mem.h[k] = sigma * sigma * self.mem.h0[k] / scale;
+                }
             }
         } else {
             self.mem.g.fill(T::ZERO);
@@ -1097,6 +1237,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             let x = &self.mem.xs[k * n..(k + 1) * n];
             for ((ui, &xi), &ti) in row.iter_mut().zip(x).zip(self.theta.iter()) {
                 *ui = (xi - ti) / sigma;
+            }
+            if self.shape == Shape::Full {
+                self.mem.rs.copy_from_slice(row);
+                metric::whiten(self.mem.li, self.mem.rs, row);
             }
             let sw = (-(z / reach).sq() / T::from_f64(4.0)).exp();
             let prior = dot(self.mem.g, row) + shape.half_quadratic(self.mem.h, row);
@@ -1126,13 +1270,48 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// Keeps this iteration's model, in parameter units at θ, as the next prior.
     fn save_prior(&mut self, scale: T, sigma: T) {
         let n = self.theta.len();
-        for i in 0..n {
-            self.mem.g0[i] = scale * self.mem.g[i] / sigma;
-            self.mem.c0[i] = self.theta[i];
-        }
-        for k in 0..self.shape.hessian_len(n) {
-            self.mem.h0[k] = scale * self.mem.h[k] / (sigma * sigma);
+        self.mem.c0.copy_from_slice(self.theta);
+        if self.shaped() {
+            // g₀ = F L⁻ᵀg/σ, H₀ = F L⁻ᵀHL⁻¹/σ².
+            for i in 0..n {
+                self.mem.g0[i] = scale
+                    * metric::column(self.mem.li, n, i)
+                        .zip(self.mem.g.iter())
+                        .fold(T::ZERO, |acc, (a, &b)| acc + a * b)
+                    / sigma;
+            }
+            metric::congruence(self.mem.li, self.mem.h, n, self.mem.a, self.mem.h0);
+            for k in 0..n * n {
+                self.mem.h0[k] = scale * self.mem.h0[k] / (sigma * sigma);
+            }
+        } else {
+            for i in 0..n {
+                self.mem.g0[i] = scale * self.mem.g[i] / sigma;
+            }
+            for k in 0..self.shape.hessian_len(n) {
+                self.mem.h0[k] = scale * self.mem.h[k] / (sigma * sigma);
+            }
         }
         self.st.has_prior = true;
+    }
+
+    /// Moves the sampling metric towards the shape of the prior's curvature H₀.
+    fn learn_metric(&mut self) {
+        if !self.shaped() {
+            return;
+        }
+        let n = self.theta.len();
+        metric::update(
+            self.mem.c,
+            self.mem.l,
+            self.mem.li,
+            self.mem.h0,
+            n,
+            metric::Scratch {
+                a: self.mem.a,
+                v: self.mem.v,
+                w: self.mem.lambda,
+            },
+        );
     }
 }

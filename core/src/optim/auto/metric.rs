@@ -1,0 +1,195 @@
+//! The sampling metric: a shape C = LLᵀ (det C = 1) that Auto learns from its models'
+//! curvature, as CMA-ES learns its covariance from its population.
+//!
+//! Auto samples, measures reach and bounds its steps in whitened coordinates
+//! u = L⁻¹(x − θ)/σ. With C ∝ |H|⁻¹ — H the model's Hessian in parameter units, its
+//! eigenvalues taken by magnitude and floored at [`floor`] of the largest — an
+//! ill-conditioned valley looks round in u: samples spread along its floor, the trust
+//! region stretches along it, and the isotropic σ that fits the valley's width no
+//! longer limits the steps along it.
+//!
+//! C moves towards its target by a fraction [`RATE`] per update and is renormalised to
+//! det C = 1, so σ alone carries the scale. Matrices are n×n row-major.
+
+use super::trust::jacobi;
+use crate::real::Real;
+
+/// Fraction of the way C moves towards the target of one update.
+pub const RATE: f64 = 0.3;
+
+/// Smallest |eigenvalue| of the target's H relative to its largest: ε^¾ of T (1.6e-12
+/// for f64, 6.5e-6 for f32), so that C's condition stays within what T can whiten.
+pub fn floor<T: Real>() -> T {
+    T::EPSILON.sqrt() * T::EPSILON.sqrt().sqrt()
+}
+
+/// out = L⁻¹d for the whitening `li` (= L⁻¹).
+pub fn whiten<T: Real>(li: &[T], d: &[T], out: &mut [T]) {
+    let n = d.len();
+    for (i, o) in out.iter_mut().enumerate().take(n) {
+        *o = (0..n).fold(T::ZERO, |s, j| s + li[i * n + j] * d[j]);
+    }
+}
+
+/// ‖L⁻¹(x − y)‖ without scratch.
+pub fn whitened_distance<T: Real>(li: &[T], x: &[T], y: &[T]) -> T {
+    let n = x.len();
+    (0..n)
+        .fold(T::ZERO, |s, i| {
+            let row = (0..n).fold(T::ZERO, |r, j| r + li[i * n + j] * (x[j] - y[j]));
+            s + row.sq()
+        })
+        .sqrt()
+}
+
+/// The j-th column of L (the image of the j-th whitened axis).
+pub fn column<T: Real>(l: &[T], n: usize, j: usize) -> impl Iterator<Item = T> + '_ {
+    (0..n).map(move |i| l[i * n + j])
+}
+
+/// y = Lᵀ M L (or L⁻ᵀ M L⁻¹ with `li`): the matrix `m` seen through `l`, written to
+/// `out`, with `tmp` (n²) as scratch.
+pub fn congruence<T: Real>(l: &[T], m: &[T], n: usize, tmp: &mut [T], out: &mut [T]) {
+    // tmp = M L
+    for i in 0..n {
+        for j in 0..n {
+            tmp[i * n + j] = (0..n).fold(T::ZERO, |s, k| s + m[i * n + k] * l[k * n + j]);
+        }
+    }
+    // out = Lᵀ tmp
+    for i in 0..n {
+        for j in 0..n {
+            out[i * n + j] = (0..n).fold(T::ZERO, |s, k| s + l[k * n + i] * tmp[k * n + j]);
+        }
+    }
+}
+
+/// Scratch of [`update`]: three n×n matrices.
+pub struct Scratch<'a, T> {
+    pub a: &'a mut [T],
+    pub v: &'a mut [T],
+    pub w: &'a mut [T],
+}
+
+/// Moves C towards the shape of the curvature `h` (the model's Hessian in parameter
+/// units, any scale) and refreshes L and L⁻¹. Leaves everything unchanged when `h` has
+/// no finite, non-zero curvature.
+pub fn update<T: Real>(
+    c: &mut [T],
+    l: &mut [T],
+    li: &mut [T],
+    h: &[T],
+    n: usize,
+    scratch: Scratch<'_, T>,
+) {
+    let Scratch { a, v, w } = scratch;
+    if h[..n * n].iter().any(|x| !x.is_finite()) {
+        return;
+    }
+    a[..n * n].copy_from_slice(&h[..n * n]);
+    jacobi(a, v, n);
+    let top = (0..n).fold(T::ZERO, |m, i| m.max(a[i * n + i].abs()));
+    if !(top > T::ZERO) || !top.is_finite() {
+        return;
+    }
+    let low = floor::<T>() * top;
+    // Target C ∝ V diag(1/|λ|) Vᵀ with det 1: divide by the geometric mean.
+    let mut log_mean = T::ZERO;
+    for i in 0..n {
+        let e = T::ONE / a[i * n + i].abs().max(low) * top;
+        w[i] = e;
+        log_mean += e.ln();
+    }
+    let mean = (log_mean / T::from_usize(n)).exp();
+    let rate = T::from_f64(RATE);
+    for i in 0..n {
+        for j in 0..n {
+            let target = (0..n).fold(T::ZERO, |s, k| s + v[i * n + k] * w[k] * v[j * n + k]);
+            c[i * n + j] = (T::ONE - rate) * c[i * n + j] + rate * target / mean;
+        }
+    }
+    refresh(c, l, li, n, a, v);
+}
+
+/// Renormalises C to det 1 and sets L = Q diag(√e), L⁻¹ = diag(1/√e) Qᵀ from C = Q
+/// diag(e) Qᵀ.
+fn refresh<T: Real>(c: &mut [T], l: &mut [T], li: &mut [T], n: usize, a: &mut [T], v: &mut [T]) {
+    a[..n * n].copy_from_slice(&c[..n * n]);
+    jacobi(a, v, n);
+    let top = (0..n).fold(T::ZERO, |m, i| m.max(a[i * n + i]));
+    let low = floor::<T>() * top;
+    let mut log_mean = T::ZERO;
+    for i in 0..n {
+        let e = a[i * n + i].max(low);
+        a[i * n + i] = e;
+        log_mean += e.ln();
+    }
+    let mean = (log_mean / T::from_usize(n)).exp();
+    for i in 0..n {
+        let e = a[i * n + i] / mean;
+        let root = e.sqrt();
+        for k in 0..n {
+            l[k * n + i] = v[k * n + i] * root;
+            li[i * n + k] = v[k * n + i] / root;
+        }
+    }
+    for i in 0..n {
+        for j in 0..n {
+            c[i * n + j] = (0..n).fold(T::ZERO, |s, k| s + l[i * n + k] * l[j * n + k]);
+        }
+    }
+}
+
+/// The length of L's longest axis, √(largest eigenvalue of C) (≥ 1 since det C = 1).
+pub fn longest_axis<T: Real>(l: &[T], n: usize) -> T {
+    (0..n)
+        .map(|j| column(l, n, j).fold(T::ZERO, |s, x| s + x.sq()).sqrt())
+        .fold(T::ONE, |m, x| m.max(x))
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use std::vec;
+
+    use super::*;
+
+    #[test]
+    fn learns_an_ellipse_and_whitens_it() {
+        let n = 2;
+        // H = diag(100, 1) rotated by 30°.
+        let (c30, s30) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+        let r = [c30, -s30, s30, c30];
+        let d = [100.0, 1.0];
+        let mut h = [0.0; 4];
+        for i in 0..2 {
+            for j in 0..2 {
+                h[i * 2 + j] = (0..2).map(|k| r[i * 2 + k] * d[k] * r[j * 2 + k]).sum();
+            }
+        }
+        let (mut c, mut l, mut li) = ([1.0, 0.0, 0.0, 1.0], [0.0; 4], [0.0; 4]);
+        let (mut a, mut v, mut w) = (vec![0.0; 4], vec![0.0; 4], vec![0.0; 4]);
+        for _ in 0..60 {
+            let s = Scratch {
+                a: &mut a,
+                v: &mut v,
+                w: &mut w,
+            };
+            update(&mut c, &mut l, &mut li, &h, n, s);
+        }
+        // LᵀHL ∝ I once C ∝ H⁻¹.
+        let mut tmp = [0.0; 4];
+        let mut out = [0.0; 4];
+        congruence(&l, &h, n, &mut tmp, &mut out);
+        assert!((out[0] - out[3]).abs() < 1e-6 * out[0], "{out:?}");
+        assert!(out[1].abs() < 1e-6 * out[0], "{out:?}");
+        // det C = 1 and L⁻¹L = I.
+        assert!((c[0] * c[3] - c[1] * c[2] - 1.0).abs() < 1e-9);
+        for i in 0..2 {
+            for j in 0..2 {
+                let p: f64 = (0..2).map(|k| li[i * 2 + k] * l[k * 2 + j]).sum();
+                assert!((p - f64::from(u8::from(i == j))).abs() < 1e-12);
+            }
+        }
+    }
+}
