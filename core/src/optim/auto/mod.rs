@@ -39,10 +39,11 @@
 //!   the slope.
 //! * **Anytime.** Nothing depends on a budget: the first k evaluations of a run are the
 //!   same whatever its [`AutoOptions::max_evaluations`], which only stops it (never
-//!   exceeded, even inside an iteration). The run ends converged when σ falls below
-//!   [`AutoOptions::tolerance`]·σ₀ (or below what T resolves at θ). After
-//!   [`AutoOptions::patience`] iterations without a lower f(θ) it restarts once at σ₀
-//!   from the best point, and ends stagnated if that finds nothing lower either.
+//!   exceeded, even inside an iteration). When σ falls below
+//!   [`AutoOptions::tolerance`]·σ₀ (or below what T resolves at θ), or after
+//!   [`AutoOptions::patience`] iterations without a lower f(θ), the run restarts at σ₀
+//!   from the best point if f(θ) fell since the last restart, and otherwise ends,
+//!   converged or stagnated.
 //!
 //! Memory: one caller buffer of [`Auto::buffer_len`] floats, O(n² + m²) for m =
 //! [`Auto::history_len`] remembered points. Cost per iteration: O(m²n + m³) for the fit,
@@ -681,23 +682,22 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let patience = self.options.patience.unwrap_or(20 + 10 * n);
         let scale = self.theta.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
         let resolvable = T::from_f64(8.0) * T::EPSILON * scale;
+        let converged =
+            self.st.sigma < self.options.tolerance * self.st.sigma0 || self.st.sigma <= resolvable;
+        let stagnated = self.st.stale >= patience;
         let termination = if kind == AutoStep::OutOfBudget || self.remaining() == 0 {
             Some(AutoTermination::MaxEvaluations)
-        } else if self.st.sigma < self.options.tolerance * self.st.sigma0
-            || self.st.sigma <= resolvable
-        {
+        } else if (converged || stagnated) && self.st.may_restart {
+            // Once per improvement: look again from the best point at the scale σ₀ the
+            // caller stated (a kink or a lattice can hold σ far from the optimum)
+            // before calling the run converged or stagnated.
+            self.restart();
+            None
+        } else if converged {
             Some(AutoTermination::Converged)
-        } else if self.st.stale >= patience && !self.st.may_restart {
+        } else if stagnated {
             Some(AutoTermination::Stagnated)
         } else {
-            if self.st.stale >= patience {
-                // Once per improvement: look again from the best point at the scale
-                // σ₀ the caller stated, before calling the run stagnated.
-                self.st.may_restart = false;
-                self.st.stale = 0;
-                self.st.sigma = self.st.sigma0;
-                self.st.resample = true;
-            }
             None
         };
         self.st.finished = termination;
@@ -1293,6 +1293,22 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             }
         }
         self.st.has_prior = true;
+    }
+
+    /// Starts over from the best point at σ₀ with the memory of points but without the
+    /// model or metric learnt at the scale the run had shrunk to.
+    fn restart(&mut self) {
+        self.st.may_restart = false;
+        self.st.stale = 0;
+        self.st.sigma = self.st.sigma0;
+        self.st.resample = true;
+        self.st.has_prior = false;
+        let n = self.theta.len();
+        for m in [&mut *self.mem.c, &mut *self.mem.l, &mut *self.mem.li] {
+            for (k, x) in m.iter_mut().enumerate() {
+                *x = if k % (n + 1) == 0 { T::ONE } else { T::ZERO };
+            }
+        }
     }
 
     /// Moves the sampling metric towards the shape of the prior's curvature H₀.
