@@ -457,6 +457,9 @@ impl Task for PathTask {
             low_dim_pairs(h, self.dim())
         }
     }
+    fn bounds(&self) -> Option<(Vec<f64>, Vec<f64>)> {
+        self.task.bounds()
+    }
     fn budget(&self, quick: bool) -> usize {
         // Quick budgets keep the whole quick report near a minute: CAUSTIC's evaluations
         // are the most expensive (BSDF-sampled caustic paths), TEXTURE's the cheapest.

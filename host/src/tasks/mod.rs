@@ -97,6 +97,10 @@ pub trait Task3d: Send + Sync {
 
     /// Default resolutions and sample counts.
     fn settings(&self) -> TaskSettings;
+    /// Box bounds (lower, upper) on θ where the task has a natural domain. Default: none.
+    fn bounds(&self) -> Option<(Vec<f64>, Vec<f64>)> {
+        None
+    }
 
     /// A fresh scene set to θ*.
     ///

@@ -97,6 +97,12 @@ impl Task3d for Shadow {
             .collect()
     }
 
+    /// The sphere's (x, y) over the ground square [−2, 2]²: beyond it the shadow leaves
+    /// the ground and the image no longer changes.
+    fn bounds(&self) -> Option<(Vec<f64>, Vec<f64>)> {
+        Some((vec![-2.0; 2], vec![2.0; 2]))
+    }
+
     fn settings(&self) -> TaskSettings {
         TaskSettings::STANDARD
     }

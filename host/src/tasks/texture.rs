@@ -92,6 +92,11 @@ impl Task3d for TextureTask {
             .collect()
     }
 
+    /// Texel albedos in [0, 1].
+    fn bounds(&self) -> Option<(Vec<f64>, Vec<f64>)> {
+        Some((vec![0.0; TEXELS * TEXELS], vec![1.0; TEXELS * TEXELS]))
+    }
+
     fn settings(&self) -> TaskSettings {
         TaskSettings::STANDARD
     }
