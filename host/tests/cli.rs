@@ -204,3 +204,36 @@ fn bad_input_gives_one_line_and_nonzero_exit() {
         assert!(err.starts_with("hodr: "), "{err}");
     }
 }
+
+/// `optimize` without `--method` runs Auto, which solves QUAD to machine precision.
+#[test]
+fn optimize_defaults_to_auto() {
+    let dir = scratch("auto");
+    let out = hodr(&[
+        "optimize",
+        "--task",
+        "QUAD",
+        "--budget",
+        "200",
+        "--out",
+        dir.join("q.png").to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    let last = text
+        .lines()
+        .filter(|l| l.starts_with("iter"))
+        .last()
+        .expect("per-iteration lines");
+    let error: f64 = last
+        .split("param error = ")
+        .nth(1)
+        .and_then(|s| s.split_whitespace().next())
+        .and_then(|s| s.parse().ok())
+        .expect("a parameter error");
+    assert!(error < 1e-8, "{last}");
+}

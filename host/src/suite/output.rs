@@ -104,6 +104,36 @@ fn ratio(r: &FamilyRow) -> String {
     }
 }
 
+/// The table of [`super::summary::pairwise`]: the first method's evaluations over each
+/// other method's, geometric mean over a group's problems (Markdown).
+pub fn pairwise_table(method: Method, pairs: &[super::summary::PairRow]) -> String {
+    let Some(first) = pairs.first() else {
+        return String::new();
+    };
+    let mut s = String::from("| group |");
+    for (m, _, _) in &first.ratios {
+        let _ = write!(s, " {method} ÷ {m} (problems) |");
+    }
+    s.push_str("\n|---|");
+    for _ in &first.ratios {
+        s.push_str("---|");
+    }
+    s.push('\n');
+    for row in pairs {
+        let _ = write!(s, "| {} |", row.group);
+        for (_, ratio, k) in &row.ratios {
+            match ratio {
+                Some(x) => {
+                    let _ = write!(s, " {x:.2} ({k}) |");
+                }
+                None => s.push_str(" — (0) |"),
+            }
+        }
+        s.push('\n');
+    }
+    s
+}
+
 /// The per-family table (Markdown), as printed to stdout and at the top of suite.md.
 pub fn family_table(families: &[FamilyRow], reference: Method) -> String {
     let mut s = format!(
@@ -183,6 +213,17 @@ pub fn write_markdown(
     md.push_str("## By family\n\n");
     md.push_str(&family_table(families, reference));
     md.push_str("\n![ECDF](ecdf.png)\n");
+    if let Some(&first) = config.methods.first() {
+        let pairs = super::summary::pairwise(problems, &config.methods, first, rows);
+        let _ = write!(
+            md,
+            "\n## {first} against each method\n\nGeometric mean over a group's problems of \
+             {first}'s median evaluations over the other method's, each problem at the hardest \
+             f-target both reach (below 1: {first} needs fewer); (k): problems with such a \
+             target.\n\n{}",
+            pairwise_table(first, &pairs)
+        );
+    }
     let labels = target_labels();
     for family in Family::ALL {
         let mine: Vec<&Row> = rows

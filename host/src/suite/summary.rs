@@ -143,6 +143,82 @@ pub struct FamilyRow {
     pub median_time: f64,
 }
 
+/// ln(median evaluations of each row ÷ those of `reference` on the same problem), each
+/// at the hardest f-target both medians reach; problems without such a target are left
+/// out.
+fn log_ratios(mine: &[&Row], rows: &[Row], reference: Method) -> Vec<f64> {
+    let mut logs = Vec::new();
+    for r in mine {
+        let Some(base) = rows
+            .iter()
+            .find(|b| b.problem == r.problem && b.method == reference)
+        else {
+            continue;
+        };
+        let common = (0..F_TARGETS.len())
+            .rev()
+            .find_map(|t| Some((r.cells[t].median?, base.cells[t].median?)));
+        if let Some((a, b)) = common {
+            logs.push((a / b).ln());
+        }
+    }
+    logs
+}
+
+/// One group of problems (a family, or one BBOB function across its dimensions and
+/// instances) and the geometric-mean ratios of `method`'s evaluations to each other
+/// method's, with the number of problems that entered each.
+#[derive(Clone, Debug)]
+pub struct PairRow {
+    /// The group's name: a family, or `bbob-fNN`.
+    pub group: String,
+    /// (other method, geometric-mean ratio, problems in it).
+    pub ratios: Vec<(Method, Option<f64>, usize)>,
+}
+
+/// `method` against every other method of `methods`, per family and per BBOB function.
+pub fn pairwise(
+    problems: &[Problem],
+    methods: &[Method],
+    method: Method,
+    rows: &[Row],
+) -> Vec<PairRow> {
+    let group_of = |p: &Problem| match p.family {
+        Family::Bbob => p.name.split('-').take(2).collect::<Vec<_>>().join("-"),
+        f => f.to_string(),
+    };
+    let mut groups: Vec<String> = Family::ALL.iter().map(|f| f.to_string()).collect();
+    for p in problems {
+        let g = group_of(p);
+        if !groups.contains(&g) {
+            groups.push(g);
+        }
+    }
+    let mut out = Vec::new();
+    for g in groups {
+        let in_group = |r: &&Row| {
+            let p = &problems[r.problem];
+            r.method == method && (group_of(p) == g || p.family.to_string() == g)
+        };
+        let mine: Vec<&Row> = rows.iter().filter(in_group).collect();
+        if mine.is_empty() {
+            continue;
+        }
+        let ratios = methods
+            .iter()
+            .filter(|&&m| m != method)
+            .map(|&m| {
+                let logs = log_ratios(&mine, rows, m);
+                let mean = (!logs.is_empty())
+                    .then(|| (logs.iter().sum::<f64>() / logs.len() as f64).exp());
+                (m, mean, logs.len())
+            })
+            .collect();
+        out.push(PairRow { group: g, ratios });
+    }
+    out
+}
+
 /// The per-family aggregates of `methods` against `reference`, in family then method
 /// order.
 pub fn families(
@@ -163,21 +239,7 @@ pub fn families(
             if mine.is_empty() {
                 continue;
             }
-            let mut logs = Vec::new();
-            for r in &mine {
-                let Some(base) = rows
-                    .iter()
-                    .find(|b| b.problem == r.problem && b.method == reference)
-                else {
-                    continue;
-                };
-                let common = (0..F_TARGETS.len())
-                    .rev()
-                    .find_map(|t| Some((r.cells[t].median?, base.cells[t].median?)));
-                if let Some((a, b)) = common {
-                    logs.push((a / b).ln());
-                }
-            }
+            let logs = log_ratios(&mine, rows, reference);
             let my_runs: Vec<&Run> = runs
                 .iter()
                 .filter(|r| r.method == m && problems[r.problem].family == family)
