@@ -226,8 +226,7 @@ fn optimize_defaults_to_auto() {
     let text = String::from_utf8_lossy(&out.stdout);
     let last = text
         .lines()
-        .filter(|l| l.starts_with("iter"))
-        .last()
+        .rfind(|l| l.starts_with("iter"))
         .expect("per-iteration lines");
     let error: f64 = last
         .split("param error = ")

@@ -23,6 +23,15 @@ pub fn floor<T: Real>() -> T {
     T::EPSILON.sqrt() * T::EPSILON.sqrt().sqrt()
 }
 
+/// Sets C, L and L⁻¹ (each n×n) to the identity: no shape learnt.
+pub fn reset<T: Real>(c: &mut [T], l: &mut [T], li: &mut [T], n: usize) {
+    for m in [c, l, li] {
+        for (k, x) in m.iter_mut().enumerate() {
+            *x = if k % (n + 1) == 0 { T::ONE } else { T::ZERO };
+        }
+    }
+}
+
 /// out = L⁻¹d for the whitening `li` (= L⁻¹).
 pub fn whiten<T: Real>(li: &[T], d: &[T], out: &mut [T]) {
     let n = d.len();
@@ -89,7 +98,7 @@ pub fn update<T: Real>(
     a[..n * n].copy_from_slice(&h[..n * n]);
     jacobi(a, v, n);
     let top = (0..n).fold(T::ZERO, |m, i| m.max(a[i * n + i].abs()));
-    if !(top > T::ZERO) || !top.is_finite() {
+    if top <= T::ZERO || !top.is_finite() {
         return;
     }
     let low = floor::<T>() * top;

@@ -519,11 +519,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let mem = carve(buffer, n);
         mem.lower.fill(-T::MAX);
         mem.upper.fill(T::MAX);
-        for m in [&mut *mem.c, &mut *mem.l, &mut *mem.li] {
-            for k in 0..m.len() {
-                m[k] = if k % (n + 1) == 0 { T::ONE } else { T::ZERO };
-            }
-        }
+        metric::reset(mem.c, mem.l, mem.li, n);
         Ok(Auto {
             theta,
             mem,
@@ -1303,12 +1299,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.sigma = self.st.sigma0;
         self.st.resample = true;
         self.st.has_prior = false;
-        let n = self.theta.len();
-        for m in [&mut *self.mem.c, &mut *self.mem.l, &mut *self.mem.li] {
-            for (k, x) in m.iter_mut().enumerate() {
-                *x = if k % (n + 1) == 0 { T::ONE } else { T::ZERO };
-            }
-        }
+        metric::reset(self.mem.c, self.mem.l, self.mem.li, self.theta.len());
     }
 
     /// Moves the sampling metric towards the shape of the prior's curvature H₀.
