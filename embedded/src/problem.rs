@@ -38,8 +38,8 @@ pub struct Settings {
 
 #[cfg(feature = "hessian")]
 impl Settings {
-    /// The same values as hodr-core's preset hyper-parameters (the paper's draws:
-    /// independent central-difference gradients).
+    /// The same values as hodr-core's preset hyper-parameters, its defaults for the rest
+    /// (the paper's draws: independent central-difference gradients).
     pub fn hyper(&self) -> hodr_core::optim::preset::Hyper<f32> {
         hodr_core::optim::preset::Hyper {
             pairs: self.pairs,
@@ -50,11 +50,7 @@ impl Settings {
             line_search_tolerance: self.line_search_tolerance,
             recompute: self.recompute,
             learning_rate: self.learning_rate,
-            common_random_numbers: false,
-            negative_curvature: hodr_core::optim::NegativeCurvature::Fallback,
-            sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK as f32,
-            inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
-            line_curvature: false,
+            ..hodr_core::optim::preset::Hyper::default()
         }
     }
 }

@@ -139,7 +139,7 @@ enum Command {
     },
     /// Error against run time of every preset on QUAD, BOX2-REF and stiff quadratics.
     Runtime {
-        /// Seeds per problem and preset.
+        /// Seeds per task and preset.
         #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u64).range(1..))]
         seeds: u64,
         /// Draw the paper presets' central-difference gradients with common random numbers.
@@ -355,8 +355,8 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             println!("suite written to {}", config.out.join("suite.md").display());
         }
         Command::Runtime { seeds, crn } => {
-            use hodr_host::runtime::{Problem, table};
-            print!("{}", table(&Problem::all(), &Preset::ALL, seeds, crn));
+            use hodr_host::runtime::{table, tasks};
+            print!("{}", table(&tasks(), &Preset::ALL, seeds, crn)?);
         }
     }
     Ok(())

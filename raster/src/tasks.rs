@@ -36,8 +36,7 @@
 //! touches its target. [`Settings`] carries the paper's hyper-parameters for BOX2,
 //! adapted ones for BOX10 (see its constant) and ours for TRI1D and SHAPES.
 
-use hodr_core::optim::NegativeCurvature;
-use hodr_core::optim::preset::{Hyper, NEWTON_CG_INNER_STEPS, SIGMA_SHRINK};
+use hodr_core::optim::preset::Hyper;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::{Rng, SeedableRng};
 
@@ -94,8 +93,9 @@ pub struct AdaptiveSettings {
 }
 
 impl Settings {
-    /// The same settings as hodr-core's preset hyper-parameters (line-search tolerance
-    /// 1e-3, the paper's independent draws for its HVP presets).
+    /// The same settings as hodr-core's preset hyper-parameters, [`Hyper::default`] for
+    /// the rest (line-search tolerance 1e-3, the paper's independent draws for its HVP
+    /// presets).
     pub fn hyper(&self) -> Hyper<f64> {
         Hyper {
             pairs: self.pairs,
@@ -103,14 +103,9 @@ impl Settings {
             sigma_end: self.sigma_end,
             trust_radius: self.trust_radius,
             line_search_iterations: self.line_search_iterations,
-            line_search_tolerance: 1e-3,
             recompute: self.recompute,
             learning_rate: self.adam_learning_rate,
-            common_random_numbers: false,
-            negative_curvature: NegativeCurvature::Fallback,
-            sigma_shrink: SIGMA_SHRINK,
-            inner_steps: NEWTON_CG_INNER_STEPS,
-            line_curvature: false,
+            ..Hyper::default()
         }
     }
 }

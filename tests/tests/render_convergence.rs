@@ -77,17 +77,12 @@ fn mug_converges_from_plateau_starts() {
     let h = Hyper {
         pairs: 1,
         sigma_start: 3.0,
-        sigma_end: 0.01,
         trust_radius: 4.0,
         line_search_iterations: 1,
-        line_search_tolerance: 1e-3,
         recompute: 5,
         learning_rate: 0.05,
         common_random_numbers: true,
-        negative_curvature: NegativeCurvature::Fallback,
-        sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
-        inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
-        line_curvature: false,
+        ..Hyper::default()
     };
     let wins = (0..20)
         .filter(|&seed| {
@@ -106,17 +101,12 @@ fn shadow_method(pairs: usize, ls: usize, nc: NegativeCurvature) -> (Method<f64>
     let h = Hyper {
         pairs,
         sigma_start: 0.5,
-        sigma_end: 0.01,
         trust_radius: 3.0,
         line_search_iterations: ls,
-        line_search_tolerance: 1e-3,
         recompute: 5,
-        learning_rate: 0.1,
         common_random_numbers: true,
         negative_curvature: nc,
-        sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
-        inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
-        line_curvature: false,
+        ..Hyper::default()
     };
     (Preset::OurHvpa.method(&h), h)
 }

@@ -3,26 +3,21 @@
 //! never a panic.
 
 use hodr_core::optim::preset::{Hyper, Preset};
-use hodr_core::optim::{Budget, Failed, NegativeCurvature, Optimiser};
+use hodr_core::optim::{Budget, Failed, Optimiser};
 use hodr_core::{Error, Estimator, Objective, Real, Workspace};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 
 fn hyper<T: Real>(sigma: f64, trust: f64) -> Hyper<T> {
     Hyper {
-        pairs: 4,
         sigma_start: T::from_f64(sigma),
         sigma_end: T::from_f64(sigma * 0.1),
         trust_radius: T::from_f64(trust),
-        line_search_iterations: 3,
         line_search_tolerance: T::from_f64(1e-12),
         recompute: 5,
         learning_rate: T::from_f64(0.1 * sigma),
         common_random_numbers: true,
-        negative_curvature: NegativeCurvature::Fallback,
-        sigma_shrink: T::from_f64(hodr_core::optim::preset::SIGMA_SHRINK),
-        inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
-        line_curvature: false,
+        ..Hyper::default()
     }
 }
 

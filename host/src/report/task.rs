@@ -2,7 +2,6 @@
 //! (hodr-raster) and, as they land, 3D path-traced ones.
 
 use anyhow::{Context, Result};
-use hodr_core::optim::NegativeCurvature;
 use hodr_core::optim::preset::{Hyper, Preset};
 use hodr_core::{Objective, Real};
 use image::{GrayImage, RgbImage};
@@ -104,12 +103,6 @@ pub fn low_dim_pairs(mut h: Hyper<f64>, dim: usize) -> Hyper<f64> {
 /// NewtonCG-FR 58 / 65 against 55 / 68; BENCHMARKS.md, "BOX2-REF: a longer reach").
 pub const BOX2_REF_ADAPTIVE_TRUST_RADIUS: f64 = 3.0;
 
-/// Antithetic pairs per estimate of the adaptive presets on SHADOW ([`Task::adaptive`]).
-pub const SHADOW_ADAPTIVE_PAIRS: usize = 8;
-
-/// σ at the start of the adaptive presets' runs on SHADOW ([`Task::adaptive`]).
-pub const SHADOW_ADAPTIVE_SIGMA_START: f64 = 1.0;
-
 /// The paper's QUAD hyper-parameters (DESIGN §3): 4 pairs, σ 1 → 0.05, Δ = 50,
 /// 5 line-search steps, recompute 5; Adam η = 0.5; independent HVP draws.
 pub fn quad_hyper() -> Hyper<f64> {
@@ -119,14 +112,9 @@ pub fn quad_hyper() -> Hyper<f64> {
         sigma_end: 0.05,
         trust_radius: 50.0,
         line_search_iterations: 5,
-        line_search_tolerance: 1e-3,
         recompute: 5,
         learning_rate: 0.5,
-        common_random_numbers: false,
-        negative_curvature: NegativeCurvature::Fallback,
-        sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
-        inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
-        line_curvature: false,
+        ..Hyper::default()
     }
 }
 
@@ -144,11 +132,7 @@ pub fn box2ref_hyper(preset: Preset) -> Hyper<f64> {
         line_search_tolerance: 1e-3,
         recompute: 10,
         learning_rate: if fr22 { 0.3 } else { 0.5 },
-        common_random_numbers: false,
-        negative_curvature: NegativeCurvature::Fallback,
-        sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
-        inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
-        line_curvature: false,
+        ..Hyper::default()
     }
 }
 
@@ -415,61 +399,25 @@ impl Task for PathTask {
     fn start(&self, seed: u64) -> Vec<f64> {
         self.task.start(seed)
     }
-    fn hyper(&self, preset: Preset) -> Hyper<f64> {
-        // DESIGN §3: pairs / σ start → end / trust / line-search steps / recompute, and
-        // Adam's rate; CBOX and CAUSTIC have none in the paper and borrow SHADOW's and
-        // TEXTURE's.
-        let (pairs, s0, s1, trust, ls, recompute, lr) = match self.task.name() {
-            "MUG" => (1, 3.0, 0.01, 4.0, 1, 5, 0.1),
-            "SHADOW" | "CBOX" => (1, 0.5, 0.01, 3.0, 10, 5, 0.02),
-            _ => (4, 0.5, 0.1, 10.0, 5, 30, 0.05),
-        };
-        let _ = preset;
-        Hyper {
-            pairs,
-            sigma_start: s0,
-            sigma_end: s1,
-            trust_radius: trust,
-            line_search_iterations: ls,
-            line_search_tolerance: 1e-3,
-            recompute,
-            learning_rate: lr,
-            common_random_numbers: false,
-            negative_curvature: NegativeCurvature::Fallback,
-            sigma_shrink: hodr_core::optim::preset::SIGMA_SHRINK,
-            inner_steps: hodr_core::optim::preset::NEWTON_CG_INNER_STEPS,
-            line_curvature: false,
-        }
+    /// The task's own ([`crate::tasks::Task3d::hyper`]), the same for every preset.
+    fn hyper(&self, _preset: Preset) -> Hyper<f64> {
+        self.task.hyper()
     }
-    /// [`low_dim_pairs`], except on SHADOW: 8 pairs and σ from 1.0. NewtonCG-ASC then
-    /// finds the target's well by a sample (a sample within ≈ 0.3 of θ* beats the
-    /// out-of-view shadows' loss) and stays in it: 16 of 20 seeds reach 99 %
-    /// parameter-error reduction, against 0 with one pair and σ from 0.5
-    /// (BENCHMARKS.md, "SHADOW: compared steps from a wider kernel").
+    /// The task's own adaptive settings where it has them (SHADOW), else
+    /// [`low_dim_pairs`].
     fn adaptive(&self, h: Hyper<f64>) -> Hyper<f64> {
-        if self.task.name() == "SHADOW" {
-            Hyper {
-                pairs: SHADOW_ADAPTIVE_PAIRS,
-                sigma_start: SHADOW_ADAPTIVE_SIGMA_START,
-                ..h
-            }
-        } else {
-            low_dim_pairs(h, self.dim())
-        }
+        self.task
+            .adaptive(h)
+            .unwrap_or_else(|| low_dim_pairs(h, self.dim()))
+    }
+    fn scale(&self) -> f64 {
+        self.task.scale()
     }
     fn bounds(&self) -> Option<(Vec<f64>, Vec<f64>)> {
         self.task.bounds()
     }
     fn budget(&self, quick: bool) -> usize {
-        // Quick budgets keep the whole quick report near a minute: CAUSTIC's evaluations
-        // are the most expensive (BSDF-sampled caustic paths), TEXTURE's the cheapest.
-        match (quick, self.task.name()) {
-            (true, "CAUSTIC") => 60,
-            (true, "TEXTURE") => 200,
-            (true, _) => 100,
-            (false, "TEXTURE") | (false, "CAUSTIC") => 4000,
-            (false, _) => 1500,
-        }
+        self.task.budget(quick)
     }
     fn objective(&self) -> Result<Box<dyn Objective<f64> + Send>> {
         let settings = self.settings();

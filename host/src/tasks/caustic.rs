@@ -1,6 +1,8 @@
 //! CAUSTIC: the heights of a glass slab whose caustic must match a target.
 
-use super::{ParametricScene, Task3d, TaskSettings, check_params, start_uniform};
+use hodr_core::optim::preset::Hyper;
+
+use super::{ParametricScene, Task3d, TaskSettings, TextureTask, check_params, start_uniform};
 use crate::render::procedural::HeightField;
 use crate::render::{
     Camera, Depth, Emitter, Material, MeshInstance, Object, Quad, RenderError, Rgb, Scene, Shape,
@@ -39,6 +41,10 @@ const FIELD: HeightField = HeightField {
 ///   + 0.08·exp(−‖p − (0.35, −0.25)‖²/(2·0.18²)), each focusing a bright spot.
 /// * Start: a flat slab with iid U[−0.01, 0.01] heights.
 /// * Objective: 64×64, 16 spp; target 1024 spp; images 128×128.
+/// * Hyper-parameters: the paper has none for CAUSTIC; it borrows [`TextureTask`]'s (the
+///   other task with hundreds of parameters), σ₀ = 0.5. Budget: 4000 evaluations
+///   (quick: 60, the most expensive evaluations of the path-traced tasks:
+///   BSDF-sampled caustic paths).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Caustic;
 
@@ -110,6 +116,14 @@ impl Task3d for Caustic {
             target_spp: 1024,
             ..TaskSettings::STANDARD
         }
+    }
+
+    fn hyper(&self) -> Hyper<f64> {
+        TextureTask.hyper()
+    }
+
+    fn budget(&self, quick: bool) -> usize {
+        if quick { 60 } else { 4000 }
     }
 
     fn scene(&self) -> Result<Box<dyn ParametricScene>, RenderError> {

@@ -1,6 +1,8 @@
 //! CBOX: the position of the small box in a Cornell box.
 
-use super::{ParametricScene, Task3d, TaskSettings, check_params, start_uniform};
+use hodr_core::optim::preset::Hyper;
+
+use super::{ParametricScene, Shadow, Task3d, TaskSettings, check_params, start_uniform};
 use crate::render::{
     Camera, Cuboid, Depth, Emitter, Material, Object, Quad, RenderError, Rgb, Scene, Shape,
     Transform, Vec3,
@@ -31,6 +33,9 @@ const SMALL_BOX_HALF: f32 = 0.3;
 /// * θ = (x, y) of the small box, θ* = (0.35, −0.3).
 /// * Start: U[−0.6, 0.6] × U[−0.6, 0.0].
 /// * Objective: 64×64, 4 spp; target 256 spp; images 128×128.
+/// * Hyper-parameters: the paper has none for CBOX; it borrows [`Shadow`]'s (the other
+///   task that moves an object over a floor), σ₀ = 0.5. Budget: 1500 evaluations
+///   (quick: 100).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Cbox;
 
@@ -85,6 +90,14 @@ impl Task3d for Cbox {
 
     fn settings(&self) -> TaskSettings {
         TaskSettings::STANDARD
+    }
+
+    fn hyper(&self) -> Hyper<f64> {
+        Shadow.hyper()
+    }
+
+    fn budget(&self, quick: bool) -> usize {
+        if quick { 100 } else { 1500 }
     }
 
     fn scene(&self) -> Result<Box<dyn ParametricScene>, RenderError> {

@@ -10,10 +10,12 @@
 //! | [`CAUSTIC`](Caustic) | 256 | 16×16 control heights of a glass slab whose caustic must match |
 //!
 //! Every task is fully defined in code (camera, lights, materials, depth, true
-//! parameters, start distribution; see each type's documentation) and exposes the same
-//! [`Task3d`] interface: dimension, θ*, seeded starts, a [`ParametricScene`] that θ
-//! updates in place, renders at any resolution, and an [`TaskObjective`] (image MSE
-//! against a cached high-spp target) that implements `hodr_core::Objective<f64>`.
+//! parameters, start distribution, the paper's hyper-parameters, its scale σ₀, bounds and
+//! evaluation budgets; see each type's documentation) and exposes the same [`Task3d`]
+//! interface: dimension, θ*, seeded starts, a [`ParametricScene`] that θ updates in
+//! place, renders at any resolution, and an [`TaskObjective`] (image MSE against a cached
+//! high-spp target) that implements `hodr_core::Objective<f64>`. Nothing elsewhere
+//! chooses a setting by a task's name.
 //!
 //! ```
 //! use hodr_host::tasks;
@@ -37,6 +39,8 @@ pub use mug::Mug;
 pub use objective::{TARGET_SEED, TaskObjective};
 pub use shadow::Shadow;
 pub use texture::TextureTask;
+
+use hodr_core::optim::preset::Hyper;
 
 use crate::render::sampler::mix64;
 use crate::render::{Film, RenderError, Scene, render};
@@ -101,6 +105,34 @@ pub trait Task3d: Send + Sync {
     fn bounds(&self) -> Option<(Vec<f64>, Vec<f64>)> {
         None
     }
+
+    /// The paper's hyper-parameters for this task (DESIGN §3: pairs / σ start → end /
+    /// trust radius / line-search steps / recompute; Adam's rate), the same for every
+    /// preset.
+    fn hyper(&self) -> Hyper<f64>;
+
+    /// `h` (this task's [`Task3d::hyper`]) as the presets with the adaptive σ schedule
+    /// ([`Preset::adaptive`]) run it, where the task has settings of its own for them.
+    /// Default: `None` (the report's default for every task,
+    /// [`crate::report::task::low_dim_pairs`]).
+    ///
+    /// [`Preset::adaptive`]: hodr_core::optim::preset::Preset::adaptive
+    fn adaptive(&self, h: Hyper<f64>) -> Option<Hyper<f64>> {
+        let _ = h;
+        None
+    }
+
+    /// σ₀: the distance over which the parameters matter, the scale every method that
+    /// takes only a problem statement starts from (Auto, CMA-ES). Default: the paper's
+    /// σ start ([`Task3d::hyper`]).
+    fn scale(&self) -> f64 {
+        self.hyper().sigma_start
+    }
+
+    /// Objective evaluations per run of the report; `quick` at the quick report's
+    /// objective settings (32×32, 2 spp), where the budgets keep the whole quick report
+    /// near a minute.
+    fn budget(&self, quick: bool) -> usize;
 
     /// A fresh scene set to θ*.
     ///
@@ -202,6 +234,12 @@ mod tests {
             assert_ne!(task.start(3), task.start(4));
             assert!(task.parameter_error(&task.true_params()) < 1e-12);
             assert!(!task.description().is_empty());
+            assert_eq!(task.hyper().validate(), Ok(()), "{}", task.name());
+            if let Some(h) = task.adaptive(task.hyper()) {
+                assert_eq!(h.validate(), Ok(()), "{}", task.name());
+            }
+            assert!(task.scale() > 0.0, "{}", task.name());
+            assert!(0 < task.budget(true) && task.budget(true) < task.budget(false));
         }
     }
 

@@ -2,6 +2,8 @@
 
 use std::f64::consts::{FRAC_PI_2, TAU};
 
+use hodr_core::optim::preset::Hyper;
+
 use super::{ParametricScene, Task3d, TaskSettings, check_params, start_uniform};
 use crate::render::procedural::mug;
 use crate::render::{
@@ -29,6 +31,8 @@ use crate::render::{
 /// * The loss has period 2π/0.2 ≈ 31.4; [`Task3d::parameter_error`] is the angular
 ///   distance, in the same units.
 /// * Objective: 64×64, 4 spp; target 256 spp; images 128×128.
+/// * The paper's hyper-parameters: 1 pair, σ 3 → 0.01, Δ = 4, 1 line-search step,
+///   recompute 5, Adam η = 0.1; σ₀ = 3. Budget: 1500 evaluations (quick: 100).
 ///
 /// **Landscape (measured,** objective settings, mean of 4 noise seeds, ×10⁻⁴**):** a
 /// plateau of 3.27–3.30 for θ ∈ [4, 11]; a narrow well at θ* (2.35 at θ = 3, back to the
@@ -92,6 +96,23 @@ impl Task3d for Mug {
 
     fn settings(&self) -> TaskSettings {
         TaskSettings::STANDARD
+    }
+
+    fn hyper(&self) -> Hyper<f64> {
+        Hyper {
+            pairs: 1,
+            sigma_start: 3.0,
+            sigma_end: 0.01,
+            trust_radius: 4.0,
+            line_search_iterations: 1,
+            recompute: 5,
+            learning_rate: 0.1,
+            ..Hyper::default()
+        }
+    }
+
+    fn budget(&self, quick: bool) -> usize {
+        if quick { 100 } else { 1500 }
     }
 
     fn parameter_error(&self, theta: &[f64]) -> f64 {

@@ -1,5 +1,7 @@
 //! TEXTURE: the 32×32 texels of a plane seen by the camera.
 
+use hodr_core::optim::preset::Hyper;
+
 use super::{ParametricScene, Task3d, TaskSettings, check_params, start_uniform};
 use crate::render::{
     Albedo, Camera, Depth, Emitter, Material, Object, Quad, RenderError, Rgb, Scene, Shape,
@@ -28,6 +30,9 @@ pub const TEXELS: usize = 32;
 ///   texels centred at texel (21, 11).
 /// * Start: every texel iid U[0, 1].
 /// * Objective: 64×64, 4 spp; target 256 spp; images 128×128.
+/// * The paper's hyper-parameters: 4 pairs, σ 0.5 → 0.1, Δ = 10, 5 line-search steps,
+///   recompute 30, Adam η = 0.05; σ₀ = 0.5. Budget: 4000 evaluations (quick: 200, the
+///   cheapest evaluations of the path-traced tasks).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct TextureTask;
 
@@ -99,6 +104,23 @@ impl Task3d for TextureTask {
 
     fn settings(&self) -> TaskSettings {
         TaskSettings::STANDARD
+    }
+
+    fn hyper(&self) -> Hyper<f64> {
+        Hyper {
+            pairs: 4,
+            sigma_start: 0.5,
+            sigma_end: 0.1,
+            trust_radius: 10.0,
+            line_search_iterations: 5,
+            recompute: 30,
+            learning_rate: 0.05,
+            ..Hyper::default()
+        }
+    }
+
+    fn budget(&self, quick: bool) -> usize {
+        if quick { 200 } else { 4000 }
     }
 
     fn scene(&self) -> Result<Box<dyn ParametricScene>, RenderError> {

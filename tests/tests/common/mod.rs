@@ -1,8 +1,8 @@
 //! Set-up shared by the optimiser tests: one run of a method from a start, with the
 //! estimator, optimiser buffer and workspace allocated here.
 
-use hodr_core::optim::preset::{Hyper, NEWTON_CG_INNER_STEPS, SIGMA_SHRINK};
-use hodr_core::optim::{Budget, Method, NegativeCurvature, Optimiser, Schedule, StepReport};
+use hodr_core::optim::preset::Hyper;
+use hodr_core::optim::{Budget, Method, Optimiser, Schedule, StepReport};
 use hodr_core::{Estimator, Objective, Workspace};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
@@ -16,17 +16,10 @@ pub fn one_pair(sigma_start: f64, trust_radius: f64) -> Hyper<f64> {
     Hyper {
         pairs: 1,
         sigma_start,
-        sigma_end: 0.01,
         trust_radius,
         line_search_iterations: 2,
-        line_search_tolerance: 1e-3,
-        recompute: 10,
-        learning_rate: 0.1,
         common_random_numbers: true,
-        negative_curvature: NegativeCurvature::Fallback,
-        sigma_shrink: SIGMA_SHRINK,
-        inner_steps: NEWTON_CG_INNER_STEPS,
-        line_curvature: false,
+        ..Hyper::default()
     }
 }
 
