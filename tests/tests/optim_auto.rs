@@ -296,7 +296,7 @@ fn plateau_start_widens_and_finds_the_well() {
 fn convergence_rates_hold() {
     let seeds = 40;
     // Rosenbrock in 5-D from (−1.5, …), to f < 1e-8 within 2 000 evaluations.
-    // Measured: 340 of 400. Bound: P(X < 26 | p = 0.85, N = 40) = 4.1e-4.
+    // Measured: 342 of 400. Bound: P(X < 26 | p = 0.855, N = 40) = 2.8e-4.
     let solved = (0..seeds)
         .filter(|&seed| {
             let mut f = |x: &[f64]| {
@@ -310,7 +310,7 @@ fn convergence_rates_hold() {
         .count();
     assert!(solved >= 26, "Rosenbrock-5: {solved} of {seeds}");
     // A rounded 2-D quadratic (an integer plateau) to its exact minimum within 300.
-    // Measured: 389 of 400. Bound: P(X < 35 | p = 0.9725, N = 40) = 7.4e-4.
+    // Measured: 387 of 400. Bound: P(X < 34 | p = 0.9675, N = 40) = 2.8e-4.
     let solved = (0..seeds)
         .filter(|&seed| {
             let mut f =
@@ -319,5 +319,5 @@ fn convergence_rates_hold() {
             v == Some(0.0)
         })
         .count();
-    assert!(solved >= 35, "rounded quadratic: {solved} of {seeds}");
+    assert!(solved >= 34, "rounded quadratic: {solved} of {seeds}");
 }

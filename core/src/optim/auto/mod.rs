@@ -245,6 +245,9 @@ struct Memory<'b, T> {
     sw: &'b mut [T],
     r: &'b mut [T],
     gram: &'b mut [T],
+    kp: &'b mut [T],
+    schur: &'b mut [T],
+    beta: &'b mut [T],
     /// The model (standardised units) and the prior (parameter units, at `c0`).
     g: &'b mut [T],
     h: &'b mut [T],
@@ -278,12 +281,13 @@ struct Memory<'b, T> {
 }
 
 /// Region lengths for dimension n, in [`Memory`]'s order.
-fn regions(n: usize) -> [usize; 30] {
+fn regions(n: usize) -> [usize; 33] {
     let shape = Shape::for_dim(n);
     let m = history_len(n);
     let hl = shape.hessian_len(n);
     let full = if shape == Shape::Full { n * n } else { 0 };
     let rows = stage_rows(n);
+    let [gram, kp, schur, beta] = model::scratch_lens(m, n);
     [
         n,
         n,
@@ -292,7 +296,10 @@ fn regions(n: usize) -> [usize; 30] {
         m * n,
         m,
         m,
-        m * m,
+        gram,
+        kp,
+        schur,
+        beta,
         n,
         hl,
         n,
@@ -331,7 +338,7 @@ fn stage_rows(n: usize) -> usize {
 fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
     let lens = regions(n);
     let mut rest = buffer;
-    let mut parts: [&'b mut [T]; 30] = Default::default();
+    let mut parts: [&'b mut [T]; 33] = core::array::from_fn(|_| Default::default());
     for (part, &len) in parts.iter_mut().zip(&lens) {
         let (head, tail) = core::mem::take(&mut rest).split_at_mut(len);
         *part = head;
@@ -346,6 +353,9 @@ fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         sw,
         r,
         gram,
+        kp,
+        schur,
+        beta,
         g,
         h,
         g0,
@@ -378,6 +388,9 @@ fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         sw,
         r,
         gram,
+        kp,
+        schur,
+        beta,
         g,
         h,
         g0,
@@ -752,15 +765,18 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             } else {
                 sigma * root_n
             };
+            // The direction Lb, in the batch's next row for now.
+            for i in 0..n {
+                let b = &self.mem.frame[k * n..(k + 1) * n];
+                self.mem.rs[i] = if self.shaped() {
+                    (0..n).fold(T::ZERO, |s, j| s + self.mem.l[i * n + j] * b[j])
+                } else {
+                    b[i]
+                };
+            }
             for sign in [T::ONE, -T::ONE] {
                 for i in 0..n {
-                    let b = &self.mem.frame[k * n..(k + 1) * n];
-                    let along = if self.shaped() {
-                        (0..n).fold(T::ZERO, |s, j| s + self.mem.l[i * n + j] * b[j])
-                    } else {
-                        b[i]
-                    };
-                    let x = self.theta[i] + sign * radius * along;
+                    let x = self.theta[i] + sign * radius * self.mem.rs[i];
                     self.mem.stage[rows * n + i] = x.max(self.mem.lower[i]).min(self.mem.upper[i]);
                 }
                 rows += 1;
@@ -1251,7 +1267,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.mem.u,
             self.mem.sw,
             self.mem.r,
-            self.mem.gram,
+            model::Scratch {
+                gram: self.mem.gram,
+                kp: self.mem.kp,
+                schur: self.mem.schur,
+                beta: self.mem.beta,
+            },
             self.mem.g,
             self.mem.h,
         )

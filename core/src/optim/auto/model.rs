@@ -105,20 +105,38 @@ impl Shape {
     }
 }
 
-/// The ridge penalties (λ_c, λ_g, λ_H) for precision T: √ε for the intercept and the
-/// gradient, 16√ε for the Hessian, so that the fit is close to interpolation where the
-/// points determine it, a change of curvature costs more than a change of slope where
-/// they do not, and the dual system stays well within T's precision.
-fn penalties<T: Real>() -> (T, T, T) {
-    let root = T::EPSILON.sqrt();
-    (root, root, T::from_f64(16.0) * root)
+/// The curvature penalty λ_H for precision T: 16√ε, so that the fit is close to
+/// interpolation where the points determine it and the system stays well within T's
+/// precision.
+fn curvature_penalty<T: Real>() -> T {
+    T::from_f64(16.0) * T::EPSILON.sqrt()
+}
+
+/// Scratch of [`fit`]: `gram` m² floats, `kp` m(n + 1), `schur` (n + 1)², `beta` n + 1.
+pub(super) struct Scratch<'a, T> {
+    pub gram: &'a mut [T],
+    pub kp: &'a mut [T],
+    pub schur: &'a mut [T],
+    pub beta: &'a mut [T],
+}
+
+/// Floats of [`Scratch`] for m points in dimension n: (gram, kp, schur, beta).
+pub(super) fn scratch_lens(m: usize, n: usize) -> [usize; 4] {
+    [m * m, m * (n + 1), (n + 1) * (n + 1), n + 1]
 }
 
 /// Fits the model's change from its prior. On entry `u` holds m rows of n standardised
 /// offsets, `sw` the m square-root weights √wᵢ, `r` the m weighted residuals of the prior
 /// √wᵢ(vᵢ − m₀(uᵢ)); `g` and `h` hold the prior's g₀ and H₀ (H in `shape`'s layout).
-/// On success `g` and `h` hold the fitted coefficients; `gram` (m² floats) and `r` are
-/// overwritten. Returns the fit's noise level η — the root-mean-square weighted residual
+///
+/// The linear part (c, g) is free and the curvature pays λ_H‖H − H₀‖²_F, as in Powell's
+/// NEWUOA: with K = ΨΨᵀ/λ_H + I over the quadratic features ψᵢ and P the weighted linear
+/// features √wᵢ(1, uᵢ), the saddle system K α + P β = r, Pᵀα = 0 is solved through K's
+/// Cholesky factor and the Schur complement PᵀK⁻¹P (given a ridge of √ε times its mean
+/// diagonal where the points do not determine the linear part). On success `g` and `h`
+/// hold the fitted coefficients; the scratch and `r` are overwritten.
+///
+/// Returns the fit's noise level η — the root-mean-square weighted residual
 /// √(Σᵢ (√wᵢ·resᵢ)² / Σᵢ wᵢ · m/(m − p)) for m points and p coefficients, 0 when m ≤ p
 /// (the points are interpolated, their roughness unseen) — or `None`, leaving `g` and `h`
 /// at the prior, when the system cannot be factored (non-finite inputs).
@@ -130,31 +148,38 @@ pub(super) fn fit<T: Real>(
     u: &[T],
     sw: &[T],
     r: &mut [T],
-    gram: &mut [T],
+    scratch: Scratch<'_, T>,
     g: &mut [T],
     h: &mut [T],
 ) -> Option<T> {
     if m == 0 {
         return Some(T::ZERO);
     }
-    let (lc, lg, lh) = penalties::<T>();
+    let Scratch {
+        gram,
+        kp,
+        schur,
+        beta,
+    } = scratch;
+    let lh = curvature_penalty::<T>();
     let quarter_lh = T::ONE / (T::from_f64(4.0) * lh);
     let gram = &mut gram[..m * m];
     for i in 0..m {
         let ui = &u[i * n..(i + 1) * n];
         for k in 0..=i {
             let uk = &u[k * n..(k + 1) * n];
-            let d = ui.iter().zip(uk).fold(T::ZERO, |s, (&a, &b)| s + a * b);
             let q = match shape {
-                Shape::Full => d.sq() * quarter_lh,
-                Shape::Diagonal => {
-                    ui.iter()
-                        .zip(uk)
-                        .fold(T::ZERO, |s, (&a, &b)| s + (a * b).sq())
-                        * quarter_lh
-                }
+                Shape::Full => ui
+                    .iter()
+                    .zip(uk)
+                    .fold(T::ZERO, |s, (&a, &b)| s + a * b)
+                    .sq(),
+                Shape::Diagonal => ui
+                    .iter()
+                    .zip(uk)
+                    .fold(T::ZERO, |s, (&a, &b)| s + (a * b).sq()),
             };
-            let mut kik = sw[i] * sw[k] * (T::ONE / lc + d / lg + q);
+            let mut kik = sw[i] * sw[k] * q * quarter_lh;
             if i == k {
                 kik += T::ONE;
             }
@@ -164,12 +189,51 @@ pub(super) fn fit<T: Real>(
     if !cholesky::factor_in_place(gram, m, T::ZERO) {
         return None;
     }
-    let alpha = &mut r[..m];
-    cholesky::solve(gram, m, alpha);
-    if alpha.iter().any(|a| !a.is_finite()) {
+    // Z = K⁻¹P, column j of P being √wᵢ·(1, uᵢ)ⱼ; stored column by column.
+    let cols = n + 1;
+    let feature = |i: usize, j: usize| {
+        if j == 0 {
+            sw[i]
+        } else {
+            sw[i] * u[i * n + j - 1]
+        }
+    };
+    for j in 0..cols {
+        let z = &mut kp[j * m..(j + 1) * m];
+        for (i, zi) in z.iter_mut().enumerate() {
+            *zi = feature(i, j);
+        }
+        cholesky::solve(gram, m, z);
+    }
+    let y = &mut r[..m];
+    cholesky::solve(gram, m, y);
+    // S β = Pᵀy with S = PᵀZ, ridged where the points leave the linear part free.
+    let mut diag = T::ZERO;
+    for a in 0..cols {
+        for b in 0..=a {
+            let zb = &kp[b * m..(b + 1) * m];
+            schur[a * cols + b] = (0..m).fold(T::ZERO, |s, i| s + feature(i, a) * zb[i]);
+        }
+        diag += schur[a * cols + a];
+        beta[a] = (0..m).fold(T::ZERO, |s, i| s + feature(i, a) * y[i]);
+    }
+    let ridge = T::EPSILON.sqrt() * (diag / T::from_usize(cols)).max(T::MIN_POSITIVE);
+    if !cholesky::factor_in_place(&mut schur[..cols * cols], cols, ridge) {
         return None;
     }
-    // The weighted residuals of the fit are α itself: r − (K − I)α = α.
+    cholesky::solve(schur, cols, &mut beta[..cols]);
+    // α = y − Zβ: the weighted residuals of the fit.
+    for (i, yi) in y.iter_mut().enumerate() {
+        *yi -= (0..cols).fold(T::ZERO, |s, j| s + kp[j * m + i] * beta[j]);
+    }
+    let alpha = &*y;
+    if alpha
+        .iter()
+        .chain(beta[..cols].iter())
+        .any(|a| !a.is_finite())
+    {
+        return None;
+    }
     let p = shape.coefficients(n);
     let noise = if m > p {
         let weight = sw[..m].iter().fold(T::ZERO, |s, &x| s + x.sq());
@@ -178,13 +242,13 @@ pub(super) fn fit<T: Real>(
     } else {
         T::ZERO
     };
+    for j in 0..n {
+        g[j] += beta[j + 1];
+    }
     let half_lh = T::ONE / (T::TWO * lh);
     for i in 0..m {
         let c = sw[i] * alpha[i];
         let ui = &u[i * n..(i + 1) * n];
-        for j in 0..n {
-            g[j] += c * ui[j] / lg;
-        }
         match shape {
             Shape::Full => {
                 for j in 0..n {
@@ -215,6 +279,24 @@ mod tests {
 
     use super::*;
 
+    struct Buffers([Vec<f64>; 4]);
+
+    impl Buffers {
+        fn as_mut(&mut self) -> Scratch<'_, f64> {
+            let [gram, kp, schur, beta] = &mut self.0;
+            Scratch {
+                gram,
+                kp,
+                schur,
+                beta,
+            }
+        }
+    }
+
+    fn scratch(m: usize, n: usize) -> Buffers {
+        Buffers(scratch_lens(m, n).map(|len| vec![0.0; len]))
+    }
+
     /// A quadratic is recovered from enough points, whatever the prior.
     #[test]
     fn recovers_a_quadratic_from_enough_points() {
@@ -238,7 +320,6 @@ mod tests {
             .collect();
         let sw = vec![1.0; m];
         let mut r: Vec<f64> = (0..m).map(|i| f(&u[i * n..(i + 1) * n])).collect();
-        let mut gram = vec![0.0; m * m];
         let (mut g, mut h) = (vec![0.0; n], vec![0.0; n * n]);
         assert!(
             fit(
@@ -248,7 +329,7 @@ mod tests {
                 &u,
                 &sw,
                 &mut r,
-                &mut gram,
+                scratch(m, n).as_mut(),
                 &mut g,
                 &mut h
             )
@@ -272,7 +353,6 @@ mod tests {
         let (mut g, mut h) = (vec![0.0; 2], vec![0.0, 0.0, 0.0, 5.0]);
         let prior = |x: &[f64]| Shape::Full.half_quadratic(&[0.0, 0.0, 0.0, 5.0], x);
         let mut r = [2.0 - prior(&u[..2]), 0.0 - prior(&u[2..])];
-        let mut gram = [0.0; 4];
         assert!(
             fit(
                 Shape::Full,
@@ -281,7 +361,7 @@ mod tests {
                 &u,
                 &sw,
                 &mut r,
-                &mut gram,
+                scratch(2, n).as_mut(),
                 &mut g,
                 &mut h
             )
