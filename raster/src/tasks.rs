@@ -293,7 +293,7 @@ const BOX2: Settings = Settings {
 /// evaluations (918 on 20–39); with the HVP 20 of 20 (19), median 1 536 (1 536), and
 /// with the settings above and three inner steps 10 of 20 (a wider start keeps
 /// squares from settling on one another; cheap iterations with many pairs shorten the
-/// noisy end game). BENCHMARKS.md, "BOX10: Newton-CG on FR22 gradients" and "BOX10:
+/// noisy end game). docs/notes/2026-11-23-benchmarks-before-auto.md, "BOX10: Newton-CG on FR22 gradients" and "BOX10:
 /// curvature from a line".
 const BOX10: Settings = Settings {
     pairs: 16,

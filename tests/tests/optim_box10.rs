@@ -1,5 +1,5 @@
 //! BOX10 (five squares, n = 10) as the report runs it: Newton-CG on FR22 gradients
-//! converges where Newton-CG on aggregate gradients does not (BENCHMARKS.md,
+//! converges where Newton-CG on aggregate gradients does not (docs/notes/2026-11-23-benchmarks-before-auto.md,
 //! "NewtonCG-FR on BOX10").
 
 mod report_runs;

@@ -4,7 +4,7 @@
 //! offsets covers slightly different pixel sums, so the loss wobbles by ~1e-6 relative.
 //! Estimates built from such wobbles are noise; before the plateau rule they gave short
 //! "model minimum" steps, σ collapsed far from the target and 2 of 20 seeds never found
-//! it (BENCHMARKS.md, "BOX2-REF: forward differences, plateaus, remembered values").
+//! it (docs/notes/2026-11-23-benchmarks-before-auto.md, "BOX2-REF: forward differences, plateaus, remembered values").
 
 mod common;
 

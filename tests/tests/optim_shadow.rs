@@ -1,5 +1,5 @@
 //! SHADOW as the report runs it: NewtonCG-ASC from a wider kernel finds the sphere
-//! through its shadow (BENCHMARKS.md, "SHADOW: compared steps from a wider kernel").
+//! through its shadow (docs/notes/2026-11-23-benchmarks-before-auto.md, "SHADOW: compared steps from a wider kernel").
 
 mod report_runs;
 

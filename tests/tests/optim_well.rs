@@ -1,5 +1,5 @@
 //! A narrow well beside a plateau and a wall, in one dimension: the landscape of MUG
-//! (BENCHMARKS.md, "Why MUG converges so rarely") without the renderer.
+//! (docs/notes/2026-11-23-benchmarks-before-auto.md, "Why MUG converges so rarely") without the renderer.
 //!
 //! f(x) = 1 − 0.3·exp(−x²/(2·0.2²)) + 10·max(0, −1 − x)², minimum at x = 0, starts in
 //! [4, 6]. Gaussian smoothing at the starting σ = 3 averages the well away and the wall

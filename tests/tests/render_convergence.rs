@@ -1,6 +1,6 @@
 //! MUG converges with OurHVPA (NCG + aggregate gradient + aggregate HVP) from plateau
 //! starts, and SHADOW with OurHVPA's estimators and the two-sided negative-curvature step
-//! from the DESIGN's starts, each for a stated fraction of fixed seeds (BENCHMARKS.md,
+//! from the DESIGN's starts, each for a stated fraction of fixed seeds (docs/notes/2026-11-23-benchmarks-before-auto.md,
 //! section "Convergence of OurHVPA from plateau starts").
 //!
 //! The objectives are the tasks' own scenes at a reduced resolution and sample count, so
@@ -137,7 +137,7 @@ fn shadow_converges_with_two_sided_negative_curvature_steps() {
     assert!(wins >= 3, "SHADOW: {wins}/8 seeds converged");
 }
 
-/// SHADOW sweep for BENCHMARKS.md (ignored): OurHVPA's NCG on SHADOW with the settings
+/// SHADOW sweep for docs/notes/2026-11-23-benchmarks-before-auto.md (ignored): OurHVPA's NCG on SHADOW with the settings
 /// read from the environment — PAIRS (16), LS line-search steps (3), IT iterations (20),
 /// W resolution (24), SPP (2), SEEDS (8), FALLBACK=1 for the presets' fallback step
 /// instead of the two-sided one. E.g.

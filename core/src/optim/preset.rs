@@ -27,7 +27,7 @@
 //! iteration's own ĝ(θ) from the same samples ([`HvpMethod::ForwardDifference`]): each
 //! HVP costs one gradient estimate instead of two. Measured (20 seeds, evaluations to
 //! 99 % parameter-error reduction, central → forward): BOX2-REF NewtonCG-A 396 → 216,
-//! QUAD-far NewtonCG-AS 294 → 196, BOX2 NewtonCG-FR 84 → 64 (BENCHMARKS.md). Where an
+//! QUAD-far NewtonCG-AS 294 → 196, BOX2 NewtonCG-FR 84 → 64 (docs/notes/2026-11-23-benchmarks-before-auto.md). Where an
 //! iteration's gradient is one antithetic pair along its offset (the aggregate
 //! estimator with one pair, any estimator in one dimension), they take the curvature
 //! along it from the pair and f(θ) instead ([`NewtonCg::pair_curvature`]): QUAD-far

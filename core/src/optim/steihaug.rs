@@ -125,7 +125,7 @@ pub struct NewtonCg<T> {
     /// the landscape along a line shows the kernel's: BOX10 (24 pairs, n = 10,
     /// NewtonCG-FR) needs ≈ 45 % fewer evaluations; on the plateaus of BOX2-REF and BOX2
     /// with 6 pairs (NewtonCG-A) the kernel's curvature is worth its cost
-    /// (BENCHMARKS.md, "BOX10: curvature from a line").
+    /// (docs/notes/2026-11-23-benchmarks-before-auto.md, "BOX10: curvature from a line").
     pub line_curvature: bool,
 }
 

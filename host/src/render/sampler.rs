@@ -43,7 +43,7 @@ pub enum Sequence {
     PaddedR2,
     /// Owen-scrambled, shuffled 2-D Sobol points over the first [`SEQUENCE_DIMS`]
     /// dimensions in pairs, independent numbers after that. Default: it gave the lowest
-    /// error at equal samples on SHADOW and CBOX (BENCHMARKS.md, section "hodr-host path
+    /// error at equal samples on SHADOW and CBOX (docs/notes/2026-11-23-benchmarks-before-auto.md, section "hodr-host path
     /// tracer").
     #[default]
     PaddedSobol,

@@ -100,7 +100,7 @@ pub fn low_dim_pairs(mut h: Hyper<f64>, dim: usize) -> Hyper<f64> {
 /// along one direction, and a longer reach per step pays off: NewtonCG-ASC reaches
 /// 99 % parameter-error reduction in a median 37 evaluations on seeds 0–19 and 37 on
 /// 20–39, against 41.5 and 39 with Δ = 2 (NewtonCG-AS 60.5 / 56.5 against 60 / 59,
-/// NewtonCG-FR 58 / 65 against 55 / 68; BENCHMARKS.md, "BOX2-REF: a longer reach").
+/// NewtonCG-FR 58 / 65 against 55 / 68; docs/notes/2026-11-23-benchmarks-before-auto.md, "BOX2-REF: a longer reach").
 pub const BOX2_REF_ADAPTIVE_TRUST_RADIUS: f64 = 3.0;
 
 /// The paper's QUAD hyper-parameters (DESIGN §3): 4 pairs, σ 1 → 0.05, Δ = 50,

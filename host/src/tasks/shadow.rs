@@ -48,7 +48,7 @@ use crate::render::{
 /// the target's well (loss ≤ 0.015 within ≈ 0.3 of θ*) beats the out-of-view shadows'
 /// 0.019, its comparison keeps it, and σ shrinks around it; 16 of 20 seeds reach 99 %
 /// parameter-error reduction, median 296 evaluations (`cargo test -p hodr-tests
-/// --test optim_shadow`; BENCHMARKS.md). NCG with OurHVPA's estimators and the
+/// --test optim_shadow`; docs/notes/2026-11-23-benchmarks-before-auto.md). NCG with OurHVPA's estimators and the
 /// two-sided negative-curvature step
 /// (`hodr_core::optim::NegativeCurvature::TwoSided`: at dᵀĤd ≤ 0 the objective picks
 /// between the fallback step and the trust-boundary points along ±d) does, once the
@@ -56,7 +56,7 @@ use crate::render::{
 /// at 24×24, 2 spp, 4 of 20 seeds end within 0.05 of θ* (0 of 8 with the fallback); with
 /// the paper's single pair, 0 of 10 either way. Reproduce with
 /// `cargo test -p hodr-tests --test render_convergence shadow` (and the ignored
-/// `shadow_sweep`, see BENCHMARKS.md).
+/// `shadow_sweep`, see docs/notes/2026-11-23-benchmarks-before-auto.md).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Shadow;
 
@@ -139,7 +139,7 @@ impl Task3d for Shadow {
     /// NewtonCG-ASC then finds the target's well by a sample (a sample within ≈ 0.3 of
     /// θ* beats the out-of-view shadows' loss) and stays in it: 16 of 20 seeds reach
     /// 99 % parameter-error reduction, against 0 with one pair and σ from 0.5
-    /// (BENCHMARKS.md, "SHADOW: compared steps from a wider kernel").
+    /// (docs/notes/2026-11-23-benchmarks-before-auto.md, "SHADOW: compared steps from a wider kernel").
     fn adaptive(&self, h: Hyper<f64>) -> Option<Hyper<f64>> {
         Some(Hyper {
             pairs: Shadow::ADAPTIVE_PAIRS,
