@@ -114,8 +114,7 @@ where
                 sample: placement.first_sample + done * rows_per_group + row,
             });
         }
-        #[cfg(feature = "cg")]
-        buffers.note_best(used);
+        buffers.note_extremes(used, placement.first_sample + done * rows_per_group);
         buffers.value_sum += buffers.values[..used].iter().fold(T::ZERO, |s, &v| s + v);
         buffers.value_count += used;
         for k in 0..chunk {
