@@ -74,7 +74,7 @@ pub use error::Error;
 pub use estimate::HessianMethod;
 #[cfg(feature = "hvp")]
 pub use estimate::{Draws, HvpMethod};
-pub use estimate::{Estimator, GradientMethod, Lowest, PairValues, Report};
+pub use estimate::{Estimator, GradientMethod, Report};
 pub use objective::{Batch, NoiseSeed, Objective, Seeded};
 pub use real::Real;
 pub use workspace::{FixedWorkspace, MIN_ROWS, Workspace};

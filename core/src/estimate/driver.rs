@@ -114,7 +114,8 @@ where
                 sample: placement.first_sample + done * rows_per_group + row,
             });
         }
-        buffers.note_extremes(used, placement.first_sample + done * rows_per_group);
+        #[cfg(feature = "cg")]
+        buffers.note_best(used);
         buffers.value_sum += buffers.values[..used].iter().fold(T::ZERO, |s, &v| s + v);
         buffers.value_count += used;
         for k in 0..chunk {
