@@ -158,16 +158,13 @@ pub fn longest_axis<T: Real>(l: &[T], n: usize) -> T {
 
 #[cfg(test)]
 mod tests {
-    extern crate std;
-    use std::vec;
-
     use super::*;
 
     #[test]
     fn learns_an_ellipse_and_whitens_it() {
         let n = 2;
         // H = diag(100, 1) rotated by 30°.
-        let (c30, s30) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+        let (c30, s30) = (libm::cos(core::f64::consts::FRAC_PI_6), 0.5);
         let r = [c30, -s30, s30, c30];
         let d = [100.0, 1.0];
         let mut h = [0.0; 4];
@@ -177,7 +174,7 @@ mod tests {
             }
         }
         let (mut c, mut l, mut li) = ([1.0, 0.0, 0.0, 1.0], [0.0; 4], [0.0; 4]);
-        let (mut a, mut v, mut w) = (vec![0.0; 4], vec![0.0; 4], vec![0.0; 4]);
+        let (mut a, mut v, mut w) = ([0.0; 4], [0.0; 4], [0.0; 4]);
         for _ in 0..60 {
             let s = Scratch {
                 a: &mut a,

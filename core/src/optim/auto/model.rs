@@ -273,28 +273,35 @@ pub(super) fn fit<T: Real>(
 
 #[cfg(test)]
 mod tests {
-    extern crate std;
-    use std::vec;
-    use std::vec::Vec;
-
     use super::*;
 
-    struct Buffers([Vec<f64>; 4]);
-
-    impl Buffers {
-        fn as_mut(&mut self) -> Scratch<'_, f64> {
-            let [gram, kp, schur, beta] = &mut self.0;
-            Scratch {
-                gram,
-                kp,
-                schur,
-                beta,
-            }
-        }
+    /// Scratch for up to 20 points in up to 3 dimensions (fixed arrays: no heap here).
+    struct Buffers {
+        gram: [f64; 400],
+        kp: [f64; 80],
+        schur: [f64; 16],
+        beta: [f64; 4],
     }
 
-    fn scratch(m: usize, n: usize) -> Buffers {
-        Buffers(scratch_lens(m, n).map(|len| vec![0.0; len]))
+    impl Buffers {
+        fn new() -> Self {
+            Buffers {
+                gram: [0.0; 400],
+                kp: [0.0; 80],
+                schur: [0.0; 16],
+                beta: [0.0; 4],
+            }
+        }
+
+        fn as_mut(&mut self, m: usize, n: usize) -> Scratch<'_, f64> {
+            let [gram, kp, schur, beta] = scratch_lens(m, n);
+            Scratch {
+                gram: &mut self.gram[..gram],
+                kp: &mut self.kp[..kp],
+                schur: &mut self.schur[..schur],
+                beta: &mut self.beta[..beta],
+            }
+        }
     }
 
     /// A quadratic is recovered from enough points, whatever the prior.
@@ -310,17 +317,19 @@ mod tests {
         // 20 pseudo-random points (more than the 10 coefficients).
         let m = 20;
         let mut state = 12345u64;
-        let u: Vec<f64> = (0..m * n)
-            .map(|_| {
-                state = state
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                (state >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
-            })
-            .collect();
-        let sw = vec![1.0; m];
-        let mut r: Vec<f64> = (0..m).map(|i| f(&u[i * n..(i + 1) * n])).collect();
-        let (mut g, mut h) = (vec![0.0; n], vec![0.0; n * n]);
+        let mut u = [0.0; 60];
+        for x in u.iter_mut() {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            *x = (state >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0;
+        }
+        let sw = [1.0; 20];
+        let mut r = [0.0; 20];
+        for (i, ri) in r.iter_mut().enumerate() {
+            *ri = f(&u[i * n..(i + 1) * n]);
+        }
+        let (mut g, mut h) = ([0.0; 3], [0.0; 9]);
         assert!(
             fit(
                 Shape::Full,
@@ -329,7 +338,7 @@ mod tests {
                 &u,
                 &sw,
                 &mut r,
-                scratch(m, n).as_mut(),
+                Buffers::new().as_mut(m, n),
                 &mut g,
                 &mut h
             )
@@ -350,7 +359,7 @@ mod tests {
         let u = [1.0, 0.0, -1.0, 0.0];
         let sw = [1.0, 1.0];
         // f = u₀ + u₀² ; prior H = diag(0, 5): the second coordinate is not sampled.
-        let (mut g, mut h) = (vec![0.0; 2], vec![0.0, 0.0, 0.0, 5.0]);
+        let (mut g, mut h) = ([0.0; 2], [0.0, 0.0, 0.0, 5.0]);
         let prior = |x: &[f64]| Shape::Full.half_quadratic(&[0.0, 0.0, 0.0, 5.0], x);
         let mut r = [2.0 - prior(&u[..2]), 0.0 - prior(&u[2..])];
         assert!(
@@ -361,7 +370,7 @@ mod tests {
                 &u,
                 &sw,
                 &mut r,
-                scratch(2, n).as_mut(),
+                Buffers::new().as_mut(2, n),
                 &mut g,
                 &mut h
             )

@@ -201,20 +201,12 @@ fn write_step<T: Real>(shape: Shape, v: &[T], n: usize, c: impl Fn(usize) -> T, 
 
 #[cfg(test)]
 mod tests {
-    extern crate std;
-    use std::vec;
-
     use super::*;
 
-    fn run(shape: Shape, g: &[f64], h: &[f64], radius: f64) -> std::vec::Vec<f64> {
-        let n = g.len();
-        let (mut a, mut v, mut gamma, mut lambda) = (
-            vec![0.0; n * n],
-            vec![0.0; n * n],
-            vec![0.0; n],
-            vec![0.0; n],
-        );
-        let mut s = vec![0.0; n];
+    /// The step for a 2-D model (fixed arrays: no heap here).
+    fn run(shape: Shape, g: &[f64; 2], h: &[f64], radius: f64) -> [f64; 2] {
+        let (mut a, mut v, mut gamma, mut lambda) = ([0.0; 4], [0.0; 4], [0.0; 2], [0.0; 2]);
+        let mut s = [0.0; 2];
         let scratch = Scratch {
             a: &mut a,
             v: &mut v,
@@ -226,7 +218,7 @@ mod tests {
     }
 
     fn norm(s: &[f64]) -> f64 {
-        s.iter().map(|x| x * x).sum::<f64>().sqrt()
+        libm::sqrt(s.iter().map(|x| x * x).sum::<f64>())
     }
 
     #[test]
