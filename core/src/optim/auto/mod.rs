@@ -29,8 +29,8 @@
 //! * **σ is the trust radius** and follows the ratio ρ̂ of actual to predicted decrease:
 //!   ρ̂ ≥ 0.7 with a step to the boundary doubles σ; a step shorter than half the radius
 //!   shrinks σ towards twice its length (at most halving it); ρ̂ < 0.1 halves σ — unless
-//!   fewer points than the model has coefficients determined it (then a pair is drawn
-//!   at the same σ first), or the fit finds f rough at this scale (residual scatter
+//!   the model rested on its prior (fewer points than it has coefficients, and at most
+//!   2n within reach: then a pair is drawn at the same σ first), or the fit finds f rough at this scale (residual scatter
 //!   above [`ROUGH`] of the values' spread) and the trial lies within twice that scatter
 //!   (then σ doubles, as on a plateau).
 //! * **Plateaus.** Where the remembered values within reach tie, σ doubles (up to
@@ -41,9 +41,12 @@
 //!   same whatever its [`AutoOptions::max_evaluations`], which only stops it (never
 //!   exceeded, even inside an iteration). When σ falls below
 //!   [`AutoOptions::tolerance`]·σ₀ (or below what T resolves at θ), or after
-//!   [`AutoOptions::patience`] iterations without a lower f(θ), the run restarts at σ₀
-//!   from the best point if f(θ) fell since the last restart, and otherwise ends,
-//!   converged or stagnated.
+//!   [`AutoOptions::patience`] iterations without a lower f(θ), the run restarts from
+//!   the best point with a survey of n pairs: at σ₀ if f(θ) fell since the last
+//!   restart, otherwise at twice the last restart's σ (up to [`PLATEAU_WIDTH`]·σ₀),
+//!   where the smoothed objective averages over the basin that held it; after
+//!   [`AutoOptions::restarts`] restarts in a row without a gain it ends, converged or
+//!   stagnated.
 //!
 //! Memory: one caller buffer of [`Auto::buffer_len`] floats, O(n² + m²) for m =
 //! [`Auto::history_len`] remembered points. Cost per iteration: O(m²n + m³) for the fit,
@@ -106,10 +109,15 @@ pub enum NonFinite {
 pub struct AutoOptions<T> {
     /// The run ends converged once σ < `tolerance`·σ₀. Default: 1e-9.
     pub tolerance: T,
-    /// Iterations without a lower f(θ) after which the run restarts at σ₀ from the best
-    /// point (once per improvement) or, when it already has, ends stagnated.
-    /// Default: `None`, meaning 20 + 10n.
+    /// Iterations without a lower f(θ) after which the run restarts from the best point
+    /// (see [`AutoOptions::restarts`]) or ends stagnated. Default: `None`, meaning
+    /// 20 + 10n.
     pub patience: Option<usize>,
+    /// Restarts in a row without a lower f(θ) before the run ends. The first restart
+    /// after a gain is at σ₀; each further one at twice the σ of the one before, up to
+    /// [`PLATEAU_WIDTH`]·σ₀ (and, with bounds, half the box's widest side), and there
+    /// again. Each looks around its new scale with n antithetic pairs. Default: 8.
+    pub restarts: usize,
     /// Objective evaluations after which the run stops; never exceeded. Default: none.
     pub max_evaluations: Option<usize>,
     /// Policy for NaN/±∞ objective values. Default: [`NonFinite::Worst`].
@@ -121,6 +129,7 @@ impl<T: Real> Default for AutoOptions<T> {
         AutoOptions {
             tolerance: T::from_f64(1e-9),
             patience: None,
+            restarts: 8,
             max_evaluations: None,
             non_finite: NonFinite::Worst,
         }
@@ -150,6 +159,13 @@ impl<T: Real> AutoOptions<T> {
         }
         self.patience = Some(patience);
         Ok(self)
+    }
+
+    /// Sets [`AutoOptions::restarts`] (0: the run ends as soon as it converges or
+    /// stagnates).
+    pub fn with_restarts(mut self, restarts: usize) -> Self {
+        self.restarts = restarts;
+        self
     }
 
     /// Sets [`AutoOptions::max_evaluations`].
@@ -408,6 +424,11 @@ struct State<T> {
     /// instead of ending the run.
     may_restart: bool,
     bounded: bool,
+    /// Draw n pairs along a fresh frame this iteration, as the first does: a restart
+    /// looks around at its new scale before the model decides anything.
+    survey: bool,
+    /// Restarts since the last gain, each at twice the scale of the one before.
+    widenings: u32,
     finished: Option<AutoTermination>,
 }
 
@@ -520,6 +541,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 stale: 0,
                 may_restart: false,
                 bounded: false,
+                survey: false,
+                widenings: 0,
                 finished: None,
             },
         })
@@ -664,10 +687,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let termination = if kind == AutoStep::OutOfBudget || self.remaining() == 0 {
             Some(AutoTermination::MaxEvaluations)
         } else if (converged || stagnated) && self.st.may_restart {
-            // Once per improvement: look again from the best point at the scale σ₀ the
-            // caller stated (a kink or a lattice can hold σ far from the optimum)
-            // before calling the run converged or stagnated.
-            self.restart();
+            // A kink or a lattice can hold σ far from the optimum: look again from the
+            // best point at the scale σ₀ the caller stated.
+            self.st.widenings = 0;
+            self.restart(self.st.sigma0);
+            None
+        } else if (converged || stagnated) && (self.st.widenings as usize) < self.options.restarts {
+            // No gain since the last restart: look again at twice its scale, where the
+            // smoothed objective averages over the basin that held the run.
+            self.st.widenings += 1;
+            self.restart(self.restart_sigma());
             None
         } else if converged {
             Some(AutoTermination::Converged)
@@ -713,7 +742,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             rows = 1;
         }
         let near = self.count_within(T::from_f64(REACH));
-        let pairs = if first {
+        let survey = first || self.st.survey;
+        self.st.survey = false;
+        let pairs = if survey {
             n
         } else if self.st.resample {
             1
@@ -721,7 +752,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             (n + 1).saturating_sub(near).div_ceil(2)
         };
         let root_n = T::from_usize(n).sqrt();
-        let exploring = !first && self.st.resample;
+        let exploring = !survey && self.st.resample;
         for _ in 0..pairs {
             let k = self.next_direction();
             // Geometry pairs lie at the samples' typical distance σ√n; a pair drawn to
@@ -750,19 +781,21 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             }
         }
         let allowed = rows.min(self.remaining());
-        if allowed == 0 {
-            return Ok(None);
+        if rows > 0 && allowed == 0 {
+            return Ok(Some(AutoStep::OutOfBudget));
         }
-        // Both halves of a pair share a seed; θ has its own.
-        let seed_base = self.rng.next_u64();
-        let centre_rows = usize::from(first);
-        self.evaluate(objective, allowed, spent, |row| {
-            if row < centre_rows {
-                seed_base
-            } else {
-                seed_base.wrapping_add(1 + ((row - centre_rows) / 2) as u64)
-            }
-        })?;
+        if allowed > 0 {
+            // Both halves of a pair share a seed; θ has its own.
+            let seed_base = self.rng.next_u64();
+            let centre_rows = usize::from(first);
+            self.evaluate(objective, allowed, spent, |row| {
+                if row < centre_rows {
+                    seed_base
+                } else {
+                    seed_base.wrapping_add(1 + ((row - centre_rows) / 2) as u64)
+                }
+            })?;
+        }
         // Remember the points and move θ to the lowest when it beats f(θ).
         let mut lowest: Option<(usize, T)> = None;
         for row in 0..allowed {
@@ -899,7 +932,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         let boundary = length >= T::from_f64(0.9) * radius;
         let determined = fitted > self.shape.coefficients(n);
-        self.st.sigma = if ratio < T::from_f64(0.1) && !determined && !accepted {
+        self.st.sigma = if ratio < T::from_f64(0.1) && !determined && !validated {
             // Too few points to blame the scale: sample more at this σ first.
             self.st.resample = true;
             sigma
@@ -1027,6 +1060,22 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             }
         }
         (self.st.sigma * T::TWO).min(cap).max(self.st.sigma)
+    }
+
+    /// σ₀·2ᵏ for the k-th restart in a row without a gain, at most [`PLATEAU_WIDTH`]·σ₀
+    /// and, with bounds, half the box's widest side.
+    fn restart_sigma(&self) -> T {
+        let doublings = self.st.widenings.min(32) as i32;
+        let sigma = self.st.sigma0 * T::from_f64(libm::pow(2.0, f64::from(doublings)));
+        let mut cap = self.st.sigma0 * T::from_f64(PLATEAU_WIDTH);
+        if self.st.bounded {
+            let width = (0..self.theta.len())
+                .fold(T::ZERO, |w, i| w.max(self.mem.upper[i] - self.mem.lower[i]));
+            if width > T::ZERO && width.is_finite() {
+                cap = cap.min(T::HALF * width);
+            }
+        }
+        sigma.min(cap).max(self.st.sigma0.min(cap))
     }
 
     /// ‖t‖ for t ~ N(0, I) in n dimensions (a χ_n draw).
@@ -1281,11 +1330,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
 
     /// Starts over from the best point at σ₀ with the memory of points but without the
     /// model or metric learnt at the scale the run had shrunk to.
-    fn restart(&mut self) {
+    fn restart(&mut self, sigma: T) {
         self.st.may_restart = false;
         self.st.stale = 0;
-        self.st.sigma = self.st.sigma0;
-        self.st.resample = true;
+        self.st.sigma = sigma;
+        self.st.survey = true;
         self.st.has_prior = false;
         metric::reset(self.mem.c, self.mem.l, self.mem.li, self.theta.len());
     }
