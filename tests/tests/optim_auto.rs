@@ -297,7 +297,7 @@ fn plateau_start_widens_and_finds_the_well() {
 fn convergence_rates_hold() {
     let seeds = 40;
     // Rosenbrock in 5-D from (−1.5, …), to f < 1e-8 within 2 000 evaluations.
-    // Measured: 349 of 400. Bound: P(X < 28 | p = 0.8725, N = 40) = 9.8e-4.
+    // Measured: 344 of 400. Bound: P(X < 27 | p = 0.86, N = 40) = 7.0e-4.
     let solved = (0..seeds)
         .filter(|&seed| {
             let mut f = |x: &[f64]| {
@@ -309,7 +309,7 @@ fn convergence_rates_hold() {
             v.is_some_and(|v| v < 1e-8)
         })
         .count();
-    assert!(solved >= 28, "Rosenbrock-5: {solved} of {seeds}");
+    assert!(solved >= 27, "Rosenbrock-5: {solved} of {seeds}");
     // A rounded 2-D quadratic (an integer plateau) to its exact minimum within 300.
     // Measured: 400 of 400. Bound: P(X < 38 | p = 0.99875, N = 40) = 1.9e-5 (p one
     // half-failure short of 1).
@@ -324,8 +324,8 @@ fn convergence_rates_hold() {
     assert!(solved >= 38, "rounded quadratic: {solved} of {seeds}");
     // Two wells: a shallow one (f = 0.5) at the start, the deep one (f = 0) 6σ₀ away,
     // to f < 1e-8 within 1 000 evaluations; only restarts at widening σ leave the
-    // first (with `restarts` 0: 0 of 400). Measured: 296 of 400.
-    // Bound: P(X < 21 | p = 0.74, N = 40) = 9.8e-4.
+    // first (with `restarts` 0: 0 of 400). Measured: 311 of 400.
+    // Bound: P(X < 22 | p = 0.7775, N = 40) = 3.7e-4.
     let (lower, upper) = ([-10.0, -10.0], [10.0, 10.0]);
     let solved = (0..seeds)
         .filter(|&seed| {
@@ -339,6 +339,7 @@ fn convergence_rates_hold() {
             v.is_some_and(|v| v < 1e-8)
         })
         .count();
-    assert!(solved >= 21, "two wells: {solved} of {seeds}");
+    assert!(solved >= 22, "two wells: {solved} of {seeds}");
 }
+
 

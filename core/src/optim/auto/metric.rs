@@ -8,14 +8,19 @@
 //! region stretches along it, and the isotropic σ that fits the valley's width no
 //! longer limits the steps along it.
 //!
-//! C moves towards its target by a fraction [`RATE`] per update and is renormalised to
+//! C moves towards its target by a fraction [`rate`]`(n)` per update and is renormalised to
 //! det C = 1, so σ alone carries the scale. Matrices are n×n row-major.
 
 use super::trust::jacobi;
 use crate::real::Real;
 
-/// Fraction of the way C moves towards the target of one update.
-pub const RATE: f64 = 0.3;
+/// Fraction of the way C moves towards the target of one update in dimension n:
+/// 1/(2n), at most 0.3. C has n(n+1)/2 entries and each model's curvature is a noisy
+/// view of them (a rough f's local curvature changes along the path), so like
+/// CMA-ES's covariance it averages over more updates as n grows.
+pub fn rate(n: usize) -> f64 {
+    (0.5 / n as f64).min(0.3)
+}
 
 /// Smallest |eigenvalue| of the target's H relative to its largest: ε^¾ of T (1.6e-12
 /// for f64, 6.5e-6 for f32), so that C's condition stays within what T can whiten.
@@ -110,7 +115,7 @@ pub fn update<T: Real>(
         log_mean += e.ln();
     }
     let mean = (log_mean / T::from_usize(n)).exp();
-    let rate = T::from_f64(RATE);
+    let rate = T::from_f64(rate(n));
     for i in 0..n {
         for j in 0..n {
             let target = (0..n).fold(T::ZERO, |s, k| s + v[i * n + k] * w[k] * v[j * n + k]);
