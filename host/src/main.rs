@@ -136,6 +136,10 @@ enum Command {
         /// Output directory.
         #[arg(long, default_value = "suite")]
         out: PathBuf,
+        /// Runs at once (default 1, so that times are measured on an idle machine;
+        /// results and evaluation counts do not depend on it).
+        #[arg(long, default_value_t = 1)]
+        jobs: usize,
     },
     /// Error against run time of every preset on QUAD, BOX2-REF and stiff quadratics.
     Runtime {
@@ -336,6 +340,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             budget_per_dim,
             quick,
             out,
+            jobs,
         } => {
             use hodr_host::suite;
             let config = suite::Config::from_args(
@@ -346,7 +351,8 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
                 budget_per_dim,
                 quick,
                 out,
-            )?;
+            )?
+            .with_jobs(jobs)?;
             let outcome = suite::run(&config, interrupt, true)?;
             if outcome.interrupted {
                 eprintln!("interrupted: wrote the finished runs");

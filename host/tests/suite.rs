@@ -237,6 +237,44 @@ fn quick_suite_writes_its_files() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Runs at once change only the times: every evaluation count of the CSV is the same.
+#[test]
+fn parallel_runs_give_the_same_results() {
+    let evaluations = |jobs: &str| {
+        let dir = scratch(&format!("jobs{jobs}"));
+        let out = hodr(&[
+            "suite",
+            "--quick",
+            "--families",
+            "integer,flat",
+            "--methods",
+            "Auto,CMA-ES",
+            "--jobs",
+            jobs,
+            "--out",
+            dir.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let csv = std::fs::read_to_string(dir.join("suite.csv")).unwrap();
+        let _ = std::fs::remove_dir_all(&dir);
+        // Every column but the run's time.
+        let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+        let time = header.iter().position(|&h| h == "time_s").unwrap();
+        csv.lines()
+            .map(|l| {
+                let mut fields: Vec<&str> = l.split(',').collect();
+                fields.remove(time);
+                fields.join(",")
+            })
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(evaluations("1"), evaluations("2"));
+}
+
 #[test]
 fn bad_suite_arguments_fail_with_one_line() {
     for (args, culprit) in [
@@ -246,6 +284,7 @@ fn bad_suite_arguments_fail_with_one_line() {
         (&["suite", "--methods", "FR22,fr22"][..], "fr22"),
         (&["suite", "--seeds", "0"][..], "seeds"),
         (&["suite", "--seeds", "many"][..], "many"),
+        (&["suite", "--jobs", "0"][..], "jobs"),
     ] {
         let out = hodr(args);
         assert!(!out.status.success(), "{args:?}");

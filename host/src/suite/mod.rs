@@ -15,8 +15,9 @@
 //! turns seed by seed (seed 0 of every method, then seed 1, …), so a slow drift of the
 //! machine falls on every method alike. Run seed s of a problem is a function of the
 //! problem's name and s only ([`problem::run_seed`]); every method of that seed starts
-//! from the same x₀. Runs execute one at a time; a method may use both cores inside a
-//! run (CMA-ES generations, hodr-core batches).
+//! from the same x₀. Runs execute one at a time unless [`Config::jobs`] says otherwise
+//! (then they share the machine, but their results and order are the same); a method
+//! may use both cores inside a run (CMA-ES generations, hodr-core batches).
 
 pub mod bbob;
 pub mod flat;
@@ -35,6 +36,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::{Context, Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
 
 pub use methods::Method;
 pub use problem::{Family, Problem};
@@ -77,9 +79,25 @@ pub struct Config {
     pub quick: bool,
     /// Output directory.
     pub out: PathBuf,
+    /// Runs executed at once (default 1: one at a time, so that each run's time is
+    /// measured on an otherwise idle machine).
+    pub jobs: usize,
 }
 
 impl Config {
+    /// Runs `jobs` runs at once on a pool of that many threads. Results, their order and
+    /// every evaluation count are those of `jobs` = 1; only the times share the machine.
+    ///
+    /// # Errors
+    /// For 0.
+    pub fn with_jobs(mut self, jobs: usize) -> Result<Config> {
+        if jobs == 0 {
+            bail!("--jobs must be at least 1");
+        }
+        self.jobs = jobs;
+        Ok(self)
+    }
+
     /// The configuration of the command line's arguments: empty lists mean "all";
     /// `seeds` and `budget_per_dim` default to [`SEEDS`] and [`BUDGET_PER_DIM`], or
     /// [`QUICK_SEEDS`] and [`QUICK_BUDGET_PER_DIM`] with `quick`.
@@ -136,6 +154,7 @@ impl Config {
             instances: if quick { QUICK_INSTANCES } else { INSTANCES },
             quick,
             out,
+            jobs: 1,
         })
     }
 
@@ -274,30 +293,41 @@ pub fn run(config: &Config, interrupt: &AtomicBool, progress: bool) -> Result<Ou
         ProgressStyle::with_template("{bar:40} {pos}/{len} runs  {msg}  [{elapsed_precise}]")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
-    let mut runs = Vec::new();
-    let mut interrupted = false;
-    'problems: for (index, p) in problems.iter().enumerate() {
-        bar.set_message(p.name.clone());
-        for s in 0..config.seeds {
-            let seed = problem::run_seed(&p.name, s);
-            let x0 = p.start(seed);
-            for &m in &config.methods {
-                if interrupt.load(Ordering::Relaxed) {
-                    interrupted = true;
-                    break 'problems;
-                }
-                let trace = m.run(p, &x0, seed);
-                runs.push(Run {
-                    problem: index,
-                    method: m,
-                    seed: s,
-                    trace,
-                });
-                bar.inc(1);
-            }
+    // Every run in turn order: problem, seed, method.
+    let order: Vec<(usize, usize, Method)> = (0..problems.len())
+        .flat_map(|index| {
+            (0..config.seeds).flat_map(move |s| config.methods.iter().map(move |&m| (index, s, m)))
+        })
+        .collect();
+    let one = |&(index, s, m): &(usize, usize, Method)| {
+        if interrupt.load(Ordering::Relaxed) {
+            return None;
         }
-    }
+        let p = &problems[index];
+        bar.set_message(p.name.clone());
+        let seed = problem::run_seed(&p.name, s);
+        let trace = m.run(p, &p.start(seed), seed);
+        bar.inc(1);
+        Some(Run {
+            problem: index,
+            method: m,
+            seed: s,
+            trace,
+        })
+    };
+    let done: Vec<Option<Run>> = if config.jobs == 1 {
+        order.iter().map(one).collect()
+    } else {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(config.jobs)
+            .build()
+            .context("starting the suite's thread pool")?
+            .install(|| order.par_iter().map(one).collect())
+    };
     bar.finish_and_clear();
+    let interrupted = done.iter().any(Option::is_none);
+    // An interrupted run keeps what finished before the first run it skipped.
+    let runs: Vec<Run> = done.into_iter().map_while(|r| r).collect();
     let reference = if config.methods.contains(&Method::CmaEs) {
         Method::CmaEs
     } else {

@@ -193,8 +193,9 @@ pub fn write_markdown(
     );
     let _ = writeln!(
         md,
-        "* machine: {threads} hardware threads, rayon pool of {}",
-        rayon::current_num_threads()
+        "* machine: {threads} hardware threads, rayon pool of {}; runs at once: {}",
+        rayon::current_num_threads(),
+        config.jobs
     );
     if config.quick {
         md.push_str("* `--quick`: small dimensions, 2 seeds, 2 instances, small budgets\n");
