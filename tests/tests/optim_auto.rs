@@ -341,5 +341,3 @@ fn convergence_rates_hold() {
         .count();
     assert!(solved >= 22, "two wells: {solved} of {seeds}");
 }
-
-
