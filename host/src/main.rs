@@ -49,6 +49,10 @@ enum Command {
         /// Output directory.
         #[arg(long, default_value = "report")]
         out: PathBuf,
+        /// The generalisation suite run after the tasks, into OUT/suite: off, quick
+        /// (seconds) or full (tens of minutes; the same as `hodr suite`).
+        #[arg(long, value_enum, default_value_t = report::SuiteScope::Quick)]
+        suite: report::SuiteScope,
     },
     /// Every task with its dimension and a one-line description.
     Tasks,
@@ -202,6 +206,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
         budget: None,
         set: Vec::new(),
         out: report::default_out().to_path_buf(),
+        suite: report::SuiteScope::Quick,
     });
     match command {
         Command::Report {
@@ -212,6 +217,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             budget,
             set,
             out,
+            suite,
         } => {
             let config = Config {
                 tasks,
@@ -223,6 +229,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
                     overrides: overrides(&set)?,
                 },
                 out,
+                suite,
             };
             let path = report::report(&config, interrupt, true)?;
             if interrupt.load(Ordering::Relaxed) {

@@ -83,6 +83,44 @@ fn report_writes_parseable_files() {
     assert!(md.contains("## QUAD") && md.contains("## BOX2") && md.contains("OurHVPA"));
     assert!(dir.join("plot_quad_param.png").exists());
     assert!(dir.join("strip_box2.png").exists());
+    // The quick generalisation suite by default: its family table in report.md, its
+    // files under suite/.
+    assert!(md.contains("## Generalisation suite") && md.contains("| bbob | Auto |"));
+    assert!(md.contains("](suite/suite.md)") && md.contains("](suite/ecdf.png)"));
+    for file in ["suite.md", "suite.csv", "ecdf.png"] {
+        assert!(dir.join("suite").join(file).exists(), "{file}");
+    }
+}
+
+#[test]
+fn report_without_the_suite() {
+    let dir = scratch("report-no-suite");
+    let out = hodr(&[
+        "report",
+        "--tasks",
+        "quad",
+        "--methods",
+        "Auto",
+        "--seeds",
+        "1",
+        "--budget",
+        "50",
+        "--suite",
+        "off",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    assert!(!md.contains("Generalisation suite"));
+    assert!(!dir.join("suite").exists());
+    let out = hodr(&["report", "--suite", "most"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("most"));
 }
 
 #[test]

@@ -9,7 +9,9 @@
 //!   of image and parameter error, each method's ratio to the best, the plots and strip;
 //! * `plot_<task>_{image,param}.png`: median error against time, log–log;
 //! * `strip_<task>.png`: init / result / target (tasks with images);
-//! * `results.csv` (one row per run) and `results.json` (settings, summary, every point).
+//! * `results.csv` (one row per run) and `results.json` (settings, summary, every point);
+//! * unless [`Config::suite`] is [`SuiteScope::Off`], the generalisation suite
+//!   ([`crate::suite`]) in `suite/`, its per-family table and ECDF plot in `report.md`.
 //!
 //! Timing policy: runs execute one at a time; inside a run the objective may use both
 //! cores (batch evaluation); the clock is paused while the error probe runs. Within a
@@ -194,6 +196,22 @@ pub struct Config {
     pub settings: Settings,
     /// Output directory.
     pub out: PathBuf,
+    /// The generalisation suite run after the tasks, into `out/suite`.
+    pub suite: SuiteScope,
+}
+
+/// How much of the generalisation suite ([`crate::suite`]) a report runs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum SuiteScope {
+    /// None.
+    Off,
+    /// `hodr suite --quick`: n ≤ 5, 2 seeds, 2 instances, 200·n evaluations (seconds).
+    #[default]
+    Quick,
+    /// `hodr suite`: every dimension, 5 seeds, 5 instances, 1 000·n evaluations (tens of
+    /// minutes).
+    Full,
 }
 
 /// Runs the report and writes its files; returns the path of `report.md`.
@@ -255,20 +273,39 @@ pub fn report(config: &Config, interrupt: &AtomicBool, progress: bool) -> Result
             r.seed,
         )
     });
+    let suite = if config.suite == SuiteScope::Off || interrupt.load(Ordering::Relaxed) {
+        None
+    } else {
+        let scope = crate::suite::Config::from_args(
+            &[],
+            &[],
+            &[],
+            None,
+            None,
+            config.suite == SuiteScope::Quick,
+            config.out.join(SUITE_DIR),
+        )?;
+        Some(crate::suite::run(&scope, interrupt, progress)?)
+    };
     write_outputs(
         config,
         &tasks,
         &methods,
         &runs,
+        suite.as_ref(),
         interrupt.load(Ordering::Relaxed),
     )
 }
+
+/// The report's subdirectory holding the suite's files.
+const SUITE_DIR: &str = "suite";
 
 fn write_outputs(
     config: &Config,
     tasks: &[Box<dyn task::Task>],
     methods: &[Method],
     runs: &[Run],
+    suite: Option<&crate::suite::Outcome>,
     interrupted: bool,
 ) -> Result<PathBuf> {
     use std::fmt::Write as _;
@@ -365,6 +402,31 @@ fn write_outputs(
             }
         }
         all_rows.extend(rows);
+    }
+    if let Some(suite) = suite {
+        let _ = writeln!(
+            md,
+            "## Generalisation suite\n\n\
+             The optimisers on problems nobody tuned for — BBOB functions, disc and integer \
+             plateaus, a flat direction, BOX2 — each seeing x₀, σ₀, bounds and budget only \
+             ({} configuration{}). Evaluations to targets per problem: \
+             [{SUITE_DIR}/suite.md]({SUITE_DIR}/suite.md).\n",
+            if config.suite == SuiteScope::Quick {
+                "`--quick`"
+            } else {
+                "full"
+            },
+            if suite.interrupted {
+                "; interrupted, finished runs only"
+            } else {
+                ""
+            }
+        );
+        md.push_str(&suite.table());
+        let _ = writeln!(
+            md,
+            "\n![fraction of (problem, target) pairs solved against evaluations]({SUITE_DIR}/ecdf.png)\n"
+        );
     }
     output::write_csv(&out.join("results.csv"), runs)?;
     output::write_json(&out.join("results.json"), config, runs, &all_rows)?;
