@@ -75,6 +75,8 @@ pub use estimate::HessianMethod;
 #[cfg(feature = "hvp")]
 pub use estimate::{Draws, HvpMethod};
 pub use estimate::{Estimator, GradientMethod, Report};
+#[cfg(feature = "cg")]
+pub use estimate::{Lowest, PairValues};
 pub use objective::{Batch, NoiseSeed, Objective, Seeded};
 pub use real::Real;
 pub use workspace::{FixedWorkspace, MIN_ROWS, Workspace};

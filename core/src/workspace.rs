@@ -13,6 +13,8 @@
 //! host evaluate more in parallel.
 
 use crate::error::Error;
+#[cfg(feature = "cg")]
+use crate::estimate::Lowest;
 use crate::objective::NoiseSeed;
 use crate::real::Real;
 
@@ -55,56 +57,51 @@ pub(crate) struct BatchBuffers<'a, T> {
     /// Sum and count of the objective values of the current estimate.
     pub(crate) value_sum: T,
     pub(crate) value_count: usize,
-    /// The lowest sample evaluated since [`BatchBuffers::forget_best`]. Part of the
-    /// memory layout whatever the features; tracked only with `cg`, for Newton-CG's
-    /// comparison of steps.
+    /// n floats: the point of the current estimate's lowest sample (meaningful only
+    /// while `lowest` is set). Part of the memory layout whatever the features, so that
+    /// [`Workspace::buffer_len`] does not depend on them; written only with `cg`.
     #[cfg_attr(not(feature = "cg"), allow(dead_code))]
-    pub(crate) best: BestSample<'a, T>,
-}
-
-/// The point with the lowest objective value among the samples evaluated since it was
-/// last cleared (an optimiser clears it at the start of each iteration), the noise
-/// seed it was evaluated with, and the highest value among the same samples.
-#[derive(Debug)]
-#[cfg_attr(not(feature = "cg"), allow(dead_code))]
-pub(crate) struct BestSample<'a, T> {
-    /// n floats: the point (meaningful only when `value` is set).
-    pub(crate) point: &'a mut [T],
-    pub(crate) value: Option<T>,
-    pub(crate) seed: NoiseSeed,
+    pub(crate) lowest_point: &'a mut [T],
+    /// The current estimate's lowest sample, its point in `lowest_point`.
+    #[cfg(feature = "cg")]
+    pub(crate) lowest: Option<Lowest<T>>,
+    /// The highest value among the current estimate's samples.
+    #[cfg(feature = "cg")]
     pub(crate) highest: Option<T>,
 }
 
 impl<T: Real> BatchBuffers<'_, T> {
-    /// Starts a new estimate: forgets the failed point and the value tally.
+    /// Starts a new estimate: forgets the failed point, the value tally and the lowest
+    /// and highest samples.
     pub(crate) fn begin(&mut self) {
         self.failed = None;
         self.value_sum = T::ZERO;
         self.value_count = 0;
+        #[cfg(feature = "cg")]
+        {
+            self.lowest = None;
+            self.highest = None;
+        }
     }
 
-    /// Forgets the lowest sample seen (and the highest value).
+    /// Notes the first `used` rows of the batch (all finite), the first of them the
+    /// estimate's evaluation number `first_sample`, as candidates for the lowest and
+    /// highest sample. Ties keep the earlier sample.
     #[cfg(feature = "cg")]
-    pub(crate) fn forget_best(&mut self) {
-        self.best.value = None;
-        self.best.highest = None;
-    }
-
-    /// Notes the first `used` rows of the batch (all finite) as candidates for the
-    /// lowest sample. Ties keep the earlier sample.
-    #[cfg(feature = "cg")]
-    pub(crate) fn note_best(&mut self, used: usize) {
-        let dim = self.best.point.len();
+    pub(crate) fn note_extremes(&mut self, used: usize, first_sample: usize) {
+        let dim = self.lowest_point.len();
         for row in 0..used {
             let v = self.values[row];
-            if self.best.highest.is_none_or(|h| v > h) {
-                self.best.highest = Some(v);
+            if self.highest.is_none_or(|h| v > h) {
+                self.highest = Some(v);
             }
-            if self.best.value.is_none_or(|b| v < b) {
-                self.best.value = Some(v);
-                self.best.seed = self.seeds[row];
-                self.best
-                    .point
+            if self.lowest.is_none_or(|low| v < low.value) {
+                self.lowest = Some(Lowest {
+                    value: v,
+                    seed: self.seeds[row],
+                    sample: first_sample + row,
+                });
+                self.lowest_point
                     .copy_from_slice(&self.points[row * dim..(row + 1) * dim]);
             }
         }
@@ -119,7 +116,7 @@ impl<T: Real> BatchBuffers<'_, T> {
 impl<'a, T: Real> Workspace<'a, T> {
     /// Length of the `T` buffer that [`Workspace::new`] needs for dimension `dim` and
     /// batch capacity `rows`: `dim·(rows + rows/2 + 4) + rows` (the batch, its offsets
-    /// and values, three scratch vectors and the lowest sample of an iteration).
+    /// and values, three scratch vectors and the lowest sample of an estimate).
     pub const fn buffer_len(dim: usize, rows: usize) -> usize {
         dim * (rows + rows / 2 + SCRATCH_VECTORS + 1) + rows
     }
@@ -163,7 +160,7 @@ impl<'a, T: Real> Workspace<'a, T> {
         let (offsets, rest) = rest.split_at_mut(rows / 2 * dim);
         let (values, rest) = rest.split_at_mut(rows);
         let (scratch, rest) = rest.split_at_mut(SCRATCH_VECTORS * dim);
-        let (best, rest) = rest.split_at_mut(dim);
+        let (lowest_point, rest) = rest.split_at_mut(dim);
         let moments_len = Self::moments_len(dim);
         let moments = if rest.len() >= moments_len {
             &mut rest[..moments_len]
@@ -180,12 +177,11 @@ impl<'a, T: Real> Workspace<'a, T> {
                 failed: None,
                 value_sum: T::ZERO,
                 value_count: 0,
-                best: BestSample {
-                    point: best,
-                    value: None,
-                    seed: 0,
-                    highest: None,
-                },
+                lowest_point,
+                #[cfg(feature = "cg")]
+                lowest: None,
+                #[cfg(feature = "cg")]
+                highest: None,
             },
             scratch,
             moments,
@@ -211,6 +207,21 @@ impl<'a, T: Real> Workspace<'a, T> {
             .failed
             .map(|row| &self.batch.points[row * self.dim..(row + 1) * self.dim])
     }
+
+    /// The point of the latest estimate's lowest sample, [`crate::Report::lowest`]
+    /// (length n); unspecified when that is `None`. Kept until the next estimate.
+    #[cfg(feature = "cg")]
+    pub fn lowest_point(&self) -> &[T] {
+        self.batch.lowest_point
+    }
+
+    /// The standardised offset t of the latest estimate's one antithetic pair θ ∓ σt,
+    /// [`crate::Report::pair`] (length n); unspecified when that is `None`. Kept until
+    /// the next estimate.
+    #[cfg(feature = "cg")]
+    pub fn pair_offset(&self) -> &[T] {
+        &self.batch.offsets[..self.dim]
+    }
 }
 
 /// Inline storage for a workspace of compile-time dimension `N` and batch capacity `R`
@@ -230,7 +241,7 @@ pub struct FixedWorkspace<T, const N: usize, const R: usize> {
     values: [T; R],
     seeds: [NoiseSeed; R],
     scratch: [[T; N]; SCRATCH_VECTORS],
-    best: [T; N],
+    lowest_point: [T; N],
 }
 
 impl<T: Real, const N: usize, const R: usize> FixedWorkspace<T, N, R> {
@@ -249,7 +260,7 @@ impl<T: Real, const N: usize, const R: usize> FixedWorkspace<T, N, R> {
             values: [T::ZERO; R],
             seeds: [0; R],
             scratch: [[T::ZERO; N]; SCRATCH_VECTORS],
-            best: [T::ZERO; N],
+            lowest_point: [T::ZERO; N],
         }
     }
 
@@ -265,12 +276,11 @@ impl<T: Real, const N: usize, const R: usize> FixedWorkspace<T, N, R> {
                 failed: None,
                 value_sum: T::ZERO,
                 value_count: 0,
-                best: BestSample {
-                    point: &mut self.best,
-                    value: None,
-                    seed: 0,
-                    highest: None,
-                },
+                lowest_point: &mut self.lowest_point,
+                #[cfg(feature = "cg")]
+                lowest: None,
+                #[cfg(feature = "cg")]
+                highest: None,
             },
             scratch: self.scratch.as_flattened_mut(),
             moments: &mut [],

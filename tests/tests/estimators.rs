@@ -470,3 +470,52 @@ fn regression_draws_enough_pairs_and_needs_a_moment_region() {
     let r = est.gradient(m, &mut f, p.theta(), &mut mem.ws(3), &mut g);
     assert_eq!(r.map(|r| r.evaluations), Ok(16));
 }
+
+/// An estimate's report names its lowest sample (value, noise seed, evaluation number,
+/// point), its highest value and, for a lone antithetic pair around θ, both values:
+/// checked against a log of every evaluation the estimate made.
+#[test]
+fn reports_carry_the_extremes_of_their_samples() {
+    use hodr_core::Seeded;
+    let n = 3;
+    let p = Problem::sin_cos(n, 1);
+    let mut mem = Memory::new(n, 16);
+    let mut ws = mem.ws(n);
+    for (pairs, method) in [
+        (PAIRS, GradientMethod::Aggregate),
+        (PAIRS, GradientMethod::Gaussian),
+        (1, GradientMethod::Gaussian),
+    ] {
+        let mut est = Estimator::new(SIGMA, pairs, Xoshiro256PlusPlus::seed_from_u64(4)).unwrap();
+        let mut log: Vec<(Vec<f64>, u64, f64)> = Vec::new();
+        let mut f = Seeded(|x: &[f64], seed: u64| {
+            let v = p.value(x);
+            log.push((x.to_vec(), seed, v));
+            v
+        });
+        let mut g = vec![0.0; n];
+        let r = est
+            .gradient(method, &mut f, p.theta(), &mut ws, &mut g)
+            .unwrap();
+        assert_eq!(log.len(), r.evaluations);
+        let low = r.lowest.expect("samples were drawn");
+        let (k, lowest) =
+            log.iter().enumerate().fold(
+                (0, &log[0]),
+                |b, (k, e)| if e.2 < b.1.2 { (k, e) } else { b },
+            );
+        assert_eq!((low.value, low.seed, low.sample), (lowest.2, lowest.1, k));
+        assert_eq!(ws.lowest_point(), &lowest.0[..]);
+        let highest = log.iter().fold(f64::NEG_INFINITY, |m, e| m.max(e.2));
+        assert_eq!(r.highest, Some(highest));
+        assert_eq!(r.spread(), Some(highest - lowest.2));
+        match r.pair {
+            Some(pair) => {
+                assert_eq!(pairs, 1);
+                assert_eq!((pair.minus, pair.plus), (log[0].2, log[1].2));
+                assert_eq!(pair.seed, log[0].1);
+            }
+            None => assert!(pairs > 1, "{method:?}: one pair, no pair values"),
+        }
+    }
+}

@@ -115,7 +115,7 @@ where
             });
         }
         #[cfg(feature = "cg")]
-        buffers.note_best(used);
+        buffers.note_extremes(used, placement.first_sample + done * rows_per_group);
         buffers.value_sum += buffers.values[..used].iter().fold(T::ZERO, |s, &v| s + v);
         buffers.value_count += used;
         for k in 0..chunk {

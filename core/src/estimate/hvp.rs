@@ -13,7 +13,7 @@
 use rand_core::Rng;
 
 use super::{
-    Draws, Estimator, GradientMethod, HVP_STEP_RATIO, Report, check_len, check_vector,
+    Draws, Estimator, GradientMethod, HVP_STEP_RATIO, Report, check_len, check_vector, report,
     scale_checked,
 };
 use crate::error::Error;
@@ -54,11 +54,7 @@ pub(super) fn difference<T: Real, R: Rng, O: Objective<T> + ?Sized>(
     hv.fill(T::ZERO);
     let norm = norm2(v);
     if norm == T::ZERO {
-        return Ok(Report {
-            evaluations: 0,
-            centre_value: None,
-            mean_value: None,
-        });
+        return Ok(report(&ws.batch, 0, None, false));
     }
     let sigma = estimator.sigma();
     let eps = T::from_f64(HVP_STEP_RATIO) * sigma;
@@ -98,11 +94,7 @@ pub(super) fn difference<T: Real, R: Rng, O: Objective<T> + ?Sized>(
             scale_checked(hv, norm / eps)?;
         }
     }
-    Ok(Report {
-        evaluations,
-        centre_value: None,
-        mean_value: ws.batch.mean_value(),
-    })
+    Ok(report(&ws.batch, evaluations, None, false))
 }
 
 /// ‖v‖₂ without overflow or underflow: scaled by max |vᵢ|.

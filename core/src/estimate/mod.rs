@@ -41,9 +41,11 @@ mod regression;
 use rand_core::Rng;
 
 use crate::error::Error;
+#[cfg(feature = "cg")]
+use crate::objective::NoiseSeed;
 use crate::objective::Objective;
 use crate::real::Real;
-use crate::workspace::Workspace;
+use crate::workspace::{BatchBuffers, Workspace};
 
 /// How to estimate the smoothed gradient.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -207,6 +209,10 @@ impl HvpMethod {
 pub const HVP_STEP_RATIO: f64 = 1.0 / 3.0;
 
 /// What an estimate cost, and what it learnt on the way.
+///
+/// "Samples" are the points θ ∓ σt the estimate drew (around θ, or around θ ± εu for a
+/// difference HVP), not the control-variate evaluation of f(θ). Values are objective
+/// values, in the objective's units.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Report<T> {
     /// Objective evaluations used.
@@ -217,6 +223,89 @@ pub struct Report<T> {
     /// For Gaussian sampling an unbiased estimate of f̄(θ); for importance sampling only
     /// a diagnostic of the loss near θ.
     pub mean_value: Option<T>,
+    /// The sample with the lowest value (the earliest among equals); its point is
+    /// [`Workspace::lowest_point`] until the next estimate. `None` when the estimate
+    /// drew no samples (an HVP along v = 0). This and the next two fields come with the
+    /// `cg` feature (the optimisers that compare samples): tracking them costs a
+    /// comparison per sample, and code the minimal build leaves out.
+    #[cfg(feature = "cg")]
+    pub lowest: Option<Lowest<T>>,
+    /// The highest value among the samples; `None` when there were none.
+    #[cfg(feature = "cg")]
+    pub highest: Option<T>,
+    /// The values of the one antithetic pair θ ∓ σt around θ itself, when that is all
+    /// the estimate sampled (2 evaluations besides f(θ) in the table above: P = 1, and
+    /// n = 1 for the per-element methods); its offset t is [`Workspace::pair_offset`]
+    /// until the next estimate. `None` otherwise, and always for difference HVPs (their
+    /// samples lie around θ ± εu).
+    #[cfg(feature = "cg")]
+    pub pair: Option<PairValues<T>>,
+}
+
+#[cfg(feature = "cg")]
+impl<T: Real> Report<T> {
+    /// The spread of the sample values, highest − lowest (≥ 0, in the objective's
+    /// units); `None` when there were no samples.
+    pub fn spread(&self) -> Option<T> {
+        Some(self.highest? - self.lowest?.value)
+    }
+}
+
+/// The lowest-valued sample of an estimate ([`Report::lowest`]).
+#[cfg(feature = "cg")]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lowest<T> {
+    /// Its objective value.
+    pub value: T,
+    /// The noise seed it was evaluated with (shared by its antithetic partner).
+    pub seed: NoiseSeed,
+    /// Its number among the estimate's evaluations, counted from 0 in evaluation order
+    /// with f(θ), when evaluated, as number 0 (the numbering of
+    /// [`Error::NonFiniteObjective`]).
+    pub sample: usize,
+}
+
+/// The values of one antithetic pair θ ∓ σt ([`Report::pair`]).
+#[cfg(feature = "cg")]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PairValues<T> {
+    /// f(θ − σt).
+    pub minus: T,
+    /// f(θ + σt).
+    pub plus: T,
+    /// The noise seed both were evaluated with.
+    pub seed: NoiseSeed,
+}
+
+/// The report of an estimate that used `evaluations` evaluations, read from the batch
+/// it has just filled. `pair_around_theta`: its samples were drawn around θ itself, so
+/// a lone pair is one of θ ∓ σt.
+fn report<T: Real>(
+    batch: &BatchBuffers<'_, T>,
+    evaluations: usize,
+    centre_value: Option<T>,
+    pair_around_theta: bool,
+) -> Report<T> {
+    #[cfg(not(feature = "cg"))]
+    let _ = pair_around_theta;
+    Report {
+        evaluations,
+        centre_value,
+        mean_value: batch.mean_value(),
+        #[cfg(feature = "cg")]
+        lowest: batch.lowest,
+        #[cfg(feature = "cg")]
+        highest: batch.highest,
+        #[cfg(feature = "cg")]
+        pair: {
+            let sampled = evaluations - usize::from(centre_value.is_some());
+            (pair_around_theta && sampled == 2).then(|| PairValues {
+                minus: batch.values[0],
+                plus: batch.values[1],
+                seed: batch.seeds[0],
+            })
+        },
+    }
 }
 
 /// Smoothing width σ, number of antithetic pairs P, and the random stream.
@@ -306,11 +395,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
         let evaluations = self.gradient_sum(method, objective, &[theta], T::ONE, ws, grad, 0)?;
         let scale = T::ONE / (self.sigma * T::from_usize(self.pairs));
         scale_checked(grad, scale)?;
-        Ok(Report {
-            evaluations,
-            centre_value: None,
-            mean_value: ws.batch.mean_value(),
-        })
+        Ok(report(&ws.batch, evaluations, None, true))
     }
 
     /// Smoothed Hessian ∇²f̄(θ) into `hess` (n×n, row-major, exactly symmetric).
@@ -381,11 +466,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
         }
         let scale = T::ONE / (self.sigma.sq() * T::from_usize(self.pairs));
         scale_checked(hess, scale)?;
-        Ok(Report {
-            evaluations,
-            centre_value: Some(centre),
-            mean_value: ws.batch.mean_value(),
-        })
+        Ok(report(&ws.batch, evaluations, Some(centre), true))
     }
 
     /// Smoothed Hessian-vector product ∇²f̄(θ)·v into `hv` (length n).
@@ -516,11 +597,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
         if let Some(g) = grad {
             scale_checked(g, T::ONE / (self.sigma * pairs))?;
         }
-        Ok(Report {
-            evaluations,
-            centre_value: Some(centre),
-            mean_value: ws.batch.mean_value(),
-        })
+        Ok(report(&ws.batch, evaluations, Some(centre), true))
     }
 
     /// Adds `sign` × Σ (gradient weight × odd combination) over `method`'s samples around

@@ -85,15 +85,28 @@ impl<T: Real> Method<T> {
     /// Floats of optimiser memory needed in dimension n (besides θ and the workspace).
     pub fn buffer_len(&self, n: usize) -> usize {
         // One extra vector keeps θ at the start of the iteration, restored on failure.
-        n + match self {
-            Method::GradientDescent(_) => GradientDescent::<T>::buffer_len(n),
-            Method::Adam(_) => Adam::<T>::buffer_len(n),
-            #[cfg(feature = "hessian")]
-            Method::Newton(_) => Newton::<T>::buffer_len(n),
+        n + self.lowest_len(n)
+            + match self {
+                Method::GradientDescent(_) => GradientDescent::<T>::buffer_len(n),
+                Method::Adam(_) => Adam::<T>::buffer_len(n),
+                #[cfg(feature = "hessian")]
+                Method::Newton(_) => Newton::<T>::buffer_len(n),
+                #[cfg(feature = "cg")]
+                Method::Ncg(m) => m.buffer_len(n),
+                #[cfg(feature = "cg")]
+                Method::NewtonCg(m) => m.buffer_len(n),
+            }
+    }
+
+    /// Floats that keep the point of an iteration's lowest sample: n for Newton-CG
+    /// comparing samples ([`NewtonCg::compare_samples`]), the only method that steps to
+    /// it; else none.
+    #[cfg_attr(not(feature = "cg"), allow(unused_variables))]
+    fn lowest_len(&self, n: usize) -> usize {
+        match self {
             #[cfg(feature = "cg")]
-            Method::Ncg(m) => m.buffer_len(n),
-            #[cfg(feature = "cg")]
-            Method::NewtonCg(m) => m.buffer_len(n),
+            Method::NewtonCg(m) if m.compare_samples => n,
+            _ => 0,
         }
     }
 
@@ -488,8 +501,8 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
 
         let (saved, buf) = self.buffer.split_at_mut(n);
         saved.copy_from_slice(self.theta);
-        #[cfg(feature = "cg")]
-        ws.batch.forget_best();
+        #[cfg_attr(not(feature = "cg"), allow(unused_variables))]
+        let (lowest_point, buf) = buf.split_at_mut(self.method.lowest_len(n));
         let snapshot = self
             .method
             .reuses_samples()
@@ -505,6 +518,12 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
             #[cfg(feature = "cg")]
             centre_sample: None,
             settled: false,
+            #[cfg(feature = "cg")]
+            lowest: None,
+            #[cfg(feature = "cg")]
+            lowest_point,
+            #[cfg(feature = "cg")]
+            highest: None,
         };
         let tol = self.budget.gradient_tolerance;
         let theta = &mut *self.theta;

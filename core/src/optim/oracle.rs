@@ -14,6 +14,8 @@ use crate::error::Error;
 use crate::estimate::HessianMethod;
 #[cfg(feature = "cg")]
 use crate::estimate::HvpMethod;
+#[cfg(feature = "cg")]
+use crate::estimate::Lowest;
 use crate::estimate::{Estimator, GradientMethod, Report};
 #[cfg(feature = "cg")]
 use crate::objective::Batch;
@@ -44,6 +46,17 @@ pub(crate) struct Oracle<'a, 'w, T, R, O: ?Sized> {
     pub centre_sample: Option<(T, NoiseSeed)>,
     /// [`Oracle::settle`] moved θ this iteration and set `value_at_theta` for it.
     pub settled: bool,
+    /// The lowest sample of this iteration's estimates (the earliest among equals), from
+    /// their reports.
+    #[cfg(feature = "cg")]
+    pub lowest: Option<Lowest<T>>,
+    /// Its point, kept for [`Oracle::settle`]: n floats of the optimiser's memory, or
+    /// empty when the method never settles (then no point is kept).
+    #[cfg(feature = "cg")]
+    pub lowest_point: &'a mut [T],
+    /// The highest value among this iteration's samples, from the estimates' reports.
+    #[cfg(feature = "cg")]
+    pub highest: Option<T>,
 }
 
 impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> {
@@ -55,10 +68,28 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     }
 
     /// Counts an estimate's evaluations and keeps its loss estimate: f(θ) when the
-    /// estimate evaluated it, else the mean of its samples.
+    /// estimate evaluated it, else the mean of its samples. With `cg`, also keeps the
+    /// iteration's lowest sample (its point copied while the workspace still holds it)
+    /// and highest value.
     fn record(&mut self, r: &Report<T>) {
         self.evaluations += r.evaluations;
         self.loss = r.centre_value.or(r.mean_value).or(self.loss);
+        #[cfg(feature = "cg")]
+        {
+            if let Some(low) = r.lowest {
+                if self.lowest.is_none_or(|kept| low.value < kept.value) {
+                    self.lowest = Some(low);
+                    if !self.lowest_point.is_empty() {
+                        self.lowest_point.copy_from_slice(self.ws.lowest_point());
+                    }
+                }
+            }
+            if let Some(high) = r.highest {
+                if self.highest.is_none_or(|h| high > h) {
+                    self.highest = Some(high);
+                }
+            }
+        }
     }
 
     #[cfg(any(feature = "hessian", feature = "cg"))]
@@ -66,18 +97,19 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         self.estimator.sigma()
     }
 
+    /// ĝ at θ into `out`, and the estimate's report.
     pub fn gradient(
         &mut self,
         method: GradientMethod,
         theta: &[T],
         out: &mut [T],
-    ) -> Result<(), Error> {
+    ) -> Result<Report<T>, Error> {
         self.rewind();
         let r = self
             .estimator
             .gradient(method, self.objective, theta, self.ws, out)?;
         self.record(&r);
-        Ok(())
+        Ok(r)
     }
 
     /// Ĥv at θ. `gradient` is this iteration's gradient estimate at θ and the estimator
@@ -141,9 +173,10 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         Ok(())
     }
 
-    /// The curvature along the offset of the gradient estimate `g` just made, when it
-    /// came from one antithetic pair θ ± σt and lies along t, in two or more dimensions
-    /// ([`super::NewtonCg::pair_curvature`]): the second difference
+    /// The curvature along the offset of the gradient estimate `g` just made by
+    /// `gradient` (its report `estimate`, no estimate since), when it came from one
+    /// antithetic pair θ ± σt ([`Report::pair`]) and lies along t, in two or more
+    /// dimensions ([`super::NewtonCg::pair_curvature`]): the second difference
     /// c = (f(θ + σt) + f(θ − σt) − 2f(θ))/(σ‖t‖)², in the estimator's scale. An
     /// estimator's one-pair estimate is ĝ = m·D·t̂ with D = (f(θ + σt) − f(θ − σt))/(2σ‖t‖)
     /// the pair's directional derivative and m > 0 its weight (1 for none; the aggregate
@@ -161,15 +194,15 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     pub fn pair_curvature(
         &mut self,
         gradient: GradientMethod,
+        estimate: &Report<T>,
         theta: &[T],
         g: &[T],
     ) -> Result<Option<T>, Error> {
         let n = self.ws.dim;
-        let pairs = self.estimator.pairs();
-        if n < 2 || gradient.evaluations(n, pairs) != 2 || !gradient.along_offset() {
+        let Some(pair) = estimate.pair.filter(|_| n >= 2 && gradient.along_offset()) else {
             return Ok(None);
-        }
-        let seed = self.ws.batch.seeds[0];
+        };
+        let seed = pair.seed;
         let known = self.known_value(Some(seed));
         let b = &mut self.ws.batch;
         let centre = match known {
@@ -186,11 +219,10 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
                 v
             }
         };
-        let b = &self.ws.batch;
-        let t = &b.offsets[..n];
+        let t = self.ws.pair_offset();
         let sigma = self.estimator.sigma();
         let tt = t.iter().fold(T::ZERO, |s, &x| s + x.sq());
-        let (minus, plus) = (b.values[0], b.values[1]);
+        let (minus, plus) = (pair.minus, pair.plus);
         let c = (plus + minus - T::TWO * centre) / (sigma.sq() * tt);
         let rise = plus - minus;
         if rise == T::ZERO {
@@ -210,19 +242,19 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     /// values (exact on quadratics). Where the line does not fall along −ĝ (D ≤ 0) the
     /// result is 0: no model minimum, and Newton-CG takes its fallback step.
     ///
-    /// The three points share one noise seed, the iteration's lowest sample's (its
-    /// first's before any), so renderer noise cancels from the differences; f(θ) is the
-    /// remembered value of a deterministic objective, else evaluated (kept for
-    /// [`Oracle::settle`]). Costs 2 or 3 evaluations, counted here.
+    /// The three points share one noise seed, the iteration's lowest sample's (a fresh
+    /// one from the stream before any), so renderer noise cancels from the differences;
+    /// f(θ) is the remembered value of a deterministic objective, else evaluated (kept
+    /// for [`Oracle::settle`]). Costs 2 or 3 evaluations, counted here.
     ///
     /// # Errors
     /// [`Error::NonFiniteObjective`] (the point stays in the workspace).
     #[cfg(feature = "cg")]
     pub fn line_curvature(&mut self, theta: &[T], g: &[T]) -> Result<T, Error> {
         let n = self.ws.dim;
-        let seed = match self.ws.batch.best.value {
-            Some(_) => self.ws.batch.best.seed,
-            None => self.ws.batch.seeds[0],
+        let seed = match self.lowest {
+            Some(low) => low.seed,
+            None => self.estimator.rng_mut().next_u64(),
         };
         let known = self.known_value(Some(seed));
         let count = if known.is_some() { 2 } else { 3 };
@@ -293,10 +325,9 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     /// another — a plateau at this σ.
     #[cfg(feature = "cg")]
     pub fn flat(&self) -> bool {
-        let best = &self.ws.batch.best;
         let centre = self.known_value(None);
-        match (best.value, best.highest) {
-            (Some(low), Some(high)) => {
+        match (self.lowest, self.highest) {
+            (Some(Lowest { value: low, .. }), Some(high)) => {
                 let (low, high) = centre.map_or((low, high), |c| (low.min(c), high.max(c)));
                 !below(low, high, PLATEAU_MARGIN)
             }
@@ -311,7 +342,8 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     /// numbers; a [deterministic](Objective::deterministic) objective's f(θ) is not
     /// evaluated again once known (1 evaluation). Values within [`COMPARISON_MARGIN`]
     /// (relative) of each other tie; ties go to θ + p, then θ. Without a sample (nothing
-    /// evaluated since the iteration began) θ takes the model step unevaluated.
+    /// evaluated since the iteration began, or no memory for its point) θ takes the
+    /// model step unevaluated.
     ///
     /// Returns the [`Verdict`] on the model step and the distance θ moved.
     ///
@@ -321,12 +353,13 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     pub fn settle(&mut self, theta: &mut [T], p: &[T]) -> Result<(Verdict, T), Error> {
         let n = self.ws.dim;
         let deterministic = self.objective.deterministic();
-        let known = self.known_value(Some(self.ws.batch.best.seed));
-        let b = &mut self.ws.batch;
-        let Some(sample_value) = b.best.value else {
+        let Some(low) = self.lowest.filter(|_| self.lowest_point.len() == n) else {
             axpy(T::ONE, p, theta);
             return Ok((Verdict::Uncompared, norm(p)));
         };
+        let sample_value = low.value;
+        let known = self.known_value(Some(low.seed));
+        let b = &mut self.ws.batch;
         let count = if known.is_some() { 1 } else { 2 };
         let (model, current) = b.points[..2 * n].split_at_mut(n);
         for ((m, c), (&x, &pi)) in model
@@ -337,15 +370,15 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
             *m = x + pi;
             *c = x;
         }
-        b.seeds[..2].fill(b.best.seed);
+        b.seeds[..2].fill(low.seed);
         self.evaluate_rows(count)?;
         let b = &self.ws.batch;
         let at_model = b.values[0];
         let at_current = known.unwrap_or(b.values[1]);
         let (verdict, moved, value) =
             if below(sample_value, at_model.min(at_current), COMPARISON_MARGIN) {
-                let moved = distance(theta, b.best.point);
-                theta.copy_from_slice(b.best.point);
+                let moved = distance(theta, self.lowest_point);
+                theta.copy_from_slice(self.lowest_point);
                 (Verdict::Rejected, moved, sample_value)
             } else if below(at_current, at_model, COMPARISON_MARGIN) {
                 (Verdict::Rejected, T::ZERO, at_current)

@@ -101,6 +101,7 @@ pub struct NewtonCg<T> {
     /// rather than averaged into a gradient, and where f̄_σ's minimum is not f's (a
     /// narrow well beside a wide plateau or wall, which the kernel averages away), the
     /// model's step out of the well is refused and σ shrinks until the model agrees.
+    /// Costs n buffer floats, which keep the lowest sample's point.
     pub compare_samples: bool,
     /// Where the iteration's gradient came from one antithetic pair θ ± σt and lies
     /// along t ([`GradientMethod::along_offset`]) in n ≥ 2 dimensions, the first inner
@@ -174,7 +175,7 @@ impl<T: Real> NewtonCg<T> {
         let basis = &mut rest[..n * self.basis_capacity(n)];
         let mut basis_len = 0;
 
-        oracle.gradient(self.gradient, theta, g)?;
+        let estimate = oracle.gradient(self.gradient, theta, g)?;
         let gradient_norm = norm(g);
         if let Some(done) = Outcome::converged(gradient_norm, tolerance) {
             return Ok(done);
@@ -189,7 +190,7 @@ impl<T: Real> NewtonCg<T> {
             return Ok(outcome);
         }
         let pair = if self.pair_curvature {
-            oracle.pair_curvature(self.gradient, theta, g)?
+            oracle.pair_curvature(self.gradient, &estimate, theta, g)?
         } else {
             None
         };
