@@ -15,7 +15,7 @@ use hodr_host::report::{self, Config, Method, Overrides, Settings, task};
 ///
 /// Without a subcommand, runs the quick report on the built-in tasks.
 #[derive(Parser, Debug)]
-#[command(version, about, long_about = None)]
+#[command(name = "hodr", version, about, long_about = None)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
@@ -64,9 +64,11 @@ enum Command {
         /// Parameters, comma-separated (default: the task's θ*).
         #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
         params: Vec<f64>,
-        /// Samples per pixel (path-traced tasks), ≥ 1.
-        #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..))]
-        spp: u32,
+        /// Samples per pixel, ≥ 1 (path-traced tasks only; default 64). The image is the
+        /// task's viewing image (128×128 for the path-traced tasks), not the smaller
+        /// one its objective renders (see `hodr tasks`).
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+        spp: Option<u32>,
         /// Output PNG.
         #[arg(long)]
         out: PathBuf,
@@ -245,7 +247,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
         Command::Render {
             task: name,
             params,
-            spp: _,
+            spp,
             out,
         } => {
             let t = task::select(std::slice::from_ref(&name), false)?.remove(0);
@@ -262,12 +264,27 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
                     theta.len()
                 );
             }
-            let img = t
-                .image(&theta)?
-                .with_context(|| format!("{} has no image", t.name()))?;
+            let spp = match (spp, t.image_spp()) {
+                (Some(_), None) => bail!(
+                    "--spp applies to the path-traced tasks only; {} renders without sampling noise",
+                    t.name()
+                ),
+                (asked, default) => asked.or(default),
+            };
+            let img = match spp {
+                Some(spp) => t.image_with_spp(&theta, spp)?,
+                None => t.image(&theta)?,
+            }
+            .with_context(|| format!("{} has no image", t.name()))?;
             img.save(&out)
                 .with_context(|| format!("writing {}", out.display()))?;
-            println!("wrote {}", out.display());
+            let at = spp.map_or(String::new(), |s| format!(" at {s} spp"));
+            println!(
+                "wrote {} ({}×{}{at})",
+                out.display(),
+                img.width(),
+                img.height()
+            );
         }
         Command::Optimize {
             task: name,
@@ -278,8 +295,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             out,
         } => {
             let t = task::select(std::slice::from_ref(&name), false)?.remove(0);
-            let m =
-                Method::from_name(&method).with_context(|| format!("unknown method `{method}`"))?;
+            let m = Method::parse(&method)?;
             let settings = Settings {
                 quick: false,
                 budget,

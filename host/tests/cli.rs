@@ -123,6 +123,57 @@ fn report_without_the_suite() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("most"));
 }
 
+/// `render --spp` sets the path tracer's samples per pixel (different images at 1 and
+/// 8 spp) and is refused, naming it, where a task has no sampling.
+#[test]
+fn render_honours_spp() {
+    let dir = scratch("spp");
+    let render = |spp: &str| {
+        let file = dir.join(format!("mug{spp}.png"));
+        let out = hodr(&[
+            "render",
+            "--task",
+            "mug",
+            "--spp",
+            spp,
+            "--out",
+            file.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(String::from_utf8_lossy(&out.stdout).contains(&format!("at {spp} spp")));
+        std::fs::read(file).unwrap()
+    };
+    assert_ne!(render("1"), render("8"));
+    let out = hodr(&[
+        "render",
+        "--task",
+        "box2",
+        "--spp",
+        "4",
+        "--out",
+        dir.join("box2.png").to_str().unwrap(),
+    ]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("--spp") && err.contains("BOX2"), "{err}");
+    assert!(!dir.join("box2.png").exists());
+}
+
+/// The program names itself `hodr`, and counts in the singular where there is one.
+#[test]
+fn names_and_counts_read_right() {
+    let out = hodr(&["--version"]);
+    assert!(String::from_utf8_lossy(&out.stdout).starts_with("hodr "));
+    let out = hodr(&["tasks"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(!text.contains("1 parameters"), "{text}");
+    assert!(text.contains("1 parameter,"), "{text}");
+}
+
 #[test]
 fn render_optimize_and_fit2d_write_images() {
     let dir = scratch("images");
@@ -240,6 +291,44 @@ fn bad_input_gives_one_line_and_nonzero_exit() {
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
         assert!(err.starts_with("hodr: "), "{err}");
+    }
+}
+
+/// Selections name what is wrong: an unknown method with the list of methods, a task
+/// or method listed twice as such (not as unknown).
+#[test]
+fn selection_errors_name_the_culprit() {
+    for (args, says) in [
+        (
+            &["optimize", "--task", "QUAD", "--method", "Nelder"][..],
+            &["`Nelder`", "Auto", "FR22", "CMA-ES"][..],
+        ),
+        (
+            &["report", "--methods", "nope", "--out", "/tmp/hodr-never"],
+            &["`nope`", "OurHVPA"],
+        ),
+        (
+            &["report", "--tasks", "QUAD,quad", "--out", "/tmp/hodr-never"],
+            &["`quad` listed twice"],
+        ),
+        (
+            &[
+                "report",
+                "--methods",
+                "FR22,fr22",
+                "--out",
+                "/tmp/hodr-never",
+            ],
+            &["`fr22` listed twice"],
+        ),
+    ] {
+        let out = hodr(args);
+        assert!(!out.status.success(), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+        for s in says {
+            assert!(err.contains(s), "{args:?}: {err} lacks {s}");
+        }
     }
 }
 

@@ -9,7 +9,7 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use hodr_core::optim::preset::Preset;
 use hodr_core::optim::{Auto, AutoOptions, Budget, Optimiser};
 use hodr_core::{Estimator, GradientMethod, Workspace};
@@ -49,6 +49,18 @@ impl Method {
             Method::Preset(p) => p.name(),
             Method::CmaEs => "CMA-ES",
         }
+    }
+
+    /// The method called `name` (case-insensitive), or an error naming it and listing
+    /// every method.
+    ///
+    /// # Errors
+    /// An unknown name.
+    pub fn parse(name: &str) -> Result<Method> {
+        Method::from_name(name).with_context(|| {
+            let all: Vec<&str> = Method::all().iter().map(|m| m.name()).collect();
+            format!("unknown method `{name}` (methods: {})", all.join(", "))
+        })
     }
 
     /// The method called `name` (case-insensitive).

@@ -223,11 +223,15 @@ pub fn report(config: &Config, interrupt: &AtomicBool, progress: bool) -> Result
     let methods: Vec<Method> = if config.methods.is_empty() {
         Method::all()
     } else {
-        config
-            .methods
-            .iter()
-            .map(|m| Method::from_name(m).with_context(|| format!("unknown method `{m}`")))
-            .collect::<Result<_>>()?
+        let mut chosen: Vec<Method> = Vec::new();
+        for name in &config.methods {
+            let m = Method::parse(name)?;
+            if chosen.contains(&m) {
+                bail!("method `{name}` listed twice");
+            }
+            chosen.push(m);
+        }
+        chosen
     };
     if config.seeds == 0 {
         bail!("--seeds must be at least 1");

@@ -69,7 +69,13 @@ pub trait Task: Send + Sync {
     /// # Errors
     /// When rendering fails.
     fn image(&self, theta: &[f64]) -> Result<Option<RgbImage>>;
-    /// [`Task::image`] with `spp` samples per pixel where the task is path-traced.
+    /// Samples per pixel of [`Task::image`] where the task is path-traced; `None` for
+    /// the others, whose images have no sampling noise.
+    fn image_spp(&self) -> Option<u32> {
+        None
+    }
+    /// [`Task::image`] with `spp` samples per pixel (path-traced tasks; the others
+    /// ignore it, see [`Task::image_spp`]).
     ///
     /// # Errors
     /// When rendering fails.
@@ -283,8 +289,9 @@ impl Task for RasterTask {
     fn description(&self) -> String {
         let s = self.task.size();
         format!(
-            "2D raster ({s}×{s}, tiny-skia): {} parameters, image MSE, plateau starts",
-            self.task.dim()
+            "2D raster ({s}×{s}, tiny-skia): {} parameter{}, image MSE, plateau starts",
+            self.task.dim(),
+            if self.task.dim() == 1 { "" } else { "s" }
         )
     }
     fn dim(&self) -> usize {
@@ -434,14 +441,24 @@ impl Task for PathTask {
         Ok(Box::new(objective.with_target(target)?))
     }
     fn image(&self, theta: &[f64]) -> Result<Option<RgbImage>> {
+        self.image_with_spp(theta, PATH_IMAGE_SPP[usize::from(self.quick)])
+    }
+    fn image_spp(&self) -> Option<u32> {
+        Some(PATH_IMAGE_SPP[usize::from(self.quick)])
+    }
+    /// The task's viewing resolution (`TaskSettings::image_resolution`), not the
+    /// objective's.
+    fn image_with_spp(&self, theta: &[f64], spp: u32) -> Result<Option<RgbImage>> {
         let (w, h) = self.task.settings().image_resolution;
-        let spp = if self.quick { 16 } else { 64 };
         let film = self
             .task
             .render(theta, w, h, spp, crate::tasks::TARGET_SEED)?;
         Ok(RgbImage::from_raw(w, h, film.to_srgb8()))
     }
 }
+
+/// Samples per pixel of a path-traced task's viewing image: [full, quick].
+const PATH_IMAGE_SPP: [u32; 2] = [64, 16];
 
 /// The image of θ*, for the strip's target panel.
 pub fn target_image(task: &dyn Task) -> Result<Option<RgbImage>> {
@@ -477,8 +494,11 @@ pub fn select(names: &[String], quick: bool) -> Result<Vec<Box<dyn Task>>> {
     if names.is_empty() {
         return Ok(all);
     }
-    let mut chosen = Vec::new();
+    let mut chosen: Vec<Box<dyn Task>> = Vec::new();
     for name in names {
+        if chosen.iter().any(|t| t.name().eq_ignore_ascii_case(name)) {
+            anyhow::bail!("task `{name}` listed twice");
+        }
         let k = all
             .iter()
             .position(|t| t.name().eq_ignore_ascii_case(name))
