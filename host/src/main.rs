@@ -90,7 +90,8 @@ enum Command {
         /// Hyper-parameter override, key=value (repeatable), as for `report`.
         #[arg(long = "set")]
         set: Vec<String>,
-        /// Where to write the result image (tasks with images).
+        /// Where to write the result image (tasks with images; none is written without
+        /// it).
         #[arg(long)]
         out: Option<PathBuf>,
     },
@@ -102,7 +103,7 @@ enum Command {
         /// Number of shapes.
         #[arg(long, default_value_t = 16)]
         shapes: usize,
-        /// Shape kind: triangle, rect or ellipse.
+        /// Shape kind: triangle, rect, ellipse or circle.
         #[arg(long, default_value = "triangle")]
         kind: String,
         /// Output PNG.
@@ -167,9 +168,7 @@ fn main() -> ExitCode {
             return ExitCode::SUCCESS;
         }
         Err(e) => {
-            let text = e.to_string();
-            let first = text.lines().next().unwrap_or("invalid arguments");
-            eprintln!("hodr: {} (see --help)", first.trim_start_matches("error: "));
+            eprintln!("hodr: {} (see --help)", clap_message(&e.to_string()));
             return ExitCode::from(2);
         }
     };
@@ -184,11 +183,70 @@ fn main() -> ExitCode {
     match run(cli, &interrupt) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("hodr: {e:#}");
+            eprintln!("hodr: {}", causes(&e));
             ExitCode::from(2)
         }
     }
 }
+
+/// Clap's error on one line: its first line, and when that ends in a colon (a list
+/// follows, e.g. the missing required arguments) the listed items.
+fn clap_message(text: &str) -> String {
+    let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
+    let first = lines
+        .next()
+        .unwrap_or("invalid arguments")
+        .trim_start_matches("error: ");
+    match first.strip_suffix(':') {
+        Some(head) => {
+            let items: Vec<&str> = lines
+                .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more"))
+                .collect();
+            format!("{head}: {}", items.join(", "))
+        }
+        None => first.to_string(),
+    }
+}
+
+/// An error and its causes joined by ": ", each said once: a cause whose text its
+/// context already ends with (an I/O error wrapped by the image crate) is left out.
+fn causes(e: &anyhow::Error) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    for cause in e.chain() {
+        let text = cause.to_string();
+        if parts.last().is_none_or(|last| !last.ends_with(&text)) {
+            parts.push(text);
+        }
+    }
+    parts.join(": ")
+}
+
+/// Makes sure `path` can be written before any work is done: creates its parent
+/// folders (as `report` does for its directory) and opens it for writing, leaving an
+/// existing file as it was and removing a file it had to create.
+///
+/// # Errors
+/// A one-line message naming the path and the cause.
+fn check_writable(path: &std::path::Path) -> Result<()> {
+    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(parent)
+            .with_context(|| format!("cannot create the folder {}", parent.display()))?;
+    }
+    let existed = path.exists();
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create(true)
+        .truncate(false)
+        .open(path)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    if !existed {
+        let _ = std::fs::remove_file(path);
+    }
+    Ok(())
+}
+
+/// The shape kinds `fit2d` places (hodr-raster's fit encodes no polygon or cubic path).
+const FIT_KINDS: [&str; 4] = ["triangle", "rect", "ellipse", "circle"];
 
 /// The hyper-parameter overrides of `--set key=value` arguments.
 fn overrides(set: &[String]) -> Result<Overrides> {
@@ -264,6 +322,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
                     theta.len()
                 );
             }
+            check_writable(&out)?;
             let spp = match (spp, t.image_spp()) {
                 (Some(_), None) => bail!(
                     "--spp applies to the path-traced tasks only; {} renders without sampling noise",
@@ -296,6 +355,16 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
         } => {
             let t = task::select(std::slice::from_ref(&name), false)?.remove(0);
             let m = Method::parse(&method)?;
+            if let Some(path) = &out {
+                if t.image(&t.optimum())?.is_none() {
+                    bail!(
+                        "{} has no image to write to {} (--out applies to tasks with images)",
+                        t.name(),
+                        path.display()
+                    );
+                }
+                check_writable(path)?;
+            }
             let settings = Settings {
                 quick: false,
                 budget,
@@ -318,11 +387,10 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             } else {
                 println!("θ = {:?} … ({} parameters)", &r.theta[..8], r.theta.len());
             }
-            let path = out.unwrap_or_else(|| {
-                PathBuf::from(format!("optimize_{}.png", t.name().to_ascii_lowercase()))
-            });
-            if let Some(img) = t.image(&r.theta)? {
-                img.save(&path)
+            if let Some(path) = &out
+                && let Some(img) = t.image(&r.theta)?
+            {
+                img.save(path)
                     .with_context(|| format!("writing {}", path.display()))?;
                 println!("result image written to {}", path.display());
             }
@@ -334,7 +402,14 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             out,
             svg,
         } => {
+            if !FIT_KINDS.contains(&kind.as_str()) {
+                bail!("--kind `{kind}`: fit2d places {}", FIT_KINDS.join(", "));
+            }
             let kind: hodr_raster::ShapeKind = kind.parse().map_err(|e| anyhow::anyhow!("{e}"))?;
+            check_writable(&out)?;
+            if let Some(svg) = &svg {
+                check_writable(svg)?;
+            }
             let target_image = hodr_raster::Target::open(&target)?;
             let options = hodr_raster::fit::FitOptions::new(shapes, kind);
             let fit = hodr_raster::fit::fit_until(&target_image, &options, interrupt)?;

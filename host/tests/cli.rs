@@ -245,6 +245,95 @@ fn render_optimize_and_fit2d_write_images() {
     assert!(fit.exists() && svg.exists());
 }
 
+/// Output files: written only when asked, into folders created as needed, and a path
+/// that cannot be written fails before any work, naming it, its cause said once.
+#[test]
+fn outputs_are_asked_for_and_checked_first() {
+    let dir = scratch("outputs");
+    let run_in = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_hodr"))
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .expect("hodr runs")
+    };
+    // No --out: no image appears in the working folder.
+    let out = run_in(&["optimize", "--task", "BOX2", "--budget", "60"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+    // --out for a task without an image is an error, not a silent no-op.
+    let out = run_in(&[
+        "optimize", "--task", "QUAD", "--budget", "60", "--out", "q.png",
+    ]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("QUAD") && err.contains("q.png"), "{err}");
+    assert!(!dir.join("q.png").exists());
+    // Missing folders are created, for render as for report.
+    let nested = dir.join("a/b/box2.png");
+    let out = hodr(&[
+        "render",
+        "--task",
+        "BOX2",
+        "--out",
+        nested.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(nested.exists());
+    // A path under a file cannot be written: one line naming it, before the fit runs.
+    let blocked = dir.join("a/b/box2.png/fit.png");
+    let out = hodr(&[
+        "fit2d",
+        "--target",
+        nested.to_str().unwrap(),
+        "--shapes",
+        "500",
+        "--out",
+        blocked.to_str().unwrap(),
+    ]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(err.contains("box2.png"), "{err}");
+    // A missing input: its cause once.
+    let out = hodr(&[
+        "fit2d",
+        "--target",
+        dir.join("none.png").to_str().unwrap(),
+        "--out",
+        dir.join("x.png").to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(err.contains("none.png"), "{err}");
+    assert_eq!(err.matches("os error").count(), 1, "{err}");
+}
+
+/// Clap's errors name what is missing, and fit2d lists only the kinds it places.
+#[test]
+fn argument_errors_name_what_is_wrong() {
+    let out = hodr(&["render", "--task", "BOX2"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(err.contains("--out"), "{err}");
+    let out = hodr(&[
+        "fit2d", "--target", "x.png", "--kind", "hexagon", "--out", "y.png",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(err.contains("hexagon") && err.contains("circle"), "{err}");
+    assert!(!err.contains("polygon") && !err.contains("cubic"), "{err}");
+}
+
 #[test]
 fn bad_input_gives_one_line_and_nonzero_exit() {
     for args in [
@@ -335,16 +424,7 @@ fn selection_errors_name_the_culprit() {
 /// `optimize` without `--method` runs Auto, which solves QUAD to machine precision.
 #[test]
 fn optimize_defaults_to_auto() {
-    let dir = scratch("auto");
-    let out = hodr(&[
-        "optimize",
-        "--task",
-        "QUAD",
-        "--budget",
-        "200",
-        "--out",
-        dir.join("q.png").to_str().unwrap(),
-    ]);
+    let out = hodr(&["optimize", "--task", "QUAD", "--budget", "200"]);
     assert!(
         out.status.success(),
         "{}",
