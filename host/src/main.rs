@@ -94,6 +94,12 @@ enum Command {
         /// it).
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Print every N-th iteration's line (and the last), ≥ 1.
+        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
+        every: u64,
+        /// No per-iteration lines: the header and the result only.
+        #[arg(long)]
+        quiet: bool,
     },
     /// Approximate an image with N shapes; writes PNG (and SVG).
     Fit2d {
@@ -245,6 +251,15 @@ fn check_writable(path: &std::path::Path) -> Result<()> {
     Ok(())
 }
 
+/// θ for one line: every value up to 16, else the first 8 and the count.
+fn brief(theta: &[f64]) -> String {
+    if theta.len() <= 16 {
+        format!("{theta:?}")
+    } else {
+        format!("{:?} … ({} parameters)", &theta[..8], theta.len())
+    }
+}
+
 /// The shape kinds `fit2d` places (hodr-raster's fit encodes no polygon or cubic path).
 const FIT_KINDS: [&str; 4] = ["triangle", "rect", "ellipse", "circle"];
 
@@ -352,6 +367,8 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             budget,
             set,
             out,
+            every,
+            quiet,
         } => {
             let t = task::select(std::slice::from_ref(&name), false)?.remove(0);
             let m = Method::parse(&method)?;
@@ -370,25 +387,46 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
                 budget,
                 overrides: overrides(&set)?,
             };
-            let mut k = 0usize;
-            let r = report::run_observed(t.as_ref(), m, seed, &settings, interrupt, &mut |p| {
+            println!(
+                "optimize {} (n = {}) with {}, seed {seed}, budget {} evaluations",
+                t.name(),
+                t.dim(),
+                m.name(),
+                settings.budget.unwrap_or_else(|| t.budget(false))
+            );
+            println!("start θ₀ = {}", brief(&t.start(seed)));
+            println!("truth θ* = {}", brief(&t.optimum()));
+            let line = |k: usize, p: &report::Point| {
                 let sigma = p.sigma.map_or(String::new(), |s| format!("  σ = {s:.3e}"));
-                println!(
+                format!(
                     "iter {k:>4}  t = {:>9.4} s  evals = {:>7}  param error = {:.4e}  image error = {:.4e}{sigma}",
                     p.time, p.evaluations, p.param_error, p.image_error
-                );
+                )
+            };
+            let mut k = 0usize;
+            let mut shown = None;
+            let r = report::run_observed(t.as_ref(), m, seed, &settings, interrupt, &mut |p| {
+                if !quiet && (k as u64).is_multiple_of(every) {
+                    println!("{}", line(k, p));
+                    shown = Some(k);
+                }
                 k += 1;
             })?;
+            let last = r.points.len() - 1;
+            if !quiet && shown != Some(last) {
+                println!("{}", line(last, &r.points[last]));
+            }
             if let Some(why) = &r.stopped {
                 eprintln!("stopped early: {why}");
             }
-            if r.theta.len() <= 16 {
-                println!("θ = {:?}", r.theta);
-            } else {
-                println!("θ = {:?} … ({} parameters)", &r.theta[..8], r.theta.len());
-            }
+            let b = &r.points[r.best];
+            println!(
+                "best: iteration {} of {last}, {} evaluations, param error {:.4e}, image error {:.4e}",
+                r.best, b.evaluations, b.param_error, b.image_error
+            );
+            println!("θ = {}", brief(&r.best_theta));
             if let Some(path) = &out
-                && let Some(img) = t.image(&r.theta)?
+                && let Some(img) = t.image(&r.best_theta)?
             {
                 img.save(path)
                     .with_context(|| format!("writing {}", path.display()))?;

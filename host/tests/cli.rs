@@ -421,6 +421,64 @@ fn selection_errors_name_the_culprit() {
     }
 }
 
+/// optimize says what it runs, prints every N-th iteration (and the last) or none, and
+/// ends with the best point seen, not merely the last.
+#[test]
+fn optimize_reports_header_progress_and_best() {
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "optimize", "--task", "BOX2", "--method", "FR22", "--budget", "300",
+        ];
+        args.extend_from_slice(extra);
+        let out = hodr(&args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    let quiet = run(&["--quiet"]);
+    assert!(!quiet.contains("iter "), "{quiet}");
+    for s in [
+        "optimize BOX2 (n = 2) with FR22",
+        "budget 300",
+        "start θ₀",
+        "truth θ*",
+        "best: iteration",
+    ] {
+        assert!(quiet.contains(s), "{s} missing: {quiet}");
+    }
+    let every = run(&["--every", "5"]);
+    let iterations: Vec<usize> = every
+        .lines()
+        .filter_map(|l| l.strip_prefix("iter "))
+        .map(|l| l.split_whitespace().next().unwrap().parse().unwrap())
+        .collect();
+    let (last, shown) = iterations.split_last().unwrap();
+    assert!(shown.iter().all(|k| k % 5 == 0), "{iterations:?}");
+    let all = run(&[]);
+    let errors: Vec<f64> = all
+        .lines()
+        .filter_map(|l| l.split("image error = ").nth(1))
+        .map(|v| v.split_whitespace().next().unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(errors.len(), last + 1);
+    let best: f64 = all
+        .lines()
+        .find_map(|l| l.strip_prefix("best: "))
+        .and_then(|l| l.split("image error ").nth(1))
+        .unwrap()
+        .trim()
+        .parse()
+        .unwrap();
+    let lowest = errors.iter().fold(f64::INFINITY, |m, &e| m.min(e));
+    assert!(
+        (best - lowest).abs() <= 1e-4 * lowest.abs().max(1e-12),
+        "{best} vs {lowest}"
+    );
+}
+
 /// `optimize` without `--method` runs Auto, which solves QUAD to machine precision.
 #[test]
 fn optimize_defaults_to_auto() {

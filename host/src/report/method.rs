@@ -123,6 +123,13 @@ pub struct Run {
     pub theta: Vec<f64>,
     /// Why the run stopped early, if it did (a failed iteration or an interrupt).
     pub stopped: Option<String>,
+    /// Index into `points` of the lowest image error (the earliest among equals): the
+    /// point a user would keep, which need not be the last.
+    #[serde(skip)]
+    pub best: usize,
+    /// θ at `points[best]`.
+    #[serde(skip)]
+    pub best_theta: Vec<f64>,
 }
 
 /// Runs `method` on `task` from `task.start(seed)` until the evaluation budget
@@ -175,6 +182,7 @@ pub fn run_observed(
         sigma: None,
     }];
     observe(&points[0]);
+    let mut best = (0, start.clone());
     let mut record = |elapsed: Duration,
                       evaluations: usize,
                       sigma: f64,
@@ -188,6 +196,9 @@ pub fn run_observed(
             sigma: Some(sigma),
         };
         observe(&p);
+        if p.image_error < points[best.0].image_error {
+            best = (points.len(), theta.to_vec());
+        }
         points.push(p);
     };
     let mut stopped = None;
@@ -331,6 +342,7 @@ pub fn run_observed(
             cma.mean().as_slice().to_vec()
         }
     };
+    let (best, best_theta) = best;
     Ok(Run {
         task: task.name().to_string(),
         method: method.name().to_string(),
@@ -338,5 +350,7 @@ pub fn run_observed(
         points,
         theta,
         stopped,
+        best,
+        best_theta,
     })
 }
