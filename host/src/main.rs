@@ -10,6 +10,7 @@ use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand};
 use hodr_core::optim::preset::Preset;
 use hodr_host::report::{self, Config, Method, Overrides, Settings, task};
+use signal_hook::consts::{SIGINT, SIGTERM};
 
 /// hodr: second-order optimisation of discontinuous, black-box renderers.
 ///
@@ -178,22 +179,41 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    // SIGINT (Ctrl-C) and SIGTERM alike: the work stops at its next iteration or run,
+    // what is finished is written, and the exit code says which signal came.
     let interrupt = Arc::new(AtomicBool::new(false));
-    let flag = Arc::clone(&interrupt);
-    // A second Ctrl-C while finishing up exits at once.
-    let _ = ctrlc::set_handler(move || {
-        if flag.swap(true, Ordering::SeqCst) {
-            std::process::exit(130);
-        }
-    });
-    match run(cli, &interrupt) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("hodr: {}", causes(&e));
-            ExitCode::from(2)
+    let terminated = Arc::new(AtomicBool::new(false));
+    for (signal, flag) in [
+        (SIGINT, &interrupt),
+        (SIGTERM, &interrupt),
+        (SIGTERM, &terminated),
+    ] {
+        if let Err(e) = signal_hook::flag::register(signal, Arc::clone(flag)) {
+            eprintln!("hodr: cannot watch for signal {signal}: {e}");
+            return ExitCode::from(2);
         }
     }
+    let result = run(cli, &interrupt);
+    if let Err(e) = &result {
+        eprintln!("hodr: {}", causes(e));
+    }
+    if interrupt.load(Ordering::SeqCst) {
+        ExitCode::from(if terminated.load(Ordering::SeqCst) {
+            EXIT_SIGTERM
+        } else {
+            EXIT_SIGINT
+        })
+    } else if result.is_ok() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(2)
+    }
 }
+
+/// Exit code after SIGINT: 128 + 2, as shells report a process the signal ended.
+const EXIT_SIGINT: u8 = 130;
+/// Exit code after SIGTERM: 128 + 15.
+const EXIT_SIGTERM: u8 = 143;
 
 /// Clap's error on one line: its first line, and when that ends in a colon (a list
 /// follows, e.g. the missing required arguments) the listed items.

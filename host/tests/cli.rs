@@ -479,6 +479,56 @@ fn optimize_reports_header_progress_and_best() {
     );
 }
 
+/// SIGTERM and SIGINT stop the work alike: what finished is written, marked as
+/// interrupted, and the exit code names the signal (143, 130).
+#[test]
+fn signals_write_what_finished_and_exit_non_zero() {
+    use std::time::{Duration, Instant};
+    for (signal, code) in [("-TERM", 143), ("-INT", 130)] {
+        let dir = scratch(&format!("signal{code}"));
+        let mut child = Command::new(env!("CARGO_BIN_EXE_hodr"))
+            .args([
+                "report",
+                "--tasks",
+                "box2,box10",
+                "--methods",
+                "FR22,Auto",
+                "--seeds",
+                "1000",
+                "--suite",
+                "off",
+                "--out",
+                dir.to_str().unwrap(),
+            ])
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(1500));
+        let kill = Command::new("kill")
+            .args([signal, &child.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(kill.success());
+        let clock = Instant::now();
+        let status = child.wait().unwrap();
+        assert!(clock.elapsed() < Duration::from_secs(60));
+        assert_eq!(status.code(), Some(code), "{signal}");
+        let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
+        assert!(
+            md.contains("**Interrupted**") && md.contains("up to 1000"),
+            "{md}"
+        );
+        assert!(md.contains("seeds finished by every method"), "{md}");
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("results.json")).unwrap())
+                .unwrap();
+        assert_eq!(json["interrupted"], serde_json::Value::Bool(true));
+        assert!(!json["runs"].as_array().unwrap().is_empty());
+        assert!(dir.join("results.csv").exists());
+    }
+}
+
 /// `optimize` without `--method` runs Auto, which solves QUAD to machine precision.
 #[test]
 fn optimize_defaults_to_auto() {

@@ -18,7 +18,7 @@
 //! task the methods take turns seed by seed (seed 0 of every method, then seed 1, …),
 //! so that a slow drift of the machine's speed (other tenants, clock boosts) falls on
 //! every method alike rather than on whichever ran during it. An
-//! interrupt (Ctrl-C) stops the current run at its next iteration, and the report is
+//! interrupt (Ctrl-C or SIGTERM) stops the current run at its next iteration, and the report is
 //! written from the runs finished so far.
 
 mod method;
@@ -317,13 +317,25 @@ fn write_outputs(
     let names: Vec<&str> = methods.iter().map(|m| m.name()).collect();
     let mut all_rows = Vec::new();
     let mut md = String::from("# hodr report: error against run time\n\n");
+    // The seeds of `task` every method finished (an interrupt cuts a task short).
+    let seeds_run = |task: &str| {
+        (0..config.seeds)
+            .take_while(|&s| {
+                methods.iter().all(|m| {
+                    runs.iter()
+                        .any(|r| r.task == task && r.method == m.name() && r.seed == s)
+                })
+            })
+            .count() as u64
+    };
     let _ = writeln!(
         md,
-        "Seeds: {} per task × method{}. Cells: median wall time / objective evaluations to 90, 99 and 99.9 % \
+        "Seeds: {}{} per task × method{}. Cells: median wall time / objective evaluations to 90, 99 and 99.9 % \
          reduction of the image error (the loss at a fixed noise seed) and of the parameter error ‖θ − θ*‖; \
          \"—\" where half or more of the seeds never got there. ×best: median time to 99 % parameter-error \
          reduction over the best method's. Runs execute one at a time, the methods taking turns seed by seed; \
          the clock excludes the error probes.\n",
+        if interrupted { "up to " } else { "" },
         config.seeds,
         if config.settings.quick {
             " (quick budgets)"
@@ -334,7 +346,7 @@ fn write_outputs(
     if interrupted {
         let _ = writeln!(
             md,
-            "**Interrupted**: only the runs finished before Ctrl-C are included.\n"
+            "**Interrupted**: only the runs finished before the signal (Ctrl-C or SIGTERM) are included.\n"
         );
     }
     for t in tasks {
@@ -348,12 +360,21 @@ fn write_outputs(
         }
         let rows = summary::rows(t.name(), &names, &mine);
         let slug = output::slug(t.name());
+        let ran = seeds_run(t.name());
         let _ = writeln!(
             md,
-            "## {}\n\n{} (n = {}).\n",
+            "## {}\n\n{} (n = {}){}.\n",
             t.name(),
             t.description(),
-            t.dim()
+            t.dim(),
+            if ran < config.seeds {
+                format!(
+                    "; interrupted: {ran} of {} seeds finished by every method",
+                    config.seeds
+                )
+            } else {
+                String::new()
+            }
         );
         md.push_str(&output::table(&rows));
         md.push('\n');
@@ -433,7 +454,13 @@ fn write_outputs(
         );
     }
     output::write_csv(&out.join("results.csv"), runs)?;
-    output::write_json(&out.join("results.json"), config, runs, &all_rows)?;
+    output::write_json(
+        &out.join("results.json"),
+        config,
+        runs,
+        &all_rows,
+        interrupted,
+    )?;
     let path = out.join("report.md");
     std::fs::write(&path, md).with_context(|| format!("writing {}", path.display()))?;
     Ok(path)

@@ -66,15 +66,24 @@ pub fn write_csv(path: &Path, runs: &[Run]) -> Result<()> {
 ///
 /// # Errors
 /// When the file cannot be written.
-pub fn write_json<C: Serialize>(path: &Path, config: &C, runs: &[Run], rows: &[Row]) -> Result<()> {
+pub fn write_json<C: Serialize>(
+    path: &Path,
+    config: &C,
+    runs: &[Run],
+    rows: &[Row],
+    interrupted: bool,
+) -> Result<()> {
     #[derive(Serialize)]
     struct Doc<'a, C> {
         config: &'a C,
+        /// True when a signal stopped the report: `runs` holds the finished ones.
+        interrupted: bool,
         summary: &'a [Row],
         runs: &'a [Run],
     }
     let text = serde_json::to_string_pretty(&Doc {
         config,
+        interrupted,
         summary: rows,
         runs,
     })?;
