@@ -13,10 +13,15 @@ use hodr_host::report::{self, Config, Method, Overrides, Settings, task};
 use signal_hook::consts::{SIGINT, SIGTERM};
 
 /// hodr: second-order optimisation of discontinuous, black-box renderers.
-///
-/// Without a subcommand, runs the quick report on the built-in tasks.
 #[derive(Parser, Debug)]
-#[command(name = "hodr", version, about, long_about = None)]
+#[command(
+    name = "hodr",
+    version,
+    about = "hodr: second-order optimisation of discontinuous, black-box renderers",
+    after_help = "Without a command, hodr runs the quick report (every method on every built-in \
+                  task, then the quick generalisation suite; about a minute on 2 cores) and \
+                  writes it to ./report/ (report.md, plots, CSV, JSON; about 15 MB)."
+)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
@@ -293,6 +298,13 @@ fn overrides(set: &[String]) -> Result<Overrides> {
 }
 
 fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
+    if cli.command.is_none() {
+        eprintln!(
+            "hodr: no command given, so running the quick report into {}/ (about a minute; \
+             `hodr --help` lists the commands)",
+            report::default_out().display()
+        );
+    }
     let command = cli.command.unwrap_or(Command::Report {
         tasks: Vec::new(),
         methods: Vec::new(),

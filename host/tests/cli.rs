@@ -79,6 +79,25 @@ fn report_writes_parseable_files() {
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("results.json")).unwrap()).unwrap();
     assert_eq!(json["runs"].as_array().unwrap().len(), 12);
+    assert_eq!(json["interrupted"], serde_json::Value::Bool(false));
+    // Per-iteration points live in traces.csv, one row each, not in the JSON.
+    assert!(json["runs"][0].get("points").is_none());
+    let traces = std::fs::read_to_string(dir.join("traces.csv")).unwrap();
+    let mut rows = traces.lines();
+    let header = rows.next().unwrap();
+    assert_eq!(
+        header,
+        "task,method,seed,iteration,time_s,evaluations,param_error,image_error,sigma"
+    );
+    let rows: Vec<&str> = rows.collect();
+    assert!(rows.len() > 12);
+    assert!(rows.iter().all(|r| r.split(',').count() == 9));
+    assert_eq!(
+        rows.iter()
+            .filter(|r| r.split(',').nth(3) == Some("0"))
+            .count(),
+        12
+    );
     let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
     assert!(md.contains("## QUAD") && md.contains("## BOX2") && md.contains("OurHVPA"));
     assert!(dir.join("plot_quad_param.png").exists());

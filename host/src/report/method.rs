@@ -117,7 +117,9 @@ pub struct Run {
     pub method: String,
     /// Seed.
     pub seed: u64,
-    /// Points after every iteration (the first is the start).
+    /// Points after every iteration (the first is the start). Written to
+    /// `traces.csv`, not to `results.json`.
+    #[serde(skip)]
     pub points: Vec<Point>,
     /// The final θ.
     pub theta: Vec<f64>,

@@ -9,7 +9,8 @@
 //!   of image and parameter error, each method's ratio to the best, the plots and strip;
 //! * `plot_<task>_{image,param}.png`: median error against time, log–log;
 //! * `strip_<task>.png`: init / result / target (tasks with images);
-//! * `results.csv` (one row per run) and `results.json` (settings, summary, every point);
+//! * `results.csv` (one row per run), `traces.csv` (one row per recorded point) and
+//!   `results.json` (settings, summary, each run's outcome);
 //! * unless [`Config::suite`] is [`SuiteScope::Off`], the generalisation suite
 //!   ([`crate::suite`]) in `suite/`, its per-family table and ECDF plot in `report.md`.
 //!
@@ -454,6 +455,7 @@ fn write_outputs(
         );
     }
     output::write_csv(&out.join("results.csv"), runs)?;
+    output::write_traces(&out.join("traces.csv"), runs)?;
     output::write_json(
         &out.join("results.json"),
         config,

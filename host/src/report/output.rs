@@ -1,4 +1,5 @@
-//! The report's files: `results.csv`, `results.json`, `report.md`, plots and strips.
+//! The report's files: `results.csv`, `traces.csv`, `results.json`, `report.md`, plots
+//! and strips.
 
 use std::fmt::Write as _;
 use std::fs;
@@ -62,7 +63,35 @@ pub fn write_csv(path: &Path, runs: &[Run]) -> Result<()> {
     fs::write(path, csv).with_context(|| format!("writing {}", path.display()))
 }
 
-/// `results.json`: the settings, every run with its points, and the summary rows.
+/// `traces.csv`: every recorded point of every run, one row each (the start is
+/// iteration 0; `sigma` is empty there): time in seconds to the microsecond, errors and
+/// σ to 7 significant digits.
+///
+/// # Errors
+/// When the file cannot be written.
+pub fn write_traces(path: &Path, runs: &[Run]) -> Result<()> {
+    let mut csv = String::from(
+        "task,method,seed,iteration,time_s,evaluations,param_error,image_error,sigma\n",
+    );
+    for run in runs {
+        for (k, p) in run.points.iter().enumerate() {
+            let _ = write!(
+                csv,
+                "{},{},{},{k},{:.6},{},{:.6e},{:.6e},",
+                run.task, run.method, run.seed, p.time, p.evaluations, p.param_error, p.image_error
+            );
+            if let Some(sigma) = p.sigma {
+                let _ = write!(csv, "{sigma:.6e}");
+            }
+            csv.push('\n');
+        }
+    }
+    fs::write(path, csv).with_context(|| format!("writing {}", path.display()))
+}
+
+/// `results.json`: the settings, whether a signal interrupted the report, the summary
+/// rows and every run's outcome (final θ, why it stopped); the per-iteration points are
+/// in `traces.csv`.
 ///
 /// # Errors
 /// When the file cannot be written.
