@@ -111,6 +111,40 @@ fn report_writes_parseable_files() {
     }
 }
 
+/// A method whose first estimate alone exceeds the budget is shown as skipped, with no
+/// figures, not as a run that ended where it started.
+#[test]
+fn skipped_methods_read_as_skipped() {
+    let dir = scratch("skipped");
+    let out = hodr(&[
+        "report",
+        "--tasks",
+        "box2",
+        "--methods",
+        "OurH,Auto",
+        "--seeds",
+        "1",
+        "--budget",
+        "20",
+        "--suite",
+        "off",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    let row = md.lines().find(|l| l.starts_with("| OurH |")).unwrap();
+    assert!(
+        row.matches("skipped").count() == 8 && !row.contains("e0"),
+        "{row}"
+    );
+    assert!(md.contains("Skipped (one estimate exceeds the run's budget): OurH"));
+}
+
 #[test]
 fn report_without_the_suite() {
     let dir = scratch("report-no-suite");

@@ -134,6 +134,18 @@ pub struct Run {
     pub best_theta: Vec<f64>,
 }
 
+impl Run {
+    /// True when the method never ran: its first estimate alone exceeds the budget.
+    pub fn skipped(&self) -> bool {
+        self.stopped
+            .as_deref()
+            .is_some_and(|s| s.starts_with(SKIPPED))
+    }
+}
+
+/// How [`Run::stopped`] begins for a run that was skipped.
+const SKIPPED: &str = "skipped";
+
 /// Runs `method` on `task` from `task.start(seed)` until the evaluation budget
 /// (`settings.budget`, else the task's) is used or `interrupt` is set. Hyper-parameters
 /// are the task's with `settings.overrides` applied.
@@ -215,7 +227,7 @@ pub fn run_observed(
             let h = settings.overrides.apply(task.run_hyper(preset));
             let cost = first_estimate_cost(preset, task.dim(), &h);
             stopped = Some(format!(
-                "skipped: one estimate needs {cost} evaluations, the budget is {budget}"
+                "{SKIPPED}: one estimate needs {cost} evaluations, the budget is {budget}"
             ));
             start.clone()
         }

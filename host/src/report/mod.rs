@@ -381,11 +381,7 @@ fn write_outputs(
         md.push('\n');
         let mut skipped: Vec<&str> = mine
             .iter()
-            .filter(|r| {
-                r.stopped
-                    .as_deref()
-                    .is_some_and(|s| s.starts_with("skipped"))
-            })
+            .filter(|r| r.skipped())
             .map(|r| r.method.as_str())
             .collect();
         skipped.dedup();

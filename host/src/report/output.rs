@@ -181,6 +181,10 @@ pub fn table(rows: &[Row]) -> String {
     let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|");
     for row in rows {
         let _ = write!(md, "| {} |", row.method);
+        if row.skipped {
+            let _ = writeln!(md, "{}", " skipped |".repeat(8));
+            continue;
+        }
         for kind in ErrorKind::BOTH {
             for r in REDUCTIONS {
                 let cell = row.cell(kind, r);

@@ -37,6 +37,71 @@ fn font_available() -> bool {
     })
 }
 
+/// Ten colours told apart by most readers, colour-blind ones included (Okabe–Ito's
+/// eight and two darker tones); methods beyond them repeat the colours dashed.
+const COLOURS: [RGBColor; 10] = [
+    RGBColor(0, 0, 0),
+    RGBColor(230, 159, 0),
+    RGBColor(86, 180, 233),
+    RGBColor(0, 158, 115),
+    RGBColor(213, 94, 0),
+    RGBColor(0, 114, 178),
+    RGBColor(204, 121, 167),
+    RGBColor(140, 110, 20),
+    RGBColor(110, 110, 110),
+    RGBColor(120, 40, 140),
+];
+
+/// Colour and dashing of the k-th method's curve.
+fn line_style(k: usize) -> (RGBColor, bool) {
+    (COLOURS[k % COLOURS.len()], (k / COLOURS.len()) % 2 == 1)
+}
+
+/// [lo, hi] widened to whole decades.
+fn decades(lo: f64, hi: f64) -> (f64, f64) {
+    (
+        10f64.powf(lo.log10().floor()),
+        10f64.powf(hi.log10().ceil().max(lo.log10().floor() + 1.0)),
+    )
+}
+
+/// A log axis' tick label: "10⁻⁴" at a power of ten, "3·10⁻⁴" elsewhere.
+fn power_of_ten(v: f64) -> String {
+    if !(v > 0.0 && v.is_finite()) {
+        return String::new();
+    }
+    let exponent = v.log10().floor();
+    let mantissa = v / 10f64.powf(exponent);
+    let (mantissa, exponent) = if mantissa >= 9.995 {
+        (1.0, exponent + 1.0)
+    } else {
+        (mantissa, exponent)
+    };
+    const DIGITS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    let mut power = String::from("10");
+    if exponent < 0.0 {
+        power.push('⁻');
+    }
+    for d in format!("{}", exponent.abs() as u64).bytes() {
+        power.push(DIGITS[usize::from(d - b'0')]);
+    }
+    if exponent == 0.0 {
+        power = "1".into();
+    }
+    if (mantissa - 1.0).abs() < 5e-3 {
+        power
+    } else if exponent == 0.0 {
+        format!("{mantissa:.2}")
+            .trim_end_matches('0')
+            .trim_end_matches('.')
+            .to_string()
+    } else {
+        let m = format!("{mantissa:.1}");
+        let m = m.trim_end_matches('0').trim_end_matches('.');
+        format!("{m}·{power}")
+    }
+}
+
 /// Draws the median `kind` error of each method's runs against time to `path` (PNG).
 ///
 /// # Errors
@@ -61,11 +126,17 @@ pub fn error_against_time(
     let grid: Vec<f64> = (0..=60)
         .map(|k| t_lo * (t_hi / t_lo).powf(k as f64 / 60.0))
         .collect();
+    // A method whose runs were all skipped has no curve (an empty one) and says so in
+    // the legend.
     let curves: Vec<(&str, Vec<f64>)> = methods
         .iter()
         .map(|&m| {
             let mine: Vec<&Run> = runs.iter().filter(|r| r.method == m).collect();
-            (m, median_curve(&mine, kind, &grid))
+            if !mine.is_empty() && mine.iter().all(|r| r.skipped()) {
+                (m, Vec::new())
+            } else {
+                (m, median_curve(&mine, kind, &grid))
+            }
         })
         .collect();
     let positive = curves
@@ -78,11 +149,15 @@ pub fn error_against_time(
     if !(e_lo.is_finite() && e_hi > 0.0) {
         return Ok(());
     }
-    let e_lo = e_lo.max(e_hi * 1e-12);
+    // Whole decades on both axes, so that every axis has labelled ticks.
+    let (t_lo, t_hi) = decades(t_lo, t_hi);
+    let (e_lo, e_hi) = decades(e_lo.max(e_hi * 1e-12), e_hi);
     let text = font_available();
-    let root = BitMapBackend::new(path, (900, 600)).into_drawing_area();
+    let root = BitMapBackend::new(path, (1060, 600)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
-    let mut builder = ChartBuilder::on(&root);
+    // The legend gets its own column right of the axes, so it hides no curve.
+    let (plot_area, legend_area) = root.split_horizontally(if text { 790 } else { 1060 });
+    let mut builder = ChartBuilder::on(&plot_area);
     builder.margin(20);
     if text {
         builder
@@ -94,44 +169,113 @@ pub fn error_against_time(
             .y_label_area_size(70);
     }
     let mut chart = builder
-        .build_cartesian_2d(
-            (t_lo..t_hi).log_scale(),
-            (e_lo * 0.8..e_hi * 1.25).log_scale(),
-        )
+        .build_cartesian_2d((t_lo..t_hi).log_scale(), (e_lo..e_hi).log_scale())
         .map_err(|e| anyhow!("{e}"))?;
     let mut mesh = chart.configure_mesh();
     if text {
         mesh.x_desc("wall time [s]")
-            .y_desc(format!("{} error", kind.label()));
+            .y_desc(format!("{} error", kind.label()))
+            .x_label_formatter(&|v| power_of_ten(*v))
+            .y_label_formatter(&|v| power_of_ten(*v));
     } else {
         mesh.disable_x_axis().disable_y_axis();
     }
     mesh.draw().map_err(|e| anyhow!("{e}"))?;
-    for (k, (name, curve)) in curves.iter().enumerate() {
-        let colour = Palette99::pick(k).to_rgba();
-        let points = grid
+    for (k, (_, curve)) in curves.iter().enumerate() {
+        let (colour, dashed) = line_style(k);
+        let points: Vec<(f64, f64)> = grid
             .iter()
             .zip(curve)
             .filter(|(_, e)| e.is_finite() && **e > 0.0)
-            .map(|(&t, &e)| (t, e.max(e_lo)));
-        let series = chart
-            .draw_series(LineSeries::new(points, colour.stroke_width(2)))
-            .map_err(|e| anyhow!("{e}"))?;
-        if text {
-            let name = name.to_string();
-            series.label(name).legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-            });
+            .map(|(&t, &e)| (t, e.max(e_lo)))
+            .collect();
+        let style = colour.stroke_width(2);
+        if dashed {
+            chart
+                .draw_series(DashedLineSeries::new(points, 9, 5, style))
+                .map_err(|e| anyhow!("{e}"))?;
+        } else {
+            chart
+                .draw_series(LineSeries::new(points, style))
+                .map_err(|e| anyhow!("{e}"))?;
         }
     }
     if text {
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| anyhow!("{e}"))?;
+        for (k, (name, curve)) in curves.iter().enumerate() {
+            let (colour, dashed) = line_style(k);
+            let y = 70 + 24 * k as i32;
+            if curve.is_empty() {
+                legend_area
+                    .draw(&Text::new(
+                        format!("{name} (skipped)"),
+                        (42, y - 8),
+                        ("sans-serif", 16)
+                            .into_font()
+                            .color(&RGBColor(140, 140, 140)),
+                    ))
+                    .map_err(|e| anyhow!("{e}"))?;
+                continue;
+            }
+            let style = colour.stroke_width(2);
+            if dashed {
+                legend_area
+                    .draw(&plotters::element::DashedPathElement::new(
+                        vec![(0, y), (34, y)],
+                        9,
+                        5,
+                        style,
+                    ))
+                    .map_err(|e| anyhow!("{e}"))?;
+            } else {
+                legend_area
+                    .draw(&PathElement::new(vec![(0, y), (34, y)], style))
+                    .map_err(|e| anyhow!("{e}"))?;
+            }
+            legend_area
+                .draw(&Text::new(
+                    name.to_string(),
+                    (42, y - 8),
+                    ("sans-serif", 16).into_font(),
+                ))
+                .map_err(|e| anyhow!("{e}"))?;
+        }
     }
     root.present().map_err(|e| anyhow!("{e}"))?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tick_labels_read_as_powers_of_ten() {
+        for (v, label) in [
+            (1e-7, "10⁻⁷"),
+            (1e-5, "10⁻⁵"),
+            (0.1, "10⁻¹"),
+            (1.0, "1"),
+            (10.0, "10¹"),
+            (1e3, "10³"),
+            (3e-4, "3·10⁻⁴"),
+            (2.5, "2.5"),
+            (20.0, "2·10¹"),
+            (0.30000000000000004, "3·10⁻¹"),
+            (9.999999e-8, "10⁻⁷"),
+        ] {
+            assert_eq!(power_of_ten(v), label, "{v}");
+        }
+        assert_eq!(power_of_ten(0.0), "");
+        assert_eq!(power_of_ten(f64::NAN), "");
+    }
+
+    #[test]
+    fn axes_span_whole_decades() {
+        assert_eq!(decades(0.3, 0.7), (0.1, 1.0));
+        assert_eq!(decades(12.0, 19.0), (10.0, 100.0));
+        let (lo, hi) = decades(2e-7, 3e-3);
+        assert!((lo - 1e-7).abs() < 1e-20 && (hi - 1e-2).abs() < 1e-15);
+        let (lo, hi) = decades(1.0, 1.0);
+        assert!(lo == 1.0 && hi == 10.0);
+    }
 }

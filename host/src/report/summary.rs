@@ -81,6 +81,8 @@ pub struct Row {
     /// This method's median time to 99 % parameter-error reduction over the best
     /// method's (1 for the best; `None` when it never gets there).
     pub ratio_to_best: Option<f64>,
+    /// Every run was skipped ([`Run::skipped`]): the row has no figures.
+    pub skipped: bool,
 }
 
 impl Row {
@@ -127,7 +129,11 @@ pub fn rows(task: &str, methods: &[&str], runs: &[Run]) -> Vec<Row> {
                     });
                 }
             }
+            let skipped = !mine.is_empty() && mine.iter().all(|r| r.skipped());
             let last = |kind: ErrorKind| {
+                if skipped {
+                    return None;
+                }
                 median(
                     &mine
                         .iter()
@@ -143,6 +149,7 @@ pub fn rows(task: &str, methods: &[&str], runs: &[Run]) -> Vec<Row> {
                 final_param_error: last(ErrorKind::Param),
                 final_image_error: last(ErrorKind::Image),
                 ratio_to_best: None,
+                skipped,
             }
         })
         .collect();
