@@ -444,6 +444,14 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
                 }
                 k += 1;
             })?;
+            if r.skipped() {
+                bail!(
+                    "{} on {}: {} (fewer pairs or a larger --budget)",
+                    m.name(),
+                    t.name(),
+                    r.stopped.as_deref().unwrap_or_default()
+                );
+            }
             let last = r.points.len() - 1;
             if !quiet && shown != Some(last) {
                 println!("{}", line(last, &r.points[last]));

@@ -145,6 +145,33 @@ fn skipped_methods_read_as_skipped() {
     assert!(md.contains("Skipped (one estimate exceeds the run's budget): OurH"));
 }
 
+/// A setting whose first estimate cannot fit the budget is refused at once, not run to
+/// 10 000 times the budget.
+#[test]
+fn an_estimate_larger_than_the_budget_is_refused() {
+    use std::time::{Duration, Instant};
+    let clock = Instant::now();
+    let out = hodr(&[
+        "optimize",
+        "--task",
+        "BOX2",
+        "--method",
+        "OurHVPA",
+        "--budget",
+        "200",
+        "--set",
+        "pairs=1000000000",
+    ]);
+    assert!(clock.elapsed() < Duration::from_secs(20));
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(
+        err.contains("2000000000 evaluations") && err.contains("200"),
+        "{err}"
+    );
+}
+
 #[test]
 fn report_without_the_suite() {
     let dir = scratch("report-no-suite");

@@ -75,21 +75,29 @@ impl Method {
     }
 }
 
-/// Objective evaluations of a preset's first estimate, when its per-element sampling or
-/// least-squares fit makes that grow with n (0 otherwise): runs whose first estimate alone exceeds the
-/// budget are skipped rather than run for hours (the per-element Hessian at n = 1024
-/// needs 10⁶ evaluations).
+/// Objective evaluations of a preset's first estimate — its gradient's, or its
+/// Hessian's where the method estimates one: a run whose first estimate alone exceeds
+/// the budget is skipped rather than run far past it (`--set pairs=100000` on a budget
+/// of 200; the per-element Hessian at n = 1024 needs 10⁶ evaluations).
 fn first_estimate_cost(
     preset: Preset,
     n: usize,
     h: &hodr_core::optim::preset::Hyper<f64>,
 ) -> usize {
-    match preset {
+    let gradient = match preset {
+        Preset::Fr22 | Preset::NewtonCgFr22 => GradientMethod::Fr22,
+        Preset::OurG | Preset::OurH | Preset::OurHNewton | Preset::OurHvp => {
+            GradientMethod::PerElement
+        }
+        Preset::NewtonCgRegression => GradientMethod::Regression,
+        Preset::NcgKernel | Preset::NewtonCgKernel => GradientMethod::Gaussian,
+        _ => GradientMethod::Aggregate,
+    };
+    let hessian = match preset {
         Preset::OurH | Preset::OurHNewton => n * (n + 1) * h.pairs + 1,
-        Preset::OurG | Preset::OurHvp => 2 * n * h.pairs,
-        Preset::NewtonCgRegression => GradientMethod::Regression.evaluations(n, h.pairs),
         _ => 0,
-    }
+    };
+    gradient.evaluations(n, h.pairs).max(hessian)
 }
 
 /// One recorded point of a run.
