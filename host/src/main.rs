@@ -67,9 +67,10 @@ enum Command {
         /// The task.
         #[arg(long)]
         task: String,
-        /// Parameters, comma-separated (default: the task's θ*).
-        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
-        params: Vec<f64>,
+        /// Parameters, comma-separated, or @FILE to read them from a file (separated by
+        /// commas, spaces or newlines; TEXTURE has 1024). Default: the task's θ*.
+        #[arg(long, allow_hyphen_values = true)]
+        params: Option<String>,
         /// Samples per pixel, ≥ 1 (path-traced tasks only; default 64). The image is the
         /// task's viewing image (128×128 for the path-traced tasks), not the smaller
         /// one its objective renders (see `hodr tasks`).
@@ -276,6 +277,28 @@ fn check_writable(path: &std::path::Path) -> Result<()> {
     Ok(())
 }
 
+/// The numbers of `--params`: the text itself, or with a leading `@` the contents of
+/// that file; separated by commas and/or whitespace.
+///
+/// # Errors
+/// An unreadable file, or a value that is not a finite number (named, with its
+/// position).
+fn parse_params(list: &str) -> Result<Vec<f64>> {
+    let text = match list.strip_prefix('@') {
+        Some(path) => std::fs::read_to_string(path)
+            .with_context(|| format!("reading the parameters of --params @{path}"))?,
+        None => list.to_string(),
+    };
+    text.split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|v| !v.is_empty())
+        .enumerate()
+        .map(|(k, v)| match v.parse::<f64>() {
+            Ok(x) if x.is_finite() => Ok(x),
+            _ => bail!("--params: value {} is `{v}`, not a finite number", k + 1),
+        })
+        .collect()
+}
+
 /// θ for one line: every value up to 16, else the first 8 and the count.
 fn brief(theta: &[f64]) -> String {
     if theta.len() <= 16 {
@@ -356,10 +379,9 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             out,
         } => {
             let t = task::select(std::slice::from_ref(&name), false)?.remove(0);
-            let theta = if params.is_empty() {
-                t.optimum()
-            } else {
-                params
+            let theta = match params {
+                None => t.optimum(),
+                Some(list) => parse_params(&list)?,
             };
             if theta.len() != t.dim() {
                 bail!(

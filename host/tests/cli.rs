@@ -172,6 +172,93 @@ fn an_estimate_larger_than_the_budget_is_refused() {
     );
 }
 
+/// `render --params @FILE` reads θ from a file (TEXTURE's 1024 values), as the same
+/// values given inline would; bad values are named with their position.
+#[test]
+fn render_reads_params_from_a_file() {
+    let dir = scratch("params");
+    let values: Vec<String> = (0..1024)
+        .map(|k| format!("{:.3}", (k % 7) as f64 / 7.0))
+        .collect();
+    let file = dir.join("theta.txt");
+    std::fs::write(
+        &file,
+        values
+            .chunks(32)
+            .map(|c| c.join(", "))
+            .collect::<Vec<_>>()
+            .join("\n"),
+    )
+    .unwrap();
+    let from_file = dir.join("file.png");
+    let arg = format!("@{}", file.display());
+    let out = hodr(&[
+        "render",
+        "--task",
+        "texture",
+        "--spp",
+        "1",
+        "--params",
+        &arg,
+        "--out",
+        from_file.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let inline = dir.join("inline.png");
+    let out = hodr(&[
+        "render",
+        "--task",
+        "texture",
+        "--spp",
+        "1",
+        "--params",
+        &values.join(","),
+        "--out",
+        inline.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        std::fs::read(from_file).unwrap(),
+        std::fs::read(inline).unwrap()
+    );
+    let out = hodr(&[
+        "render",
+        "--task",
+        "box2",
+        "--params",
+        "1,x,3",
+        "--out",
+        "/tmp/never.png",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("value 2 is `x`"),
+        "{err}"
+    );
+    let out = hodr(&[
+        "render",
+        "--task",
+        "box2",
+        "--params",
+        "@/no/such/file",
+        "--out",
+        "/tmp/never.png",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("/no/such/file"),
+        "{err}"
+    );
+}
+
 #[test]
 fn report_without_the_suite() {
     let dir = scratch("report-no-suite");
