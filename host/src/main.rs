@@ -125,6 +125,17 @@ enum Command {
         /// Also write an SVG.
         #[arg(long)]
         svg: Option<PathBuf>,
+        /// Seed of every random choice (same seed, same shapes).
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Scale the target so that its longer side is this many pixels first (as
+        /// primitive's -r; the shapes are fitted and written at that size).
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=4096))]
+        resize: Option<u32>,
+        /// Stop placing shapes after this many seconds; the shapes placed so far are
+        /// written.
+        #[arg(long)]
+        time: Option<f64>,
     },
     /// Variance of every estimator at equal evaluation budgets (Markdown on stdout).
     Variance {
@@ -501,29 +512,90 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             kind,
             out,
             svg,
+            seed,
+            resize,
+            time,
         } => {
+            if let Some(t) = time
+                && !(t.is_finite() && t > 0.0)
+            {
+                bail!("--time must be a positive number of seconds, got {t}");
+            }
             if !FIT_KINDS.contains(&kind.as_str()) {
                 bail!("--kind `{kind}`: fit2d places {}", FIT_KINDS.join(", "));
             }
-            let kind: hodr_raster::ShapeKind = kind.parse().map_err(|e| anyhow::anyhow!("{e}"))?;
+            let kind_name = kind.as_str();
+            let kind: hodr_raster::ShapeKind =
+                kind_name.parse().map_err(|e| anyhow::anyhow!("{e}"))?;
             check_writable(&out)?;
             if let Some(svg) = &svg {
                 check_writable(svg)?;
             }
             let target_image = hodr_raster::Target::open(&target)?;
-            let options = hodr_raster::fit::FitOptions::new(shapes, kind);
-            let fit = hodr_raster::fit::fit_until(&target_image, &options, interrupt)?;
+            let target_image = match resize {
+                None => target_image,
+                Some(side) => {
+                    let img = image::RgbImage::from_raw(
+                        target_image.width(),
+                        target_image.height(),
+                        target_image.rgb().to_vec(),
+                    )
+                    .context("the decoded target has an inconsistent size")?;
+                    let scale = f64::from(side) / f64::from(img.width().max(img.height()));
+                    let (w, h) = (
+                        ((f64::from(img.width()) * scale).round() as u32).max(1),
+                        ((f64::from(img.height()) * scale).round() as u32).max(1),
+                    );
+                    let small =
+                        image::imageops::resize(&img, w, h, image::imageops::FilterType::Triangle);
+                    hodr_raster::Target::from_rgb8(w, h, small.into_raw())?
+                }
+            };
+            let mut options = hodr_raster::fit::FitOptions::new(shapes, kind);
+            options.seed = seed;
+            println!(
+                "fit2d: {shapes} {kind_name} shapes to {} ({}×{}), seed {seed}{}",
+                target.display(),
+                target_image.width(),
+                target_image.height(),
+                time.map_or(String::new(), |t| format!(", at most {t} s"))
+            );
+            let clock = std::time::Instant::now();
+            // Stop before the next shape on a signal or when the time is up.
+            let stop = AtomicBool::new(false);
+            let fit = std::thread::scope(|scope| {
+                let watcher = scope.spawn(|| {
+                    let done = || {
+                        interrupt.load(Ordering::Relaxed)
+                            || time.is_some_and(|t| clock.elapsed().as_secs_f64() >= t)
+                    };
+                    while !stop.load(Ordering::Relaxed) {
+                        if done() {
+                            stop.store(true, Ordering::Relaxed);
+                            break;
+                        }
+                        std::thread::sleep(std::time::Duration::from_millis(20));
+                    }
+                });
+                let fit = hodr_raster::fit::fit_until(&target_image, &options, &stop);
+                stop.store(true, Ordering::Relaxed);
+                let _ = watcher.join();
+                fit
+            })?;
             fit.save_png(&out)?;
             if let Some(svg) = &svg {
                 fit.save_svg(svg)?;
             }
-            if interrupt.load(Ordering::Relaxed) {
-                eprintln!("interrupted: writing the shapes placed so far");
-            }
             let placed = fit.scene().shapes().len();
+            if interrupt.load(Ordering::Relaxed) {
+                eprintln!("interrupted: wrote the {placed} shapes placed so far");
+            } else if placed < shapes {
+                println!("time is up after {placed} of {shapes} shapes");
+            }
             println!(
-                "{placed} shapes, RMSE {:.5}; wrote {}",
+                "{placed} shapes, RMSE {:.5}, {:.1} s; wrote {}",
                 fit.rmse(),
+                clock.elapsed().as_secs_f64(),
                 out.display()
             );
         }

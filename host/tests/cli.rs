@@ -259,6 +259,86 @@ fn render_reads_params_from_a_file() {
     );
 }
 
+/// fit2d: a seed fixes the shapes (same seed, same PNG; another seed, another),
+/// --resize sets the working size, and --time stops placing shapes when it is up.
+#[test]
+fn fit2d_takes_seed_resize_and_time() {
+    let dir = scratch("fit2d");
+    let target = dir.join("mug.png");
+    let out = hodr(&[
+        "render",
+        "--task",
+        "mug",
+        "--spp",
+        "4",
+        "--out",
+        target.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // The shapes themselves, in the SVG (two fits may paint the same pixels).
+    let fit = |seed: &str, name: &str| {
+        let file = dir.join(name);
+        let svg = file.with_extension("svg");
+        let args = [
+            "fit2d",
+            "--target",
+            target.to_str().unwrap(),
+            "--shapes",
+            "3",
+            "--kind",
+            "rect",
+            "--resize",
+            "32",
+            "--seed",
+            seed,
+            "--out",
+            file.to_str().unwrap(),
+            "--svg",
+            svg.to_str().unwrap(),
+        ];
+        let out = hodr(&args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let size = image::open(&file).unwrap();
+        assert_eq!((size.width(), size.height()), (32, 32));
+        (
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+            std::fs::read_to_string(svg).unwrap(),
+        )
+    };
+    let (text, a) = fit("1", "a.png");
+    assert!(text.contains("(32×32), seed 1"), "{text}");
+    let (_, b) = fit("1", "b.png");
+    let (_, c) = fit("2", "c.png");
+    assert_eq!(a, b);
+    assert_ne!(a, c);
+    let out = hodr(&[
+        "fit2d",
+        "--target",
+        target.to_str().unwrap(),
+        "--shapes",
+        "4000",
+        "--time",
+        "0.3",
+        "--out",
+        dir.join("d.png").to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("time is up after"), "{text}");
+}
+
 #[test]
 fn report_without_the_suite() {
     let dir = scratch("report-no-suite");
