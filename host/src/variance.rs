@@ -37,17 +37,45 @@ enum Row {
     Hvp(HvpMethod),
 }
 
+/// The name the rest of hodr gives a gradient estimator (FR22 as the preset, the
+/// importance-sampling ones as BENCHMARKS.md does).
+fn gradient_name(m: GradientMethod) -> &'static str {
+    match m {
+        GradientMethod::Fr22 => "FR22",
+        GradientMethod::PerElement => "per-element",
+        GradientMethod::Aggregate => "aggregate",
+        GradientMethod::Gaussian => "Gaussian",
+        GradientMethod::Regression => "least squares",
+        _ => "other",
+    }
+}
+
 impl Row {
     fn label(self) -> String {
         match self {
-            Row::Gradient(m) => format!("gradient {m:?}"),
+            Row::Gradient(m) => format!("gradient {}", gradient_name(m)),
             Row::UniformGradient => "gradient uniform box".into(),
-            Row::Hessian(m) => format!("Hessian {m:?}"),
+            Row::Hessian(m) => format!(
+                "Hessian {}",
+                match m {
+                    HessianMethod::PerElement => "per-element",
+                    HessianMethod::Aggregate => "aggregate",
+                    _ => "Gaussian",
+                }
+            ),
             Row::UniformHessian => "Hessian uniform box".into(),
-            Row::Hvp(HvpMethod::CentralDifference { gradient, draws }) => {
-                format!("HVP central difference {gradient:?} {draws:?}")
+            Row::Hvp(HvpMethod::CentralDifference { gradient, draws }) => format!(
+                "HVP central difference, {}, {}",
+                gradient_name(gradient),
+                match draws {
+                    Draws::Common => "common draws",
+                    _ => "independent draws",
+                }
+            ),
+            Row::Hvp(HvpMethod::ForwardDifference { gradient }) => {
+                format!("HVP forward difference, {}", gradient_name(gradient))
             }
-            Row::Hvp(m) => format!("HVP {m:?}"),
+            Row::Hvp(_) => "HVP kernel".into(),
         }
     }
 

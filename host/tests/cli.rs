@@ -419,6 +419,14 @@ fn names_and_counts_read_right() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(!text.contains("1 parameters"), "{text}");
     assert!(text.contains("1 parameter,"), "{text}");
+    // Estimators read as elsewhere: FR22, not Rust's Fr22 or PerElement.
+    let out = hodr(&["variance", "--repeats", "2"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("| gradient FR22 |"), "{text}");
+    assert!(
+        !text.contains("Fr22") && !text.contains("PerElement"),
+        "{text}"
+    );
 }
 
 #[test]
