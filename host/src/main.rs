@@ -577,7 +577,23 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
                         std::thread::sleep(std::time::Duration::from_millis(20));
                     }
                 });
-                let fit = hodr_raster::fit::fit_until(&target_image, &options, &stop);
+                let bar = indicatif::ProgressBar::new(shapes as u64);
+                bar.set_style(
+                    indicatif::ProgressStyle::with_template(
+                        "{elapsed_precise} [{bar:40}] {pos}/{len} shapes  {msg}  ETA {eta}",
+                    )
+                    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+                );
+                let fit = hodr_raster::fit::fit_observed(
+                    &target_image,
+                    &options,
+                    &stop,
+                    &mut |k, rmse| {
+                        bar.set_position(k as u64);
+                        bar.set_message(format!("RMSE {rmse:.5}"));
+                    },
+                );
+                bar.finish_and_clear();
                 stop.store(true, Ordering::Relaxed);
                 let _ = watcher.join();
                 fit

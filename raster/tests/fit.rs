@@ -1,7 +1,7 @@
 //! Image-to-shapes fitting: every added shape lowers the RMSE, results are
 //! deterministic, PNG and SVG are written, and bad options are typed errors.
 
-use hodr_raster::fit::{FitOptions, fit};
+use hodr_raster::fit::{FitOptions, fit, fit_observed};
 use hodr_raster::{Error, ShapeKind, Target, test_image};
 
 /// A small budget so the debug-build test stays fast.
@@ -35,6 +35,22 @@ fn every_added_shape_lowers_the_rmse() {
         assert_eq!(rendered.rmse(&target).unwrap(), result.rmse());
         assert!(result.scene().shapes().iter().all(|s| s.kind() == kind));
     }
+}
+
+/// The observer hears of every placed shape, in order, with the RMSE the history
+/// records.
+#[test]
+fn the_observer_sees_each_shape() {
+    let target = test_image::landscape(24).unwrap();
+    let mut seen = Vec::new();
+    let stop = std::sync::atomic::AtomicBool::new(false);
+    let result = fit_observed(&target, &quick(4, ShapeKind::Rect), &stop, &mut |k, e| {
+        seen.push((k, e))
+    })
+    .unwrap();
+    let history = result.rmse_history();
+    let expected: Vec<(usize, f64)> = (1..history.len()).map(|k| (k, history[k])).collect();
+    assert_eq!(seen, expected);
 }
 
 #[test]

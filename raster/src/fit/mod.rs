@@ -177,6 +177,20 @@ pub fn fit(target: &Target, options: &FitOptions) -> Result<Fit, Error> {
 /// # Errors
 /// As [`fit`].
 pub fn fit_until(target: &Target, options: &FitOptions, stop: &AtomicBool) -> Result<Fit, Error> {
+    fit_observed(target, options, stop, &mut |_, _| {})
+}
+
+/// [`fit_until`], calling `placed(k, rmse)` after the k-th shape is placed (for
+/// progress reports).
+///
+/// # Errors
+/// As [`fit`].
+pub fn fit_observed(
+    target: &Target,
+    options: &FitOptions,
+    stop: &AtomicBool,
+    placed: &mut dyn FnMut(usize, f64),
+) -> Result<Fit, Error> {
     let dim = options.check()?;
     let (width, height) = (target.width(), target.height());
     let unit = f64::from(width.max(height)) / 8.0;
@@ -257,6 +271,7 @@ pub fn fit_until(target: &Target, options: &FitOptions, stop: &AtomicBool) -> Re
                 scene.push(shape)?;
                 std::mem::swap(&mut canvas, &mut next);
                 rmse.push(error);
+                placed(scene.shapes().len(), error);
                 continue 'shapes;
             }
         }
