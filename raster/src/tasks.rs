@@ -284,17 +284,14 @@ const BOX2: Settings = Settings {
 /// The paper's σ start (0.6), recompute and line search; more pairs (16, not 6), a
 /// smaller trust radius (σ, not 10σ) and a lower final σ (0.05, not 0.1): with the
 /// paper's values in our units every NCG step on the plateau moves each square by up
-/// to 6 of the image's 8 units and the squares scatter (0 of 10 seeds converged).
+/// to 6 of the image's 8 units and the squares scatter.
 ///
 /// The adaptive presets start wider (σ 1.0), shrink by 0.8, take 24 pairs and one
 /// inner CG step (the model minimum along the gradient), its curvature from f on a
-/// line along ĝ (2–3 evaluations, not an HVP's 48): NewtonCG-FR then reaches 99 %
-/// parameter-error reduction in 18 of 20 seeds (20 of seeds 20–39), median 918
-/// evaluations (918 on 20–39); with the HVP 20 of 20 (19), median 1 536 (1 536), and
-/// with the settings above and three inner steps 10 of 20 (a wider start keeps
-/// squares from settling on one another; cheap iterations with many pairs shorten the
-/// noisy end game). docs/notes/2026-11-23-benchmarks-before-auto.md, "BOX10: Newton-CG on FR22 gradients" and "BOX10:
-/// curvature from a line".
+/// line along ĝ (2–3 evaluations, not an HVP's 48): a wider start keeps squares from
+/// settling on one another, and cheap iterations with many pairs shorten the noisy end
+/// game (docs/notes/2026-11-23-benchmarks-before-auto.md, "BOX10: Newton-CG on FR22 gradients" and "BOX10: curvature
+/// from a line").
 const BOX10: Settings = Settings {
     pairs: 16,
     sigma_start: 0.6,

@@ -25,15 +25,12 @@
 //! (as its code does); [`Hyper::common_random_numbers`] switches them to common random
 //! numbers. Our Newton-CG presets difference the gradient at θ + εu with the
 //! iteration's own ĝ(θ) from the same samples ([`HvpMethod::ForwardDifference`]): each
-//! HVP costs one gradient estimate instead of two. Measured (20 seeds, evaluations to
-//! 99 % parameter-error reduction, central → forward): BOX2-REF NewtonCG-A 396 → 216,
-//! QUAD-far NewtonCG-AS 294 → 196, BOX2 NewtonCG-FR 84 → 64 (docs/notes/2026-11-23-benchmarks-before-auto.md). Where an
-//! iteration's gradient is one antithetic pair along its offset (the aggregate
-//! estimator with one pair, any estimator in one dimension), they take the curvature
-//! along it from the pair and f(θ) instead ([`NewtonCg::pair_curvature`]): QUAD-far
-//! NewtonCG-ASC 246 → 148, BOX2-REF 48 → 41. With [`Hyper::line_curvature`] the
-//! first curvature of an iteration with several pairs comes from f on a line along ĝ
-//! ([`NewtonCg::line_curvature`]): BOX10 NewtonCG-FR 1 536 → 918.
+//! HVP costs one gradient estimate instead of two. Where an iteration's gradient is one
+//! antithetic pair along its offset (the aggregate estimator with one pair, any
+//! estimator in one dimension), they take the curvature along it from the pair and f(θ)
+//! instead ([`NewtonCg::pair_curvature`]). With [`Hyper::line_curvature`] the first
+//! curvature of an iteration with several pairs comes from f on a line along ĝ
+//! ([`NewtonCg::line_curvature`]). What each of these saved is in docs/notes/2026-11-23-benchmarks-before-auto.md.
 
 use super::{Adam, Curvature, Method, Ncg, NegativeCurvature, Newton, NewtonCg, Schedule};
 use crate::error::Error;

@@ -41,9 +41,8 @@ use crate::real::Real;
 /// differences are ties, which go to the model step. The comparison is there to catch
 /// the model's gross failures, not to polish its steps: objectives that render a
 /// smooth shape on a pixel grid differ by small amounts between positions that the
-/// task cannot tell apart. Measured on BOX2-REF's plateau (NewtonCG-ASC, 20 seeds): with
-/// a margin of √ε those differences rejected model steps and σ collapsed before the
-/// target was seen (184 evaluations to 99 % parameter-error reduction); with 1e-3, 80.
+/// task cannot tell apart, and a margin of √ε let those differences reject model steps
+/// until σ collapsed on a plateau (docs/notes/2026-11-23-benchmarks-before-auto.md).
 pub const COMPARISON_MARGIN: f64 = 1e-3;
 
 /// The relative spread below which an iteration's samples are a plateau (Newton-CG takes
@@ -82,8 +81,8 @@ pub struct NewtonCg<T> {
     /// Keep the inner residuals mutually orthogonal, as they are in exact arithmetic:
     /// each new residual is Gram–Schmidt-orthogonalised against normalised copies of the
     /// earlier ones. Finite-precision CG loses this on ill-conditioned systems and then
-    /// needs many times n steps (measured on the stability suite's quadratic, n = 50,
-    /// κ = 1e8: ≈ 400 steps to 1e-2 relative error without, 50 to 1e-15 with). Worth it
+    /// needs many times n steps (tests/tests/stability.rs: a quadratic with n = 50 and
+    /// κ = 1e8). Worth it
     /// only when the HVPs are exact enough to resolve that accuracy (least-squares
     /// estimates with reused samples). Costs n·min(max_inner + 1, n) buffer floats and
     /// O(jn) per inner step j.
@@ -112,9 +111,8 @@ pub struct NewtonCg<T> {
     /// reuses), where the HVP costs a gradient estimate (two). The pair's samples see f along t only,
     /// so the curvature along t is all an estimate from them can hold; the difference is
     /// the mean curvature of f over [θ − σt, θ + σt], as the forward-difference HVP is
-    /// that of f̄ over [θ, θ + εu]. In one dimension the HVP stays: on the narrow well
-    /// beside a wall (MUG's landscape, tests/tests/optim_well.rs) NewtonCG-ASC found
-    /// the well in 10 of 20 seeds with the pair's curvature, 16 with the HVP.
+    /// that of f̄ over [θ, θ + εu]. In one dimension the HVP stays: it finds a narrow
+    /// well beside a wall more often (tests/tests/optim_well.rs).
     pub pair_curvature: bool,
     /// Where [`NewtonCg::pair_curvature`] does not apply, the first inner step's
     /// curvature along ĝ is the second difference of f on the line θ ± σ√n·ĝ/‖ĝ‖
@@ -123,10 +121,9 @@ pub struct NewtonCg<T> {
     /// minimum of the parabola through the three values, capped by the trust radius.
     /// σ√n is how far an estimator's sample θ + σt sits from θ. Where the line does
     /// not fall along −ĝ the fallback step is taken. Worth it where pairs are many and
-    /// the landscape along a line shows the kernel's: BOX10 (24 pairs, n = 10,
-    /// NewtonCG-FR) needs ≈ 45 % fewer evaluations; on the plateaus of BOX2-REF and BOX2
-    /// with 6 pairs (NewtonCG-A) the kernel's curvature is worth its cost
-    /// (docs/notes/2026-11-23-benchmarks-before-auto.md, "BOX10: curvature from a line").
+    /// the landscape along a line shows the kernel's; with few pairs on a plateau the
+    /// kernel's curvature is worth its cost (docs/notes/2026-11-23-benchmarks-before-auto.md, "BOX10: curvature from a
+    /// line").
     pub line_curvature: bool,
 }
 

@@ -16,7 +16,7 @@
 //! * **Shuffling.** Each pixel and dimension pair takes the sample indices in its own
 //!   Owen-scrambled order, so that pairs are not correlated with one another
 //!   ("padding"). Scrambling the index least significant digit first would save two bit
-//!   reversals, but measured worse (SHADOW, 64 spp: RMSE 0.0035 against 0.0027).
+//!   reversals but gives a larger error (docs/notes/2026-11-23-benchmarks-before-auto.md).
 //!
 //! Everything works on the bit-reversed form of the coordinates, where the van der
 //! Corput coordinate is the index itself and Sobol's second coordinate is an XOR of

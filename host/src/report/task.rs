@@ -86,10 +86,8 @@ pub trait Task: Send + Sync {
 }
 
 /// Antithetic pairs per estimate of the adaptive presets (NewtonCG-AS, -ASC, -FR) on
-/// tasks with n ≤ 2. Their iterations reuse one sample set for every estimate and σ follows the run, so cheap iterations
-/// win: measured with 20 seeds, evaluations to 99 % parameter-error reduction fall from
-/// 176 to 60 (QUAD), 752 to 294 (QUAD-far), 252 to 96 (BOX2-REF, from 2 pairs: 124) and
-/// 204 to 118 (BOX2, 3 pairs; 2 pairs: 124) against the tasks' 4–6 pairs.
+/// tasks with n ≤ 2. Their iterations reuse one sample set for every estimate and σ
+/// follows the run, so cheap iterations win (docs/notes/2026-11-23-benchmarks-before-auto.md).
 pub const ADAPTIVE_LOW_DIM_PAIRS: usize = 1;
 
 /// `h` with [`ADAPTIVE_LOW_DIM_PAIRS`] antithetic pairs where `dim` ≤ 2, unchanged
@@ -103,10 +101,8 @@ pub fn low_dim_pairs(mut h: Hyper<f64>, dim: usize) -> Hyper<f64> {
 
 /// Δ (in units of σ) of the adaptive presets on BOX2-REF ([`Task::adaptive`]); the
 /// paper's 2 for the others. With one pair per iteration each step is a line search
-/// along one direction, and a longer reach per step pays off: NewtonCG-ASC reaches
-/// 99 % parameter-error reduction in a median 37 evaluations on seeds 0–19 and 37 on
-/// 20–39, against 41.5 and 39 with Δ = 2 (NewtonCG-AS 60.5 / 56.5 against 60 / 59,
-/// NewtonCG-FR 58 / 65 against 55 / 68; docs/notes/2026-11-23-benchmarks-before-auto.md, "BOX2-REF: a longer reach").
+/// along one direction, and a longer reach per step pays off (docs/notes/2026-11-23-benchmarks-before-auto.md,
+/// "BOX2-REF: a longer reach").
 pub const BOX2_REF_ADAPTIVE_TRUST_RADIUS: f64 = 3.0;
 
 /// The paper's QUAD hyper-parameters (DESIGN §3): 4 pairs, σ 1 → 0.05, Δ = 50,

@@ -26,24 +26,20 @@ use crate::render::{
 ///   smooths over 0.6 rad → 0.002 rad, where in radians σ = 3 would blur the whole turn
 ///   (the first Fourier mode of the loss would shrink by e^(−σ²/2) ≈ 0.01).
 /// * Start: (π/2 ± 0.25 rad)/0.2 = U[6.60, 9.10]: the handle points away from the camera
-///   and hides behind the body, where the loss is flat (measured at 64×64, 16 spp: the
-///   loss is constant to within noise for angles in [0.8, 2.2] rad).
+///   and hides behind the body, where the loss is flat to within noise.
 /// * The loss has period 2π/0.2 ≈ 31.4; [`Task3d::parameter_error`] is the angular
 ///   distance, in the same units.
 /// * Objective: 64×64, 4 spp; target 256 spp; images 128×128.
 /// * The paper's hyper-parameters: 1 pair, σ 3 → 0.01, Δ = 4, 1 line-search step,
 ///   recompute 5, Adam η = 0.1; σ₀ = 3. Budget: 1500 evaluations (quick: 100).
 ///
-/// **Landscape (measured,** objective settings, mean of 4 noise seeds, ×10⁻⁴**):** a
-/// plateau of 3.27–3.30 for θ ∈ [4, 11]; a narrow well at θ* (2.35 at θ = 3, back to the
-/// plateau within ≈ ±1); a wall on the far side (5.4 at θ = 1, 9.7 at θ = −3) where the
-/// handle turns towards the camera; and a rise past θ = 11 (6.5 at 15). Smoothing that
-/// grid with the paper's σ puts the minimum of f̄ on the plateau, among the starts:
-/// θ ≈ 7.0 at σ = 3 and 6.25 at σ = 2; only below σ ≈ 1.2 does it move to the well
-/// (3.75 at σ = 1), and there f̄ is flat over the starts. An exact optimiser of f̄ under
-/// the paper's schedule would therefore stay on the plateau; runs that converge
-/// (7 of 20 in `tests/tests/render_convergence.rs`) get near the well by noise while σ is
-/// still large.
+/// **Landscape.** A plateau over the starts, a narrow well at θ* about one unit wide,
+/// a wall beyond it where the handle turns towards the camera. Smoothed at the paper's
+/// σ, f̄'s minimum lies on the plateau among the starts and moves to the well only for
+/// σ ≲ 1, so an exact optimiser of f̄ under the paper's schedule would stay on the
+/// plateau; runs that converge reach the well by noise while σ is still large. The
+/// measured profile is in docs/notes/2026-11-23-benchmarks-before-auto.md
+/// ("Measurements moved out of doc comments").
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Mug;
 

@@ -31,32 +31,14 @@ use crate::render::{
 ///   [`Shadow::ADAPTIVE_PAIRS`] pairs and σ from [`Shadow::ADAPTIVE_SIGMA_START`]
 ///   instead. Budget: 1500 evaluations (quick: 100).
 ///
-/// **Landscape (measured).** Along the diagonal x = y the loss (24×24, 16 spp) is
-/// 0.019 when the shadow has left the view (|x| ≳ 1.6), rises to a ridge of ≈ 0.039
-/// near x = 0.5 — the start — and falls to ≈ 0.001 at θ*. The smoothed gradient at the
-/// start (0.55, 0.55) points away from θ* for σ = 0.5 and σ = 1 (estimated with 400
-/// pairs: ∇f̄ ≈ (−0.0042, −0.0043) at σ = 0.5), and towards it from (0.3, 0.3): a
-/// shadow that leaves the image removes its whole cost, so descent from the DESIGN's
-/// starts tends to push the sphere out of view. In 2D the start sits on a mesa (raw loss
-/// 0.035–0.040 over roughly [−0.75, 1]², 32×32, 4 spp) whose smoothed Hessian is
-/// negative definite (σ = 0.5: [[−0.017, −0.002], [−0.002, −0.014]]); θ* is a narrow
-/// well (raw loss ≤ 0.015 within ≈ 0.3) 1.56 away.
-///
-/// **Convergence (measured).** With the task's own settings (one pair, σ 0.5 → 0.01) no
-/// preset converges from these starts (0 of 10 seeds). NewtonCG-ASC with 8 pairs and σ
-/// from 1.0 — what the report gives the adaptive presets on SHADOW — does: a sample in
-/// the target's well (loss ≤ 0.015 within ≈ 0.3 of θ*) beats the out-of-view shadows'
-/// 0.019, its comparison keeps it, and σ shrinks around it; 16 of 20 seeds reach 99 %
-/// parameter-error reduction, median 296 evaluations (`cargo test -p hodr-tests
-/// --test optim_shadow`; docs/notes/2026-11-23-benchmarks-before-auto.md). NCG with OurHVPA's estimators and the
-/// two-sided negative-curvature step
-/// (`hodr_core::optim::NegativeCurvature::TwoSided`: at dᵀĤd ≤ 0 the objective picks
-/// between the fallback step and the trust-boundary points along ±d) does, once the
-/// gradient's direction is reliable: with 16 pairs, 3 line-search steps, 20 iterations
-/// at 24×24, 2 spp, 4 of 20 seeds end within 0.05 of θ* (0 of 8 with the fallback); with
-/// the paper's single pair, 0 of 10 either way. Reproduce with
-/// `cargo test -p hodr-tests --test render_convergence shadow` (and the ignored
-/// `shadow_sweep`, see docs/notes/2026-11-23-benchmarks-before-auto.md).
+/// **Landscape.** A shadow that leaves the image removes its whole cost, so the loss
+/// is lower with the sphere out of view than at the start, which sits on a mesa whose
+/// smoothed Hessian is negative definite, while θ* is a narrow well about 1.5 away:
+/// descent from the start tends to push the sphere out of view, and what converges
+/// finds the well by a sample and keeps it. The measured landscape and convergence
+/// figures are in docs/notes/2026-11-23-benchmarks-before-auto.md ("Measurements
+/// moved out of doc comments"); `cargo test -p hodr-tests --test optim_shadow` and
+/// `--test render_convergence shadow` reproduce them.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Shadow;
 
@@ -137,9 +119,9 @@ impl Task3d for Shadow {
 
     /// [`Shadow::ADAPTIVE_PAIRS`] pairs and σ from [`Shadow::ADAPTIVE_SIGMA_START`].
     /// NewtonCG-ASC then finds the target's well by a sample (a sample within ≈ 0.3 of
-    /// θ* beats the out-of-view shadows' loss) and stays in it: 16 of 20 seeds reach
-    /// 99 % parameter-error reduction, against 0 with one pair and σ from 0.5
-    /// (docs/notes/2026-11-23-benchmarks-before-auto.md, "SHADOW: compared steps from a wider kernel").
+    /// θ* beats the out-of-view shadows' loss) and stays in it, which it does not with
+    /// one pair and σ from 0.5 (docs/notes/2026-11-23-benchmarks-before-auto.md, "SHADOW: compared steps from a
+    /// wider kernel").
     fn adaptive(&self, h: Hyper<f64>) -> Option<Hyper<f64>> {
         Some(Hyper {
             pairs: Shadow::ADAPTIVE_PAIRS,
