@@ -19,7 +19,7 @@
 //! curvatures dᵀĤd/dᵀd this run has measured — a step the data so far can justify —
 //! or a step of one σ before any curvature is known; it is capped at Δ·σ like every
 //! step, and zero when ĝᵀd = 0. (The authors' code divides by 1 instead, which moves
-//! |ĝ|²·|d| — up to 50σ — and throws QUAD iterates far from the optimum.) With
+//! |ĝ|²·|d| — up to 50σ — and throws a quadratic's iterates far from the optimum.) With
 //! [`NegativeCurvature::TwoSided`] that step competes with the two trust-boundary
 //! steps α = ±Δσ/‖d‖, and the objective picks the lowest of the three.
 

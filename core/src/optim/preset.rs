@@ -66,7 +66,7 @@ pub struct Hyper<T> {
     /// NCG line-search steps, ≥ 1. Default: 3.
     pub line_search_iterations: usize,
     /// NCG line-search tolerance on α²·dᵀd, finite and ≥ 0. Default: 1e-3 (the paper's
-    /// BOX2 value).
+    /// value for its 2-D box task).
     pub line_search_tolerance: T,
     /// NCG restart period, ≥ 1. Default: 10.
     pub recompute: usize,
@@ -313,8 +313,8 @@ pub enum Preset {
     /// [`Preset::NewtonCgAdaptive`] with the FR22 gradient (DESIGN §1.6) and the CRN
     /// forward difference of FR22 gradients as its HVP. FR22 blurs the coordinates it
     /// does not differentiate with p_G, which vanishes at 0, rather than N₁; where
-    /// several shapes move at once (BOX10) Newton-CG on these estimates converges and
-    /// on the aggregate ones it does not (shapes settle on one another).
+    /// several shapes move at once Newton-CG on these estimates converges where on the
+    /// aggregate ones shapes settle on one another.
     NewtonCgFr22,
 }
 

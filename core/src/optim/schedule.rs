@@ -36,8 +36,8 @@ pub enum Schedule<T> {
     /// the estimators' σ-proportional error. A longer step to a model minimum keeps σ;
     /// one cut short by the trust boundary (radius Δσ) widens it once the objective has
     /// confirmed the step, as a trust region grows after a successful step to its edge;
-    /// unconfirmed, a boundary step is as likely the estimates' noise (BOX10's end game,
-    /// where widening kept σ oscillating and the squares dithering). No model minimum —
+    /// unconfirmed, a boundary step is as likely the estimates' noise (widening on it
+    /// keeps σ oscillating in a noisy end game). No model minimum —
     /// a plateau, where the gradient vanishes because nothing is seen, or a ridge —
     /// calls for a wider kernel. A model fitted from samples along fewer directions
     /// than n (one antithetic pair in two dimensions) sees its minimum along those

@@ -8,8 +8,8 @@
 //!
 //! Where the gradient's samples (and f(θ), when known) all lie within
 //! [`PLATEAU_MARGIN`] of each other the iteration has seen a plateau at this σ: its
-//! estimates hold nothing but the objective's rounding (BOX2-REF's square drawn at
-//! sub-pixel offsets), so it takes no step and estimates no curvature, and the adaptive
+//! estimates hold nothing but the objective's rounding (a shape drawn at sub-pixel
+//! offsets on a pixel grid), so it takes no step and estimates no curvature, and the adaptive
 //! schedule widens σ. Samples that tie above a lower f(θ) are no plateau: θ sits in a
 //! basin narrower than σ, and with [`NewtonCg::pair_curvature`] the iteration reports a
 //! model minimum at θ, so that σ shrinks.
@@ -47,8 +47,8 @@ pub const COMPARISON_MARGIN: f64 = 1e-3;
 
 /// The relative spread below which an iteration's samples are a plateau (Newton-CG takes
 /// no step; [`COMPARISON_MARGIN`]'s scale, the larger magnitude of the two values):
-/// BOX2-REF's loss at plateau points 40 px apart spans 2.2e-5 of its value (the
-/// square's pixel sums at sub-pixel offsets). The margin is relative to |f|: an
+/// a rasterised shape's loss at plateau points far apart differs only by its pixel
+/// sums at sub-pixel offsets, a small fraction of its value. The margin is relative to |f|: an
 /// objective whose values near its minimum differ by less than this fraction of their
 /// size (a large constant offset, f = 100 + x²) stops where they do — subtract the
 /// offset.
@@ -81,8 +81,8 @@ pub struct NewtonCg<T> {
     /// Keep the inner residuals mutually orthogonal, as they are in exact arithmetic:
     /// each new residual is Gram–Schmidt-orthogonalised against normalised copies of the
     /// earlier ones. Finite-precision CG loses this on ill-conditioned systems and then
-    /// needs many times n steps (tests/tests/stability.rs: a quadratic with n = 50 and
-    /// κ = 1e8). Worth it
+    /// needs many times n steps (an ill-conditioned quadratic, κ = 1e8 at n = 50). Worth
+    /// it
     /// only when the HVPs are exact enough to resolve that accuracy (least-squares
     /// estimates with reused samples). Costs n·min(max_inner + 1, n) buffer floats and
     /// O(jn) per inner step j.
@@ -112,7 +112,7 @@ pub struct NewtonCg<T> {
     /// so the curvature along t is all an estimate from them can hold; the difference is
     /// the mean curvature of f over [θ − σt, θ + σt], as the forward-difference HVP is
     /// that of f̄ over [θ, θ + εu]. In one dimension the HVP stays: it finds a narrow
-    /// well beside a wall more often (tests/tests/optim_well.rs).
+    /// well beside a wall more often.
     pub pair_curvature: bool,
     /// Where [`NewtonCg::pair_curvature`] does not apply, the first inner step's
     /// curvature along ĝ is the second difference of f on the line θ ± σ√n·ĝ/‖ĝ‖
@@ -122,8 +122,7 @@ pub struct NewtonCg<T> {
     /// σ√n is how far an estimator's sample θ + σt sits from θ. Where the line does
     /// not fall along −ĝ the fallback step is taken. Worth it where pairs are many and
     /// the landscape along a line shows the kernel's; with few pairs on a plateau the
-    /// kernel's curvature is worth its cost (docs/notes/2026-11-23-benchmarks-before-auto.md, "BOX10: curvature from a
-    /// line").
+    /// kernel's curvature is worth its cost (docs/notes/2026-11-23-benchmarks-before-auto.md, "BOX10: curvature from a line").
     pub line_curvature: bool,
 }
 
