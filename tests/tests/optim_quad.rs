@@ -122,3 +122,39 @@ fn adaptive_sigma_shrinks_ahead_of_the_linear_schedule() {
         "σ never reached its floor early: {sigmas:?}"
     );
 }
+
+/// An evaluation budget is not overrun by an iteration whose cost the run has seen:
+/// every iteration of every preset on QUAD (budgets 60 and 500) starts only where the
+/// costliest iteration before it would still end within the budget, and the run stops
+/// where the next would not (the quick report's OurHVPA used 120 of 60 when the budget
+/// was checked only between iterations). Only an iteration costlier than all before it
+/// can overrun, by the difference.
+#[test]
+fn evaluation_budgets_are_kept() {
+    let h = hyper();
+    for preset in Preset::ALL {
+        for budget in [60, 500] {
+            let mut theta = [2.1, -1.3];
+            let (mut used, mut costliest) = (0, 0);
+            optimise(
+                preset.method(&h),
+                preset.schedule(&h),
+                Budget::evaluations(budget),
+                Sampling::of(&h, 3),
+                &mut theta,
+                &mut quad,
+                |r, _| {
+                    let name = preset.name();
+                    assert!(used + costliest <= budget, "{name}: started at {used}");
+                    costliest = costliest.max(r.evaluations - used);
+                    used = r.evaluations;
+                },
+            );
+            assert!(
+                used + costliest > budget,
+                "{}: stopped at {used}",
+                preset.name()
+            );
+        }
+    }
+}

@@ -345,6 +345,8 @@ struct State<T> {
     adapted_sigma: Option<T>,
     /// f(θ) at the current θ, when a deterministic objective was evaluated there.
     value_at_theta: Option<T>,
+    /// Evaluations of the costliest iteration so far.
+    costliest: usize,
     finished: Option<Termination>,
 }
 
@@ -425,6 +427,7 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
                 mean_curvature: None,
                 adapted_sigma: None,
                 value_at_theta: None,
+                costliest: 0,
                 finished: None,
             },
         })
@@ -482,6 +485,14 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
         let st = &mut self.state;
         if let Some(t) = self.budget.exhausted(st.iteration, st.evaluations, now) {
             st.finished = Some(t);
+            return Ok(None);
+        }
+        if self
+            .budget
+            .max_evaluations
+            .is_some_and(|m| st.evaluations.saturating_add(st.costliest) > m)
+        {
+            st.finished = Some(Termination::MaxEvaluations);
             return Ok(None);
         }
         let iteration = st.iteration + 1;
@@ -547,6 +558,7 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
             ),
         };
         st.evaluations += oracle.evaluations;
+        st.costliest = st.costliest.max(oracle.evaluations);
         let loss = oracle.loss;
         // A value stays known while θ stays put or comes from a comparison.
         let value_at_theta = if oracle.settled || theta[..] == saved[..] {

@@ -141,8 +141,10 @@ impl<T: Real> Schedule<T> {
     }
 }
 
-/// When to stop. Limits are checked between iterations, so the last iteration may
-/// overrun the evaluation limit by one iteration's worth.
+/// When to stop. Limits are checked between iterations. An iteration is not started
+/// when it would take the evaluations past `max_evaluations` at the cost of the
+/// costliest iteration so far, so a run overruns that limit only when an iteration
+/// costs more than every earlier one (the first, or a longer line search).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Budget<T> {
     /// Stop after this many iterations. Default: `None`.
