@@ -47,6 +47,8 @@ pub enum Error {
         /// Index of the first non-finite output element.
         index: usize,
     },
+    /// The objective asked to stop ([`crate::Objective::cancelled`]) after a batch.
+    Cancelled,
 }
 
 impl fmt::Display for Error {
@@ -82,6 +84,7 @@ impl fmt::Display for Error {
                     "estimate element {index} overflowed to a non-finite value"
                 )
             }
+            Error::Cancelled => write!(f, "cancelled by the objective"),
         }
     }
 }

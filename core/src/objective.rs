@@ -39,6 +39,13 @@ pub trait Objective<T: Real> {
     fn deterministic(&self) -> bool {
         false
     }
+
+    /// Asked after every batch: `true` stops the work in progress with
+    /// [`crate::Error::Cancelled`] (an interrupt, a deadline), so a long estimate ends
+    /// within one batch instead of one iteration. Default: `false`.
+    fn cancelled(&mut self) -> bool {
+        false
+    }
 }
 
 /// A plain closure cannot see the seed and is taken to be a function of θ alone:

@@ -806,3 +806,44 @@ fn optimize_defaults_to_auto() {
         .expect("a parameter error");
     assert!(error < 1e-8, "{last}");
 }
+
+/// Ctrl-C during an iteration of millions of evaluations stops it within a batch, not
+/// at the iteration's end: `optimize` exits 130 at once and says why it stopped.
+#[test]
+fn an_interrupt_stops_a_long_iteration_between_batches() {
+    use std::time::{Duration, Instant};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_hodr"))
+        .args([
+            "optimize",
+            "--task",
+            "BOX2",
+            "--method",
+            "FR22",
+            "--budget",
+            "1000000000",
+            "--set",
+            "pairs=100000000",
+        ])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(1500));
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let clock = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if clock.elapsed() > Duration::from_secs(5) {
+            child.kill().unwrap();
+            panic!("still running 5 s after the signal");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(130));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("stopped early: interrupted"), "{stderr}");
+}

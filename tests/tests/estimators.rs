@@ -519,3 +519,43 @@ fn reports_carry_the_extremes_of_their_samples() {
         }
     }
 }
+
+/// An objective that counts its evaluations and asks to stop once it has made `limit`.
+struct StopAfter {
+    evaluations: usize,
+    limit: usize,
+}
+
+impl hodr_core::Objective<f64> for StopAfter {
+    fn evaluate(&mut self, x: &[f64], _seed: hodr_core::NoiseSeed) -> f64 {
+        self.evaluations += 1;
+        x.iter().map(|v| v * v).sum()
+    }
+
+    fn cancelled(&mut self) -> bool {
+        self.evaluations >= self.limit
+    }
+}
+
+/// A cancelling objective ends an estimate of 10⁶ pairs within one batch of its request.
+#[test]
+fn cancellation_ends_an_estimate_within_one_batch() {
+    let rows = 16;
+    let mut mem = Memory::new(3, rows);
+    let mut ws = mem.ws(3);
+    for m in GRADIENTS {
+        let mut f = StopAfter {
+            evaluations: 0,
+            limit: 100,
+        };
+        let mut est = Estimator::new(0.5, 1_000_000, Xoshiro256PlusPlus::seed_from_u64(1)).unwrap();
+        let mut g = [0.0; 3];
+        let r = est.gradient(m, &mut f, &[1.0, 2.0, 3.0], &mut ws, &mut g);
+        assert_eq!(r.err(), Some(hodr_core::Error::Cancelled), "{m:?}");
+        assert!(
+            (100..100 + rows).contains(&f.evaluations),
+            "{m:?}: {} evaluations",
+            f.evaluations
+        );
+    }
+}

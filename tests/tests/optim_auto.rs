@@ -341,3 +341,58 @@ fn convergence_rates_hold() {
         .count();
     assert!(solved >= 22, "two wells: {solved} of {seeds}");
 }
+
+/// A cancelling objective stops Auto within one batch, θ keeps the best point so far,
+/// and the run can be resumed.
+#[test]
+fn cancellation_stops_within_one_batch_and_keeps_theta() {
+    struct StopAfter {
+        evaluations: usize,
+        limit: usize,
+    }
+    impl Objective<f64> for StopAfter {
+        fn evaluate(&mut self, x: &[f64], _seed: hodr_core::NoiseSeed) -> f64 {
+            self.evaluations += 1;
+            x.iter().map(|v| (v - 1.0).powi(2)).sum()
+        }
+        fn deterministic(&self) -> bool {
+            true
+        }
+        fn cancelled(&mut self) -> bool {
+            self.evaluations >= self.limit
+        }
+    }
+    let n = 40;
+    let mut theta = vec![0.0; n];
+    let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)];
+    let mut auto = Auto::new(
+        &mut theta,
+        1.0,
+        &mut buffer,
+        Xoshiro256PlusPlus::seed_from_u64(2),
+    )
+    .unwrap();
+    let mut f = StopAfter {
+        evaluations: 0,
+        limit: 30,
+    };
+    let mut ended = None;
+    for _ in 0..1000 {
+        match auto.step(&mut f) {
+            Ok(Some(_)) => {}
+            Ok(None) => break,
+            Err(e) => {
+                ended = Some(e);
+                break;
+            }
+        }
+    }
+    assert_eq!(ended, Some(Error::Cancelled));
+    assert!(f.evaluations < 30 + 64, "{} evaluations", f.evaluations);
+    assert!(auto.theta().iter().all(|v| v.is_finite()));
+    f.limit = usize::MAX;
+    assert!(
+        auto.step(&mut f).is_ok(),
+        "the run goes on after a cancellation"
+    );
+}

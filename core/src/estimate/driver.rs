@@ -108,6 +108,9 @@ where
         let used = chunk * rows_per_group;
         let batch = Batch::new(&buffers.points[..used * dim], &buffers.seeds[..used], dim)?;
         objective.evaluate_batch(&batch, &mut buffers.values[..used]);
+        if objective.cancelled() {
+            return Err(Error::Cancelled);
+        }
         if let Some(row) = buffers.values[..used].iter().position(|v| !v.is_finite()) {
             buffers.failed = Some(row);
             return Err(Error::NonFiniteObjective {

@@ -379,7 +379,8 @@ impl<T: Real, R: Rng> Estimator<T, R> {
     /// [`Error::NonFiniteInput`] for a non-finite θ; [`Error::NonFiniteObjective`] (the
     /// point stays in the workspace); [`Error::NonFiniteEstimate`] on overflow;
     /// [`Error::WorkspaceTooSmall`] for [`GradientMethod::Regression`] without a moment
-    /// region. On error `grad` holds no meaningful values.
+    /// region; [`Error::Cancelled`] when the objective asks to stop. On error `grad`
+    /// holds no meaningful values.
     pub fn gradient<O: Objective<T> + ?Sized>(
         &mut self,
         method: GradientMethod,

@@ -471,7 +471,7 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
     ///
     /// # Errors
     /// [`Failed`] naming the iteration when an estimate fails (a non-finite objective
-    /// value, an overflowing estimate); θ is restored to its value at the start of the
+    /// value, an overflowing estimate, [`Error::Cancelled`]); θ is restored to its value at the start of the
     /// iteration, and further steps may be attempted.
     pub fn step<O: Objective<T> + ?Sized>(
         &mut self,

@@ -404,6 +404,9 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         self.objective
             .evaluate_batch(&batch, &mut b.values[..count]);
         self.evaluations += count;
+        if self.objective.cancelled() {
+            return Err(Error::Cancelled);
+        }
         if let Some(k) = b.values[..count].iter().position(|v| !v.is_finite()) {
             b.failed = Some(k);
             return Err(Error::NonFiniteObjective { sample: k });

@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use anyhow::{Context, Result};
 use hodr_core::optim::preset::Preset;
 use hodr_core::optim::{Auto, AutoOptions, Budget, Optimiser};
-use hodr_core::{Estimator, GradientMethod, Workspace};
+use hodr_core::{Batch, Estimator, GradientMethod, NoiseSeed, Objective, Workspace};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 use serde::Serialize;
@@ -182,7 +182,10 @@ pub fn run_observed(
     interrupt: &AtomicBool,
     observe: &mut dyn FnMut(&Point),
 ) -> Result<Run> {
-    let mut objective = task.objective()?;
+    let mut objective = Interruptible {
+        inner: task.objective()?,
+        interrupt,
+    };
     let mut probe = task.objective()?;
     let optimum = task.optimum();
     let start = task.start(seed);
@@ -268,9 +271,13 @@ pub fn run_observed(
                     break;
                 }
                 let clock = Instant::now();
-                let step = opt.step(objective.as_mut(), &mut ws, 0.0);
+                let step = opt.step(&mut objective, &mut ws, 0.0);
                 elapsed += clock.elapsed();
                 match step {
+                    Err(failed) if failed.error == hodr_core::Error::Cancelled => {
+                        stopped = Some("interrupted".to_string());
+                        break;
+                    }
                     Ok(Some(report)) => record(
                         elapsed,
                         report.evaluations,
@@ -309,9 +316,13 @@ pub fn run_observed(
                     break;
                 }
                 let clock = Instant::now();
-                let step = auto.step(objective.as_mut());
+                let step = auto.step(&mut objective);
                 elapsed += clock.elapsed();
                 match step {
+                    Err(hodr_core::Error::Cancelled) => {
+                        stopped = Some("interrupted".to_string());
+                        break;
+                    }
                     Ok(Some(report)) => record(
                         elapsed,
                         report.evaluations,
@@ -333,7 +344,7 @@ pub fn run_observed(
             let mut noise = 0u64;
             let mut f = move |x: &cmaes::DVector<f64>| {
                 noise = noise.wrapping_add(1);
-                objective.evaluate(x.as_slice(), noise)
+                objective.inner.evaluate(x.as_slice(), noise)
             };
             let mut cma = cmaes::CMAESOptions::new(start.clone(), sigma)
                 .seed(seed)
@@ -375,4 +386,29 @@ pub fn run_observed(
         best,
         best_theta,
     })
+}
+
+/// A task's objective that reports the run's interrupt flag after every batch, so Ctrl-C
+/// stops an estimate within one batch ([`Objective::cancelled`]).
+struct Interruptible<'a> {
+    inner: Box<dyn Objective<f64> + Send>,
+    interrupt: &'a AtomicBool,
+}
+
+impl Objective<f64> for Interruptible<'_> {
+    fn evaluate(&mut self, theta: &[f64], seed: NoiseSeed) -> f64 {
+        self.inner.evaluate(theta, seed)
+    }
+
+    fn evaluate_batch(&mut self, batch: &Batch<'_, f64>, out: &mut [f64]) {
+        self.inner.evaluate_batch(batch, out);
+    }
+
+    fn deterministic(&self) -> bool {
+        self.inner.deterministic()
+    }
+
+    fn cancelled(&mut self) -> bool {
+        self.interrupt.load(Ordering::Relaxed) || self.inner.cancelled()
+    }
 }

@@ -638,7 +638,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     ///
     /// # Errors
     /// [`Error::NonFiniteObjective`] (with [`NonFinite::Error`]) naming the evaluation
-    /// of this iteration that was not finite; θ keeps its value and the run may go on.
+    /// of this iteration that was not finite; [`Error::Cancelled`] when the objective
+    /// asks to stop. θ keeps its value and the run may go on.
     pub fn step<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,
@@ -1145,6 +1146,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             )?;
             objective.evaluate_batch(&batch, &mut self.mem.stage_f[start..start + len]);
             start += len;
+            if objective.cancelled() {
+                self.st.evaluations += start;
+                *spent += start;
+                return Err(Error::Cancelled);
+            }
         }
         self.st.evaluations += rows;
         let first = *spent;
