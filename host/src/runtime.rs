@@ -8,8 +8,8 @@
 //!
 //! QUAD, QUAD-far and BOX2-REF are the report's tasks ([`crate::report::task`]), run as
 //! the report runs them: the same starts, objective and hyper-parameters
-//! ([`Task::run_hyper`]: the paper's, DESIGN §3, with the tasks' settings for the
-//! adaptive presets) and the full report's evaluation budget ([`Task::budget`]).
+//! ([`Task::run_hyper`]: the paper's, DESIGN §3, for its presets; what the task states
+//! for a Newton-CG recipe) and the full report's evaluation budget ([`Task::budget`]).
 //! STIFF-κ ([`Stiff`]) is defined here:
 //!
 //! | task | start | pairs | σ | Δ | LS | recompute | Adam η | budget |
@@ -208,7 +208,7 @@ pub fn table(tasks: &[Box<dyn Task>], presets: &[Preset], seeds: u64, crn: bool)
             let runs = (0..seeds)
                 .map(|s| run(task.as_ref(), preset, s, budget, crn))
                 .collect::<Result<Vec<Vec<Sample>>>>()?;
-            let _ = write!(md, "| {} |", preset.name());
+            let _ = write!(md, "| {preset} |");
             for reduction in REDUCTIONS {
                 let reached: Vec<_> = runs.iter().map(|r| first_reaching(r, reduction)).collect();
                 let t = median(

@@ -847,3 +847,30 @@ fn an_interrupt_stops_a_long_iteration_between_batches() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("stopped early: interrupted"), "{stderr}");
 }
+
+/// Newton-CG is named by its options: a recipe runs under its text form, and a bad
+/// option is an error that teaches the syntax.
+#[test]
+fn newton_cg_recipes_are_named_by_their_options() {
+    let out = hodr(&[
+        "optimize",
+        "--task",
+        "QUAD",
+        "--method",
+        "newtoncg/FR22/compare",
+        "--budget",
+        "300",
+        "--quiet",
+    ]);
+    assert!(out.status.success(), "{out:?}");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("with NewtonCG/fr22/compare"), "{stdout}");
+    let out = hodr(&["optimize", "--task", "QUAD", "--method", "NewtonCG/fast"]);
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("unknown method `NewtonCG/fast`") && stderr.contains("/compare"),
+        "{stderr}"
+    );
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+}

@@ -71,25 +71,6 @@ pub struct Settings {
     pub recompute: usize,
     /// Adam's learning rate for the first-order methods.
     pub adam_learning_rate: f64,
-    /// What the presets whose σ follows the run (`hodr_core::optim::Schedule::Adaptive`)
-    /// take instead of the above, if the task sets it; [`Settings::hyper`] leaves it out.
-    pub adaptive: Option<AdaptiveSettings>,
-}
-
-/// A task's settings for the presets with the adaptive σ schedule.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AdaptiveSettings {
-    /// Antithetic pairs per estimate.
-    pub pairs: usize,
-    /// σ at the first iteration, θ units.
-    pub sigma_start: f64,
-    /// Factor in (0, 1) by which σ shrinks after a short step.
-    pub sigma_shrink: f64,
-    /// Newton-CG's inner CG steps per iteration.
-    pub inner_steps: usize,
-    /// Newton-CG's first inner step takes its curvature from f on a line along ĝ
-    /// (`hodr_core::optim::NewtonCg::line_curvature`).
-    pub line_curvature: bool,
 }
 
 impl Settings {
@@ -267,7 +248,6 @@ const TRI1D: Settings = Settings {
     line_search_iterations: 3,
     recompute: 10,
     adam_learning_rate: 0.3,
-    adaptive: None,
 };
 
 const BOX2: Settings = Settings {
@@ -278,20 +258,12 @@ const BOX2: Settings = Settings {
     line_search_iterations: 3,
     recompute: 10,
     adam_learning_rate: 0.3,
-    adaptive: None,
 };
 
 /// The paper's σ start (0.6), recompute and line search; more pairs (16, not 6), a
 /// smaller trust radius (σ, not 10σ) and a lower final σ (0.05, not 0.1): with the
 /// paper's values in our units every NCG step on the plateau moves each square by up
 /// to 6 of the image's 8 units and the squares scatter.
-///
-/// The adaptive presets start wider (σ 1.0), shrink by 0.8, take 24 pairs and one
-/// inner CG step (the model minimum along the gradient), its curvature from f on a
-/// line along ĝ (2–3 evaluations, not an HVP's 48): a wider start keeps squares from
-/// settling on one another, and cheap iterations with many pairs shorten the noisy end
-/// game (docs/notes/2026-11-23-benchmarks-before-auto.md, "BOX10: Newton-CG on FR22 gradients" and "BOX10: curvature
-/// from a line").
 const BOX10: Settings = Settings {
     pairs: 16,
     sigma_start: 0.6,
@@ -300,13 +272,6 @@ const BOX10: Settings = Settings {
     line_search_iterations: 3,
     recompute: 30,
     adam_learning_rate: 0.05,
-    adaptive: Some(AdaptiveSettings {
-        pairs: 24,
-        sigma_start: 1.0,
-        sigma_shrink: 0.8,
-        inner_steps: 1,
-        line_curvature: true,
-    }),
 };
 
 const SHAPES: Settings = Settings {
@@ -317,7 +282,6 @@ const SHAPES: Settings = Settings {
     line_search_iterations: 3,
     recompute: 20,
     adam_learning_rate: 0.05,
-    adaptive: None,
 };
 
 const BLACK: Rgba = Rgba::rgb(0.0, 0.0, 0.0);

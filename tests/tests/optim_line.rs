@@ -4,9 +4,10 @@
 //! through the three values.
 
 mod common;
+use common::newton_cg;
 
 use common::{Sampling, optimise};
-use hodr_core::optim::preset::{Hyper, Preset};
+use hodr_core::optim::preset::Hyper;
 use hodr_core::optim::{Budget, StepReport};
 use hodr_core::{NoiseSeed, Objective};
 
@@ -57,7 +58,7 @@ fn hyper() -> Hyper<f64> {
 /// would cost 2P + 2P.
 #[test]
 fn line_steps_land_on_the_minimum_along_the_gradient() {
-    for preset in [Preset::NewtonCgAdaptive, Preset::NewtonCgFr22] {
+    for preset in [newton_cg("NewtonCG"), newton_cg("NewtonCG/fr22")] {
         let h = hyper();
         for seed in 0..5 {
             let mut theta = start();
@@ -105,7 +106,7 @@ fn line_steps_land_on_the_minimum_along_the_gradient() {
 #[test]
 fn compared_line_iterations_evaluate_f_at_theta_at_most_once() {
     let h = hyper();
-    let preset = Preset::NewtonCgCompare;
+    let preset = newton_cg("NewtonCG/compare");
     let counts = |deterministic| {
         let mut per_iteration = Vec::new();
         let mut last = 0;

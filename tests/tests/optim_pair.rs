@@ -4,9 +4,10 @@
 //! costs f(θ) (remembered, or one evaluation) instead of a gradient estimate at θ + εu.
 
 mod common;
+use common::newton_cg;
 
 use common::{Sampling, optimise};
-use hodr_core::optim::preset::{Hyper, Preset};
+use hodr_core::optim::preset::Hyper;
 use hodr_core::optim::{Budget, Schedule};
 use hodr_core::{NoiseSeed, Objective};
 
@@ -38,7 +39,10 @@ fn adaptive(h: &Hyper<f64>) -> Schedule<f64> {
 /// iteration (2 + 1), where a forward-difference HVP costs 4.
 #[test]
 fn one_pair_steps_to_the_minimum_along_its_line() {
-    for preset in [Preset::NewtonCgAdaptive, Preset::NewtonCgKernel] {
+    for preset in [
+        newton_cg("NewtonCG"),
+        newton_cg("NewtonCG/gaussian/kernel/linear"),
+    ] {
         let h = hyper();
         let mut method = preset.method(&h);
         if let hodr_core::optim::Method::NewtonCg(m) = &mut method {
@@ -96,7 +100,7 @@ fn compared_one_pair_iterations_evaluate_f_at_theta_at_most_once() {
         trust_radius: 2.0,
         ..hyper()
     };
-    let preset = Preset::NewtonCgCompare;
+    let preset = newton_cg("NewtonCG/compare");
     let run = |objective: &mut dyn Objective<f64>| {
         let mut theta = [2.0, -1.5];
         let mut per_iteration = Vec::new();
@@ -144,7 +148,7 @@ impl Objective<f64> for DynObjective<'_> {
 #[test]
 fn fr22_in_two_dimensions_keeps_its_hvp() {
     let h = hyper();
-    let preset = Preset::NewtonCgFr22;
+    let preset = newton_cg("NewtonCG/fr22");
     let mut theta = [2.0, -1.5];
     let mut last = 0;
     optimise(

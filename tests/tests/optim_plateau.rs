@@ -7,9 +7,10 @@
 //! it (docs/notes/2026-11-23-benchmarks-before-auto.md, "BOX2-REF: forward differences, plateaus, remembered values").
 
 mod common;
+use common::newton_cg;
 
 use common::{Sampling, optimise};
-use hodr_core::optim::preset::{Hyper, Preset};
+use hodr_core::optim::preset::Hyper;
 use hodr_core::optim::{Budget, Schedule};
 use hodr_core::{NoiseSeed, Objective};
 
@@ -30,10 +31,10 @@ fn hyper() -> Hyper<f64> {
 #[test]
 fn newton_cg_waits_on_a_plateau_without_shrinking_sigma() {
     for preset in [
-        Preset::NewtonCgAggregate,
-        Preset::NewtonCgAdaptive,
-        Preset::NewtonCgCompare,
-        Preset::NewtonCgFr22,
+        newton_cg("NewtonCG/linear"),
+        newton_cg("NewtonCG"),
+        newton_cg("NewtonCG/compare"),
+        newton_cg("NewtonCG/fr22"),
     ] {
         let h = hyper();
         let start = [40.0, -35.0];
@@ -85,7 +86,7 @@ impl Objective<f64> for Undeclared {
 /// Twelve NewtonCG-ASC iterations from (2, 1.5): the final θ and the evaluation count.
 fn compared_run(objective: &mut impl Objective<f64>) -> ([f64; 2], usize) {
     let h = hyper();
-    let preset = Preset::NewtonCgCompare;
+    let preset = newton_cg("NewtonCG/compare");
     let mut theta = [2.0, 1.5];
     let mut evaluations = 0;
     optimise(

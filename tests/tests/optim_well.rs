@@ -7,6 +7,7 @@
 //! fall; MUG's hyper-parameters (one pair, σ 3 → 0.01, Δ = 4).
 
 mod common;
+use common::newton_cg;
 
 use common::{Sampling, optimise};
 use hodr_core::optim::Budget;
@@ -61,8 +62,8 @@ fn wins(preset: Preset, evaluations: usize) -> usize {
 /// difference's is the secant over [θ, θ + σ/3], blunter on a well of width σ/15).
 #[test]
 fn compared_steps_find_a_narrow_well_beside_a_wall() {
-    let compared = wins(Preset::NewtonCgCompare, 150);
-    let uncompared = wins(Preset::NewtonCgAdaptive, 150);
+    let compared = wins(newton_cg("NewtonCG/compare"), 150);
+    let uncompared = wins(newton_cg("NewtonCG"), 150);
     assert!(
         compared >= 15 && uncompared <= 8,
         "NewtonCG-ASC {compared}/20, NewtonCG-AS {uncompared}/20"

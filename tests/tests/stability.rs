@@ -2,6 +2,9 @@
 //! finite parameters and either make progress or return a typed error — never NaN,
 //! never a panic.
 
+mod common;
+use common::newton_cg;
+
 use hodr_core::optim::preset::{Hyper, Preset};
 use hodr_core::optim::{Budget, Failed, Optimiser};
 use hodr_core::{Error, Estimator, Objective, Real, Workspace};
@@ -144,7 +147,7 @@ fn stiff_cases() -> impl Iterator<Item = (usize, f64, Stiff, Vec<f64>)> {
 fn stiff_quadratics_stay_finite_and_do_not_diverge() {
     for (n, kappa, mut f, start) in stiff_cases() {
         let d0 = dist(&start, &f.optimum);
-        for preset in [Preset::NewtonCgAggregate, Preset::OurHvpa] {
+        for preset in [newton_cg("NewtonCG/linear"), Preset::OurHvpa] {
             let h = hyper::<f64>(0.5, 10.0);
             let optimum = f.optimum.clone();
             let mut worst = 0.0f64;
@@ -152,17 +155,17 @@ fn stiff_quadratics_stay_finite_and_do_not_diverge() {
                 worst = worst.max(dist(t, &optimum))
             });
             result.unwrap();
-            assert!(finite(&theta), "{} n={n} κ={kappa:e}", preset.name());
+            assert!(finite(&theta), "{} n={n} κ={kappa:e}", preset);
             let d = dist(&theta, &f.optimum);
-            assert!(worst.is_finite(), "{} n={n} κ={kappa:e}", preset.name());
+            assert!(worst.is_finite(), "{} n={n} κ={kappa:e}", preset);
             // NCG with independent-looking noise can wander on stiff problems (measured:
             // OurHVPA at n = 50, κ = 1e4 ends 14× farther than it started); Newton-CG
             // with one sample set per iteration stays within its start's scale.
-            if preset == Preset::NewtonCgAggregate {
+            if preset == newton_cg("NewtonCG/linear") {
                 assert!(
                     d <= 10.0 * d0,
                     "{} n={n} κ={kappa:e}: {d} from {d0}",
-                    preset.name()
+                    preset
                 );
             }
         }
@@ -178,7 +181,7 @@ fn iterations_to<O: Objective<f64>>(
     target: f64,
     max_iterations: usize,
 ) -> Option<(usize, usize)> {
-    let preset = Preset::NewtonCgRegression;
+    let preset = newton_cg("NewtonCG/ls/linear");
     let h = hyper::<f64>(0.5, 10.0);
     let method = preset.method(&h);
     let n = start.len();
@@ -238,7 +241,7 @@ fn rosenbrock_2_and_10_dimensions_improve() {
             .collect();
         let f0 = rosenbrock(&start);
         for preset in [
-            Preset::NewtonCgAggregate,
+            newton_cg("NewtonCG/linear"),
             Preset::OurHvpa,
             Preset::NcgKernel,
         ] {
@@ -250,7 +253,7 @@ fn rosenbrock_2_and_10_dimensions_improve() {
             assert!(
                 rosenbrock(&theta) < f0,
                 "{} n={n}: {} from {f0}",
-                preset.name(),
+                preset,
                 rosenbrock(&theta)
             );
         }
@@ -268,7 +271,7 @@ fn negated_gaussian_is_descended_to_its_centre() {
     for start in [[2.5, -2.0], [-2.9, 0.3], [0.5, 2.8], [1.5, 1.5]] {
         for preset in [
             Preset::OurHvpa,
-            Preset::NewtonCgAggregate,
+            newton_cg("NewtonCG/linear"),
             Preset::NcgKernel,
         ] {
             let h = hyper::<f64>(0.5, 2.0);
@@ -283,12 +286,12 @@ fn negated_gaussian_is_descended_to_its_centre() {
             assert!(
                 worst <= start_loss + 0.02,
                 "{}: rose to {worst} from {start_loss}",
-                preset.name()
+                preset
             );
             assert!(
                 dist(&theta, &[0.0, 0.0]) < 0.1,
                 "{} from {start:?}: ended at {theta:?}",
-                preset.name()
+                preset
             );
         }
     }
@@ -299,7 +302,7 @@ fn negated_gaussian_is_descended_to_its_centre() {
 fn saddle_is_only_descended() {
     for preset in [
         Preset::OurHvpa,
-        Preset::NewtonCgAggregate,
+        newton_cg("NewtonCG/linear"),
         Preset::NcgKernel,
         Preset::OurHNewton,
     ] {
@@ -315,8 +318,8 @@ fn saddle_is_only_descended() {
         });
         result.unwrap();
         assert!(finite(&theta));
-        assert!(rises <= 0.05, "{}: loss rose by {rises}", preset.name());
-        assert!(last < 0.63, "{}: no descent ({last})", preset.name());
+        assert!(rises <= 0.05, "{}: loss rose by {rises}", preset);
+        assert!(last < 0.63, "{}: no descent ({last})", preset);
     }
 }
 
@@ -345,21 +348,21 @@ fn plateaus_give_no_division_by_zero() {
         let mut flat = |_: &[f64]| 3.0;
         let (theta, result) = optimise(preset, &h, &mut flat, &[1.0, -1.0], 10, |_| {});
         result.unwrap();
-        assert_eq!(theta, [1.0, -1.0], "{} line={line}", preset.name());
+        assert_eq!(theta, [1.0, -1.0], "{} line={line}", preset);
         let mut step = |x: &[f64]| if x[0] > 2.0 { 1.0 } else { 0.0 };
         let (theta, result) = optimise(preset, &h, &mut step, &[1.0, 0.0], 10, |_| {});
         result.unwrap();
         assert!(
             finite(&theta) && dist(&theta, &[1.0, 0.0]) < 2.0,
             "{} line={line}: {theta:?}",
-            preset.name()
+            preset
         );
         // Single precision too.
         let h32 = hyper_with::<f32>(0.1, 2.0, line);
         let mut flat32 = |_: &[f32]| 3.0f32;
         let (theta, result) = optimise(preset, &h32, &mut flat32, &[1.0f32, -1.0], 5, |_| {});
         result.unwrap();
-        assert_eq!(theta, [1.0f32, -1.0], "{} f32 line={line}", preset.name());
+        assert_eq!(theta, [1.0f32, -1.0], "{} f32 line={line}", preset);
     }
 }
 
@@ -378,7 +381,7 @@ fn extreme_scales_give_finite_results_or_typed_errors() {
                 assert!(
                     finite(&theta),
                     "σ={sigma:e} offset={offset:e} scale={scale:e} {} line={line}",
-                    preset.name()
+                    preset
                 );
                 if let Err(e) = result {
                     assert!(
@@ -399,7 +402,7 @@ fn extreme_scales_give_finite_results_or_typed_errors() {
                 assert!(
                     finite(&theta),
                     "f32 σ={sigma:e} offset={offset:e} scale={scale:e} {} line={line}",
-                    preset.name()
+                    preset
                 );
                 if let Err(e) = result {
                     assert!(
@@ -429,7 +432,7 @@ fn non_finite_objective_stops_with_the_iteration_and_keeps_parameters() {
             }
         };
         let (theta, result) = optimise(preset, &h, &mut f, &[0.0, 0.5], 200, |_| {});
-        let failed = result.expect_err(&format!("{} line={line}", preset.name()));
+        let failed = result.expect_err(&format!("{} line={line}", preset));
         assert!(failed.iteration >= 1);
         assert!(
             matches!(failed.error, Error::NonFiniteObjective { .. }),
@@ -438,7 +441,7 @@ fn non_finite_objective_stops_with_the_iteration_and_keeps_parameters() {
         assert!(
             finite(&theta) && theta[0] <= 1.5 + 10.0 * 0.3,
             "{} line={line}: {theta:?}",
-            preset.name()
+            preset
         );
         assert!(format!("{failed}").contains(&format!("iteration {}", failed.iteration)));
     }
@@ -452,7 +455,7 @@ fn non_finite_objective_stops_with_the_iteration_and_keeps_parameters() {
 #[test]
 fn two_sided_negative_curvature_step_finds_the_deeper_side() {
     use hodr_core::optim::{Method, NegativeCurvature};
-    for preset in [Preset::OurHvpa, Preset::NewtonCgAggregate] {
+    for preset in [Preset::OurHvpa, newton_cg("NewtonCG/linear")] {
         {
             let nc = NegativeCurvature::TwoSided;
             let h = hyper::<f64>(0.5, 2.0);
@@ -485,7 +488,7 @@ fn two_sided_negative_curvature_step_finds_the_deeper_side() {
             let mut ws = Workspace::new(2, &mut wb, &mut seeds).unwrap();
             opt.run(&mut f, &mut ws, || 0.0, |_, _| {}).unwrap();
             let x = opt.theta()[0];
-            assert!(x < -0.8, "{} {nc:?}: ended at x = {x}", preset.name());
+            assert!(x < -0.8, "{} {nc:?}: ended at x = {x}", preset);
         }
     }
 }

@@ -33,6 +33,15 @@ mod oracle;
     feature = "gaussian"
 ))]
 pub mod preset;
+#[cfg(all(
+    feature = "hessian",
+    feature = "aggregate",
+    feature = "cg",
+    feature = "regression",
+    feature = "per-element",
+    feature = "gaussian"
+))]
+pub mod recipe;
 mod schedule;
 #[cfg(feature = "cg")]
 mod steihaug;

@@ -9,30 +9,24 @@
 //! | `OurHvp` | NCG | per-element IS | central-difference HVP of per-element gradients |
 //! | `OurHvpa` | NCG | aggregate IS | central-difference HVP of aggregate gradients |
 //! | `NcgKernel` | NCG | Gaussian | kernel HVP, samples shared with the gradient |
-//! | `NewtonCgKernel` | Newton-CG (Steihaug) | Gaussian | kernel HVP |
-//! | `NewtonCgAggregate` | Newton-CG (Steihaug), one sample set per iteration | aggregate IS | CRN forward-difference HVP |
-//! | `NewtonCgRegression` | Newton-CG (Steihaug), one sample set per iteration | least squares | CRN forward-difference HVP |
-//! | `NewtonCgAdaptive` | `NewtonCgAggregate` with the adaptive σ schedule | aggregate IS | CRN forward-difference HVP |
-//! | `NewtonCgCompare` | `NewtonCgAdaptive`, steps compared on f with θ and the lowest sample | aggregate IS | CRN forward-difference HVP |
-//! | `NewtonCgFr22` | `NewtonCgAdaptive` on FR22 gradients | FR22 | CRN forward-difference HVP of FR22 gradients |
+//! | `NewtonCg(recipe)` | Newton-CG (Steihaug) | the [`Recipe`]'s | the [`Recipe`]'s |
+//!
+//! The first six are the paper's methods (DESIGN §4). Newton-CG is not a list of named
+//! variants but a [`Recipe`]: gradient × curvature × σ control × step comparison.
 //!
 //! Every preset anneals σ linearly from `sigma_start` to `sigma_end` over the budget (the
-//! paper's schedule) except `NewtonCgAdaptive`, `NewtonCgCompare` and `NewtonCgFr22`,
+//! paper's schedule) except a recipe with [`SigmaControl::Adaptive`] (the default one),
 //! whose σ shrinks by `sigma_shrink` after each short step to a model minimum
-//! ([`Schedule::Adaptive`]; [`Preset::adaptive`]).
+//! ([`Schedule::Adaptive`]).
 //!
 //! The paper's HVP presets draw the two gradients of a central difference independently
 //! (as its code does); [`Hyper::common_random_numbers`] switches them to common random
-//! numbers. Our Newton-CG presets difference the gradient at θ + εu with the
-//! iteration's own ĝ(θ) from the same samples ([`HvpMethod::ForwardDifference`]): each
-//! HVP costs one gradient estimate instead of two. Where an iteration's gradient is one
-//! antithetic pair along its offset (the aggregate estimator with one pair, any
-//! estimator in one dimension), they take the curvature along it from the pair and f(θ)
-//! instead ([`NewtonCg::pair_curvature`]). With [`Hyper::line_curvature`] the first
-//! curvature of an iteration with several pairs comes from f on a line along ĝ
-//! ([`NewtonCg::line_curvature`]). What each of these saved is in docs/notes/2026-11-23-benchmarks-before-auto.md.
+//! numbers.
 
-use super::{Adam, Curvature, Method, Ncg, NegativeCurvature, Newton, NewtonCg, Schedule};
+use core::fmt;
+
+use super::recipe::{Recipe, SigmaControl};
+use super::{Adam, Curvature, Method, Ncg, NegativeCurvature, Newton, Schedule};
 use crate::error::Error;
 use crate::estimate::{Draws, GradientMethod, HessianMethod, HvpMethod};
 use crate::real::Real;
@@ -79,18 +73,19 @@ pub struct Hyper<T> {
     /// Default: [`NegativeCurvature::Fallback`].
     pub negative_curvature: NegativeCurvature,
     /// Factor in (0, 1) by which the adaptive schedule shrinks σ after a step shorter
-    /// than σ ([`Schedule::Adaptive`]; used only by the presets that are
-    /// [`Preset::adaptive`]).
+    /// than σ ([`Schedule::Adaptive`]; used only by recipes with
+    /// [`SigmaControl::Adaptive`]).
     /// Default: [`SIGMA_SHRINK`].
     pub sigma_shrink: T,
-    /// Inner CG steps per iteration of the Newton-CG presets (not
-    /// [`Preset::NewtonCgRegression`], which takes [`REGRESSION_INNER_STEPS`]), ≥ 1; 1
-    /// makes the step the model minimum along the gradient, capped by the trust radius.
+    /// Inner CG steps per iteration of Newton-CG ([`Recipe`]; with the least-squares
+    /// gradient it takes [`super::recipe::REGRESSION_INNER_STEPS`]), ≥ 1; 1 makes the
+    /// step the model minimum along the gradient, capped by the trust radius.
     /// Default: [`NEWTON_CG_INNER_STEPS`].
     pub inner_steps: usize,
-    /// The reusing Newton-CG presets (NewtonCG-A, -AS, -ASC, -FR, -LS) take their first
-    /// inner step's curvature from f on a line along ĝ rather than an HVP
-    /// ([`NewtonCg::line_curvature`]). Default: `false`.
+    /// Newton-CG with curvature from the iteration's samples
+    /// ([`super::recipe::CurvatureSource::Samples`]) takes its first inner step's
+    /// curvature from f on a line along ĝ rather than an HVP
+    /// ([`super::NewtonCg::line_curvature`]). Default: `false`.
     pub line_curvature: bool,
 }
 
@@ -292,45 +287,13 @@ pub enum Preset {
     OurHvpa,
     /// NCG + Gaussian gradient + kernel HVP from shared samples.
     NcgKernel,
-    /// Newton-CG (Steihaug) + Gaussian gradient + kernel HVP.
-    NewtonCgKernel,
-    /// Newton-CG (Steihaug) + aggregate gradient + CRN forward-difference HVP of
-    /// aggregate gradients, every estimate of an iteration from the same samples
-    /// ([`Hyper::inner_steps`] inner steps).
-    NewtonCgAggregate,
-    /// Newton-CG (Steihaug) + least-squares gradient + CRN forward-difference HVP of
-    /// least-squares gradients, every estimate of an iteration from the same samples
-    /// (up to [`REGRESSION_INNER_STEPS`] inner steps). Exact Newton steps on quadratics
-    /// whatever their conditioning.
-    NewtonCgRegression,
-    /// [`Preset::NewtonCgAggregate`] with σ following the run ([`Schedule::Adaptive`])
-    /// rather than the budget.
-    NewtonCgAdaptive,
-    /// [`Preset::NewtonCgAdaptive`] whose iterations end with a comparison on f of the
-    /// current θ, the model step and the iteration's lowest sample
-    /// ([`NewtonCg::compare_samples`]).
-    NewtonCgCompare,
-    /// [`Preset::NewtonCgAdaptive`] with the FR22 gradient (DESIGN §1.6) and the CRN
-    /// forward difference of FR22 gradients as its HVP. FR22 blurs the coordinates it
-    /// does not differentiate with p_G, which vanishes at 0, rather than N₁; where
-    /// several shapes move at once Newton-CG on these estimates converges where on the
-    /// aggregate ones shapes settle on one another.
-    NewtonCgFr22,
+    /// Newton-CG (Steihaug) as a [`Recipe`] puts it together.
+    NewtonCg(Recipe),
 }
 
-/// Inner CG steps per iteration of [`Preset::NewtonCgRegression`] (Newton-CG caps them at
-/// 2n): its HVPs are exact on quadratics, so long inner runs stay conjugate and pay off
-/// on stiff problems.
-pub const REGRESSION_INNER_STEPS: usize = 100;
-
-/// Inner CG tolerance of [`Preset::NewtonCgRegression`]: on a stiff problem the soft
-/// directions dominate the parameter error but barely show in the residual, so the
-/// inner solve runs to near-exactness.
-pub const REGRESSION_INNER_TOLERANCE: f64 = 1e-8;
-
 impl Preset {
-    /// Every preset, the paper's first.
-    pub const ALL: [Preset; 13] = [
+    /// Every preset, the paper's first, then NCG-kernel and the default [`Recipe`].
+    pub const ALL: [Preset; 8] = [
         Preset::Fr22,
         Preset::OurG,
         Preset::OurH,
@@ -338,17 +301,22 @@ impl Preset {
         Preset::OurHvp,
         Preset::OurHvpa,
         Preset::NcgKernel,
-        Preset::NewtonCgKernel,
-        Preset::NewtonCgAggregate,
-        Preset::NewtonCgRegression,
-        Preset::NewtonCgAdaptive,
-        Preset::NewtonCgCompare,
-        Preset::NewtonCgFr22,
+        Preset::NewtonCg(Recipe::DEFAULT),
     ];
 
-    /// The name used in reports and on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
+    /// The preset named `name` (case-insensitive; a recipe in its text form, see
+    /// [`super::recipe`]), if any.
+    pub fn from_name(name: &str) -> Option<Preset> {
+        Preset::ALL
+            .into_iter()
+            .filter(|p| !matches!(p, Preset::NewtonCg(_)))
+            .find(|p| p.paper_name().is_some_and(|n| n.eq_ignore_ascii_case(name)))
+            .or_else(|| Recipe::parse(name).ok().map(Preset::NewtonCg))
+    }
+
+    /// The name of a preset that is not a recipe.
+    fn paper_name(self) -> Option<&'static str> {
+        Some(match self {
             Preset::Fr22 => "FR22",
             Preset::OurG => "OurG",
             Preset::OurH => "OurH",
@@ -356,20 +324,21 @@ impl Preset {
             Preset::OurHvp => "OurHVP",
             Preset::OurHvpa => "OurHVPA",
             Preset::NcgKernel => "NCG-kernel",
-            Preset::NewtonCgKernel => "NewtonCG-kernel",
-            Preset::NewtonCgAggregate => "NewtonCG-A",
-            Preset::NewtonCgRegression => "NewtonCG-LS",
-            Preset::NewtonCgAdaptive => "NewtonCG-AS",
-            Preset::NewtonCgCompare => "NewtonCG-ASC",
-            Preset::NewtonCgFr22 => "NewtonCG-FR",
-        }
+            Preset::NewtonCg(_) => return None,
+        })
     }
 
-    /// The preset with this name (case-insensitive), if any.
-    pub fn from_name(name: &str) -> Option<Preset> {
-        Preset::ALL
-            .into_iter()
-            .find(|p| p.name().eq_ignore_ascii_case(name))
+    /// The gradient estimator of the preset's iterations.
+    pub fn gradient(self) -> GradientMethod {
+        match self {
+            Preset::Fr22 => GradientMethod::Fr22,
+            Preset::OurG | Preset::OurH | Preset::OurHNewton | Preset::OurHvp => {
+                GradientMethod::PerElement
+            }
+            Preset::OurHvpa => GradientMethod::Aggregate,
+            Preset::NcgKernel => GradientMethod::Gaussian,
+            Preset::NewtonCg(r) => r.gradient,
+        }
     }
 
     /// True for the first-order presets (Adam).
@@ -395,28 +364,6 @@ impl Preset {
                 reuse_samples: false,
                 negative_curvature: h.negative_curvature,
             })
-        };
-        // Newton-CG with fresh samples per estimate.
-        let newton_cg = |gradient, hvp| NewtonCg {
-            gradient,
-            hvp,
-            trust_radius: h.trust_radius,
-            max_inner: h.inner_steps,
-            inner_tolerance: T::from_f64(0.1),
-            reuse_samples: false,
-            reorthogonalize: false,
-            negative_curvature: h.negative_curvature,
-            compare_samples: false,
-            pair_curvature: false,
-            line_curvature: false,
-        };
-        // Newton-CG on one sample set per iteration, CRN forward-difference HVPs of the
-        // same gradient estimator (from the iteration's ĝ(θ)).
-        let reusing = |gradient| NewtonCg {
-            reuse_samples: true,
-            pair_curvature: true,
-            line_curvature: h.line_curvature,
-            ..newton_cg(gradient, HvpMethod::ForwardDifference { gradient })
         };
         match self {
             Preset::Fr22 => Method::Adam(Adam::new(GradientMethod::Fr22, h.learning_rate)),
@@ -445,50 +392,34 @@ impl Preset {
                 }),
             ),
             Preset::NcgKernel => ncg(GradientMethod::Gaussian, Curvature::Hvp(HvpMethod::Kernel)),
-            Preset::NewtonCgKernel => {
-                Method::NewtonCg(newton_cg(GradientMethod::Gaussian, HvpMethod::Kernel))
-            }
-            Preset::NewtonCgAggregate | Preset::NewtonCgAdaptive => {
-                Method::NewtonCg(reusing(GradientMethod::Aggregate))
-            }
-            Preset::NewtonCgCompare => Method::NewtonCg(NewtonCg {
-                compare_samples: true,
-                ..reusing(GradientMethod::Aggregate)
-            }),
-            Preset::NewtonCgFr22 => Method::NewtonCg(reusing(GradientMethod::Fr22)),
-            Preset::NewtonCgRegression => Method::NewtonCg(NewtonCg {
-                max_inner: REGRESSION_INNER_STEPS,
-                inner_tolerance: T::from_f64(REGRESSION_INNER_TOLERANCE),
-                reorthogonalize: true,
-                ..reusing(GradientMethod::Regression)
-            }),
+            Preset::NewtonCg(recipe) => recipe.method(h),
         }
     }
 
-    /// True for the presets whose σ follows the run ([`Schedule::Adaptive`]):
-    /// [`Preset::NewtonCgAdaptive`], [`Preset::NewtonCgCompare`] and
-    /// [`Preset::NewtonCgFr22`].
+    /// True for a recipe whose σ follows the run ([`SigmaControl::Adaptive`]).
     pub fn adaptive(self) -> bool {
-        matches!(
-            self,
-            Preset::NewtonCgAdaptive | Preset::NewtonCgCompare | Preset::NewtonCgFr22
-        )
+        matches!(self, Preset::NewtonCg(r) if r.sigma == SigmaControl::Adaptive)
     }
 
-    /// The σ schedule of this preset with these hyper-parameters: adaptive where
-    /// [`Preset::adaptive`], linear otherwise.
+    /// The σ schedule of this preset with these hyper-parameters: the recipe's, linear
+    /// for the others.
     pub fn schedule<T: Real>(self, h: &Hyper<T>) -> Schedule<T> {
-        if self.adaptive() {
-            Schedule::Adaptive {
+        match self {
+            Preset::NewtonCg(recipe) => recipe.schedule(h),
+            _ => Schedule::Linear {
                 start: h.sigma_start,
                 end: h.sigma_end,
-                shrink: h.sigma_shrink,
-            }
-        } else {
-            Schedule::Linear {
-                start: h.sigma_start,
-                end: h.sigma_end,
-            }
+            },
+        }
+    }
+}
+
+impl fmt::Display for Preset {
+    /// The name used in reports and on the command line (a recipe's text form).
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Preset::NewtonCg(recipe) => recipe.fmt(f),
+            named => f.write_str(named.paper_name().unwrap_or_default()),
         }
     }
 }

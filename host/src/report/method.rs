@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use anyhow::{Context, Result};
 use hodr_core::optim::preset::Preset;
 use hodr_core::optim::{Auto, AutoOptions, Budget, Optimiser};
-use hodr_core::{Batch, Estimator, GradientMethod, NoiseSeed, Objective, Workspace};
+use hodr_core::{Batch, Estimator, NoiseSeed, Objective, Workspace};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 use serde::Serialize;
@@ -42,12 +42,12 @@ impl Method {
             .collect()
     }
 
-    /// Display name.
-    pub fn name(&self) -> &'static str {
+    /// Display name (a Newton-CG recipe's text form, e.g. `NewtonCG/fr22/compare`).
+    pub fn name(&self) -> String {
         match self {
-            Method::Auto => "Auto",
-            Method::Preset(p) => p.name(),
-            Method::CmaEs => "CMA-ES",
+            Method::Auto => "Auto".into(),
+            Method::Preset(p) => p.to_string(),
+            Method::CmaEs => "CMA-ES".into(),
         }
     }
 
@@ -58,8 +58,13 @@ impl Method {
     /// An unknown name.
     pub fn parse(name: &str) -> Result<Method> {
         Method::from_name(name).with_context(|| {
-            let all: Vec<&str> = Method::all().iter().map(|m| m.name()).collect();
-            format!("unknown method `{name}` (methods: {})", all.join(", "))
+            let all: Vec<String> = Method::all().iter().map(Method::name).collect();
+            format!(
+                "unknown method `{name}` (methods: {}; a Newton-CG recipe adds options to \
+                 NewtonCG: /fr22, /ls, /gaussian or /per-element for the gradient, /kernel \
+                 for the curvature, /linear for σ, /compare; e.g. NewtonCG/fr22/compare)",
+                all.join(", ")
+            )
         })
     }
 
@@ -84,15 +89,7 @@ fn first_estimate_cost(
     n: usize,
     h: &hodr_core::optim::preset::Hyper<f64>,
 ) -> usize {
-    let gradient = match preset {
-        Preset::Fr22 | Preset::NewtonCgFr22 => GradientMethod::Fr22,
-        Preset::OurG | Preset::OurH | Preset::OurHNewton | Preset::OurHvp => {
-            GradientMethod::PerElement
-        }
-        Preset::NewtonCgRegression => GradientMethod::Regression,
-        Preset::NcgKernel | Preset::NewtonCgKernel => GradientMethod::Gaussian,
-        _ => GradientMethod::Aggregate,
-    };
+    let gradient = preset.gradient();
     let hessian = match preset {
         Preset::OurH | Preset::OurHNewton => n * (n + 1) * h.pairs + 1,
         _ => 0,
@@ -378,7 +375,7 @@ pub fn run_observed(
     let (best, best_theta) = best;
     Ok(Run {
         task: task.name().to_string(),
-        method: method.name().to_string(),
+        method: method.name(),
         seed,
         points,
         theta,

@@ -269,7 +269,8 @@ pub fn report(config: &Config, interrupt: &AtomicBool, progress: bool) -> Result
     bar.finish_and_clear();
     // Rows by task, method, seed (the order they were asked for).
     let task_names: Vec<&str> = tasks.iter().map(|t| t.name()).collect();
-    let method_names: Vec<&str> = methods.iter().map(|m| m.name()).collect();
+    let method_names: Vec<String> = methods.iter().map(Method::name).collect();
+    let method_names: Vec<&str> = method_names.iter().map(String::as_str).collect();
     let index = |names: &[&str], name: &str| names.iter().position(|n| *n == name);
     runs.sort_by_key(|r| {
         (
@@ -315,7 +316,8 @@ fn write_outputs(
 ) -> Result<PathBuf> {
     use std::fmt::Write as _;
     let out = &config.out;
-    let names: Vec<&str> = methods.iter().map(|m| m.name()).collect();
+    let names: Vec<String> = methods.iter().map(Method::name).collect();
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
     let mut all_rows = Vec::new();
     let mut md = String::from("# hodr report: error against run time\n\n");
     // The seeds of `task` every method finished (an interrupt cuts a task short).

@@ -27,20 +27,14 @@ pub trait Task: Send + Sync {
     fn start(&self, seed: u64) -> Vec<f64>;
     /// Per-task hyper-parameters of `preset` (DESIGN §3; data, overridable).
     fn hyper(&self, preset: Preset) -> Hyper<f64>;
-    /// `h` (this task's [`Task::hyper`]) as the presets with the adaptive σ schedule
-    /// ([`Preset::adaptive`]: NewtonCG-AS, -ASC, -FR) run it on this task. Default:
-    /// [`low_dim_pairs`].
-    fn adaptive(&self, h: Hyper<f64>) -> Hyper<f64> {
-        low_dim_pairs(h, self.dim())
-    }
-    /// The hyper-parameters `preset` runs with: [`Task::hyper`], through
-    /// [`Task::adaptive`] for the presets with the adaptive σ schedule.
+    /// The hyper-parameters `preset` runs with: the paper's settings for this task
+    /// ([`Task::hyper`]) for the paper's presets and NCG-kernel; for a Newton-CG
+    /// [`Recipe`](hodr_core::optim::recipe::Recipe), which the paper does not tune,
+    /// only what the task states ([`recipe_hyper`] of [`Task::scale`]).
     fn run_hyper(&self, preset: Preset) -> Hyper<f64> {
-        let h = self.hyper(preset);
-        if preset.adaptive() {
-            self.adaptive(h)
-        } else {
-            h
+        match preset {
+            Preset::NewtonCg(_) => recipe_hyper(self.scale(), self.dim()),
+            _ => self.hyper(preset),
         }
     }
     /// σ₀: the distance over which the parameters matter, the scale every method that
@@ -85,25 +79,26 @@ pub trait Task: Send + Sync {
     }
 }
 
-/// Antithetic pairs per estimate of the adaptive presets (NewtonCG-AS, -ASC, -FR) on
-/// tasks with n ≤ 2. Their iterations reuse one sample set for every estimate and σ
-/// follows the run, so cheap iterations win (docs/notes/2026-11-23-benchmarks-before-auto.md).
-pub const ADAPTIVE_LOW_DIM_PAIRS: usize = 1;
-
-/// `h` with [`ADAPTIVE_LOW_DIM_PAIRS`] antithetic pairs where `dim` ≤ 2, unchanged
-/// otherwise: the adaptive presets' default on a task ([`Task::adaptive`]).
-pub fn low_dim_pairs(mut h: Hyper<f64>, dim: usize) -> Hyper<f64> {
-    if dim <= 2 {
-        h.pairs = ADAPTIVE_LOW_DIM_PAIRS;
+/// What a Newton-CG [`Recipe`](hodr_core::optim::recipe::Recipe) runs with on a task
+/// of n parameters and scale σ₀: [`Hyper::default`] with σ from σ₀ down to
+/// σ₀·[`RECIPE_SIGMA_END`], and one antithetic pair per estimate where n ≤ 2 (an
+/// iteration reuses its samples for every estimate, so in one or two dimensions cheap
+/// iterations win).
+pub fn recipe_hyper(scale: f64, n: usize) -> Hyper<f64> {
+    Hyper {
+        sigma_start: scale,
+        sigma_end: scale * RECIPE_SIGMA_END,
+        pairs: if n <= 2 {
+            1
+        } else {
+            Hyper::<f64>::default().pairs
+        },
+        ..Hyper::default()
     }
-    h
 }
 
-/// Δ (in units of σ) of the adaptive presets on BOX2-REF ([`Task::adaptive`]); the
-/// paper's 2 for the others. With one pair per iteration each step is a line search
-/// along one direction, and a longer reach per step pays off (docs/notes/2026-11-23-benchmarks-before-auto.md,
-/// "BOX2-REF: a longer reach").
-pub const BOX2_REF_ADAPTIVE_TRUST_RADIUS: f64 = 3.0;
+/// σ_end / σ₀ of [`recipe_hyper`]: [`Hyper::default`]'s ratio.
+pub const RECIPE_SIGMA_END: f64 = 0.01;
 
 /// The paper's QUAD hyper-parameters (DESIGN §3): 4 pairs, σ 1 → 0.05, Δ = 50,
 /// 5 line-search steps, recompute 5; Adam η = 0.5; independent HVP draws.
@@ -230,13 +225,6 @@ impl Task for Box2RefTask {
     fn hyper(&self, preset: Preset) -> Hyper<f64> {
         box2ref_hyper(preset)
     }
-    /// [`low_dim_pairs`] with the trust radius [`BOX2_REF_ADAPTIVE_TRUST_RADIUS`].
-    fn adaptive(&self, h: Hyper<f64>) -> Hyper<f64> {
-        Hyper {
-            trust_radius: BOX2_REF_ADAPTIVE_TRUST_RADIUS,
-            ..low_dim_pairs(h, self.dim())
-        }
-    }
     fn bounds(&self) -> Option<(Vec<f64>, Vec<f64>)> {
         let [lo, hi] = box2ref::BOUNDS;
         Some((vec![lo; 2], vec![hi; 2]))
@@ -307,21 +295,6 @@ impl Task for RasterTask {
             h.learning_rate = h.learning_rate.max(0.05);
         }
         h
-    }
-    /// The task's own adaptive settings where it has them (BOX10, see
-    /// `hodr_raster::tasks::AdaptiveSettings`), else [`low_dim_pairs`].
-    fn adaptive(&self, h: Hyper<f64>) -> Hyper<f64> {
-        match self.task.settings().adaptive {
-            Some(a) => Hyper {
-                pairs: a.pairs,
-                sigma_start: a.sigma_start,
-                sigma_shrink: a.sigma_shrink,
-                inner_steps: a.inner_steps,
-                line_curvature: a.line_curvature,
-                ..h
-            },
-            None => low_dim_pairs(h, self.dim()),
-        }
     }
     /// Where each binding's clamp, or a colour's [0, 1], ends (the parameter map's
     /// bounds): beyond them θ changes nothing.
@@ -405,13 +378,6 @@ impl Task for PathTask {
     /// The task's own ([`crate::tasks::Task3d::hyper`]), the same for every preset.
     fn hyper(&self, _preset: Preset) -> Hyper<f64> {
         self.task.hyper()
-    }
-    /// The task's own adaptive settings where it has them (SHADOW), else
-    /// [`low_dim_pairs`].
-    fn adaptive(&self, h: Hyper<f64>) -> Hyper<f64> {
-        self.task
-            .adaptive(h)
-            .unwrap_or_else(|| low_dim_pairs(h, self.dim()))
     }
     fn scale(&self) -> f64 {
         self.task.scale()

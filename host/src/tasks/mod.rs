@@ -111,17 +111,6 @@ pub trait Task3d: Send + Sync {
     /// preset.
     fn hyper(&self) -> Hyper<f64>;
 
-    /// `h` (this task's [`Task3d::hyper`]) as the presets with the adaptive σ schedule
-    /// ([`Preset::adaptive`]) run it, where the task has settings of its own for them.
-    /// Default: `None` (the report's default for every task,
-    /// [`crate::report::task::low_dim_pairs`]).
-    ///
-    /// [`Preset::adaptive`]: hodr_core::optim::preset::Preset::adaptive
-    fn adaptive(&self, h: Hyper<f64>) -> Option<Hyper<f64>> {
-        let _ = h;
-        None
-    }
-
     /// σ₀: the distance over which the parameters matter, the scale every method that
     /// takes only a problem statement starts from (Auto, CMA-ES). Default: the paper's
     /// σ start ([`Task3d::hyper`]).
@@ -235,9 +224,6 @@ mod tests {
             assert!(task.parameter_error(&task.true_params()) < 1e-12);
             assert!(!task.description().is_empty());
             assert_eq!(task.hyper().validate(), Ok(()), "{}", task.name());
-            if let Some(h) = task.adaptive(task.hyper()) {
-                assert_eq!(h.validate(), Ok(()), "{}", task.name());
-            }
             assert!(task.scale() > 0.0, "{}", task.name());
             assert!(0 < task.budget(true) && task.budget(true) < task.budget(false));
         }

@@ -27,9 +27,7 @@ use crate::render::{
 ///   penumbra, centred at 4/3·(x, y)) shares no ground point with the target's.
 /// * Objective: 64×64, 4 spp; target 256 spp; images 128×128.
 /// * The paper's hyper-parameters: 1 pair, σ 0.5 → 0.01, Δ = 3, 10 line-search steps,
-///   recompute 5, Adam η = 0.02; σ₀ = 0.5. The presets with the adaptive σ schedule take
-///   [`Shadow::ADAPTIVE_PAIRS`] pairs and σ from [`Shadow::ADAPTIVE_SIGMA_START`]
-///   instead. Budget: 1500 evaluations (quick: 100).
+///   recompute 5, Adam η = 0.02; σ₀ = 0.5. Budget: 1500 evaluations (quick: 100).
 ///
 /// **Landscape.** A shadow that leaves the image removes its whole cost, so the loss
 /// is lower with the sphere out of view than at the start, which sits on a mesa whose
@@ -37,19 +35,10 @@ use crate::render::{
 /// descent from the start tends to push the sphere out of view, and what converges
 /// finds the well by a sample and keeps it. The measured landscape and convergence
 /// figures are in docs/notes/2026-11-23-benchmarks-before-auto.md ("Measurements
-/// moved out of doc comments"); `cargo test -p hodr-tests --test optim_shadow` and
-/// `--test render_convergence shadow` reproduce them.
+/// moved out of doc comments"); `cargo test -p hodr-tests --test render_convergence
+/// shadow` reproduces the landscape.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Shadow;
-
-impl Shadow {
-    /// Antithetic pairs per estimate of the presets with the adaptive σ schedule
-    /// (NewtonCG-AS, -ASC, -FR; [`Task3d::adaptive`]).
-    pub const ADAPTIVE_PAIRS: usize = 8;
-
-    /// σ at the start of the adaptive presets' runs ([`Task3d::adaptive`]).
-    pub const ADAPTIVE_SIGMA_START: f64 = 1.0;
-}
 
 struct ShadowScene {
     scene: Scene,
@@ -115,19 +104,6 @@ impl Task3d for Shadow {
             learning_rate: 0.02,
             ..Hyper::default()
         }
-    }
-
-    /// [`Shadow::ADAPTIVE_PAIRS`] pairs and σ from [`Shadow::ADAPTIVE_SIGMA_START`].
-    /// NewtonCG-ASC then finds the target's well by a sample (a sample within ≈ 0.3 of
-    /// θ* beats the out-of-view shadows' loss) and stays in it, which it does not with
-    /// one pair and σ from 0.5 (docs/notes/2026-11-23-benchmarks-before-auto.md, "SHADOW: compared steps from a
-    /// wider kernel").
-    fn adaptive(&self, h: Hyper<f64>) -> Option<Hyper<f64>> {
-        Some(Hyper {
-            pairs: Shadow::ADAPTIVE_PAIRS,
-            sigma_start: Shadow::ADAPTIVE_SIGMA_START,
-            ..h
-        })
     }
 
     fn budget(&self, quick: bool) -> usize {

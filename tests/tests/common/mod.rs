@@ -1,6 +1,9 @@
 //! Set-up shared by the optimiser tests: one run of a method from a start, with the
 //! estimator, optimiser buffer and workspace allocated here.
 
+// Each test binary includes this module and uses a part of it.
+#![allow(dead_code)]
+
 use hodr_core::optim::preset::Hyper;
 use hodr_core::optim::{Budget, Method, Optimiser, Schedule, StepReport};
 use hodr_core::{Estimator, Objective, Workspace};
@@ -11,7 +14,6 @@ use rand_xoshiro::rand_core::SeedableRng;
 /// `trust_radius`·σ, common random numbers and the default adaptive shrink and inner
 /// steps (the line-search and Adam settings are the paper's BOX2 ones, unused by
 /// Newton-CG).
-#[allow(dead_code)]
 pub fn one_pair(sigma_start: f64, trust_radius: f64) -> Hyper<f64> {
     Hyper {
         pairs: 1,
@@ -68,4 +70,10 @@ pub fn optimise(
     let (mut wb, mut seeds) = (vec![0.0; method.workspace_len(n, ROWS)], vec![0; ROWS]);
     let mut ws = Workspace::new(n, &mut wb, &mut seeds).unwrap();
     opt.run(objective, &mut ws, || 0.0, observe).unwrap();
+}
+
+/// The Newton-CG preset written `text` (a [`hodr_core::optim::recipe::Recipe`]'s text
+/// form, e.g. `NewtonCG/fr22/compare`).
+pub fn newton_cg(text: &str) -> hodr_core::optim::preset::Preset {
+    hodr_core::optim::preset::Preset::from_name(text).expect("a Newton-CG recipe")
 }
