@@ -1,4 +1,4 @@
-//! Kernel weights: the derivatives of the smoothing Gaussian (DESIGN §1).
+//! Kernel weights: the derivatives of the smoothing Gaussian (docs/design.md §1).
 //!
 //! With N(τ) = Π N₁(τᵢ), N₁ the 1-D normal density of standard deviation σ, the smoothed
 //! objective f̄(θ) = ∫ N(τ) f(θ − τ) dτ has derivatives D f̄(θ) = ∫ Dκ(τ) f(θ − τ) dτ with

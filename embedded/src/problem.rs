@@ -73,7 +73,7 @@ pub struct Problem {
 }
 
 /// f = 5x₀² + 5x₁² + 7.5x₀x₁ (= ½xᵀAx, A = [[10, 7.5], [7.5, 10]], condition number 7),
-/// with the paper's QUAD settings (DESIGN §3): 4 pairs, σ 1 → 0.05, Δ 50, 5 line-search
+/// with the paper's QUAD settings (docs/design.md §3): 4 pairs, σ 1 → 0.05, Δ 50, 5 line-search
 /// steps, restart every 5, η 0.5.
 pub const QUAD: Problem = Problem {
     name: "QUAD",

@@ -1,4 +1,4 @@
-"""Mitsuba 3 on hodr's SHADOW scene (DESIGN §3), for the yardstick rows of BENCHMARKS.md.
+"""Mitsuba 3 on hodr's SHADOW scene (docs/design.md §3), for the yardstick rows of BENCHMARKS.md.
 
 Renders SHADOW at θ* (sphere centre (-0.55, -0.55, 3)) at 128×128 with Mitsuba's
 `path` integrator (max depth 3, box filter) and reports, per spp in 4, 16, 64: the

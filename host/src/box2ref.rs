@@ -1,4 +1,4 @@
-//! BOX2-REF: the paper's own BOX2 renderer, reproduced exactly (DESIGN §3).
+//! BOX2-REF: the paper's own BOX2 renderer, reproduced exactly (docs/design.md §3).
 //!
 //! A 500×500 single-channel image, pixel (row r, column c). θ = (pₓ, p_y) in pixels, each
 //! clamped to [50, 450]. Before a vertical flip the square is

@@ -8,7 +8,7 @@
 //!
 //! QUAD, QUAD-far and BOX2-REF are the report's tasks ([`crate::report::task`]), run as
 //! the report runs them: the same starts, objective and hyper-parameters
-//! ([`Task::run_hyper`]: the paper's, DESIGN §3, for its presets; what the task states
+//! ([`Task::run_hyper`]: the paper's, docs/design.md §3, for its presets; what the task states
 //! for a Newton-CG recipe) and the full report's evaluation budget ([`Task::budget`]).
 //! STIFF-κ ([`Stiff`]) is defined here:
 //!

@@ -11,7 +11,7 @@
 //! * A [`Problem`] (scene, map, [`Target`], [`Loss`]) becomes a hodr-core
 //!   [`hodr_core::Objective`] as a [`RasterObjective`]: one reused pixmap per thread,
 //!   a cached static layer and dirty-region re-rendering ([`Caching`]), parallel batches.
-//! * [`tasks`] defines TRI1D, BOX2, BOX10 and SHAPES (DESIGN §3); [`fit`] approximates
+//! * [`tasks`] defines TRI1D, BOX2, BOX10 and SHAPES (docs/design.md §3); [`fit`] approximates
 //!   an image by N shapes; [`test_image`] draws the shipped photograph-like test image.
 //!
 //! Losses are exact integer sums over 8-bit pixels divided by a constant, so a cached

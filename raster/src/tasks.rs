@@ -1,4 +1,4 @@
-//! The 2D tasks of DESIGN §3: TRI1D, BOX2, BOX10 and SHAPES, fully defined here.
+//! The 2D tasks of docs/design.md §3: TRI1D, BOX2, BOX10 and SHAPES, fully defined here.
 //!
 //! Every task lives on an `size` × `size` image (default [`DEFAULT_SIZE`] = 64) with the
 //! length unit **u = size / 8 pixels**: θ's position coordinates are in u, so the image
@@ -54,7 +54,7 @@ pub const DEFAULT_SIZE: u32 = 64;
 /// The task names [`by_name`] accepts.
 pub const NAMES: [&str; 4] = ["tri1d", "box2", "box10", "shapes"];
 
-/// Optimiser hyper-parameters for a task (DESIGN §3's columns).
+/// Optimiser hyper-parameters for a task (docs/design.md §3's columns).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
     /// Antithetic pairs per estimate.

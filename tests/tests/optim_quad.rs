@@ -1,4 +1,4 @@
-//! Every preset on QUAD, f = 5x₀² + 5x₁² + 7.5x₀x₁ (DESIGN §3), with the paper's
+//! Every preset on QUAD, f = 5x₀² + 5x₁² + 7.5x₀x₁ (docs/design.md §3), with the paper's
 //! hyper-parameters (with common random numbers for the central-difference HVPs): quick
 //! convergence checks from both start distributions, as fractions of 10 fixed seeds.
 

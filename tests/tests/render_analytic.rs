@@ -259,7 +259,7 @@ fn dielectric_slab_and_mirror() {
     assert_close(m[2], 0.1 * f64::from(le), 1e-5, "mirror blue");
 }
 
-/// The unshadowed SHADOW ground at the image centre has radiance ≈ 0.442 (DESIGN §3);
+/// The unshadowed SHADOW ground at the image centre has radiance ≈ 0.442 (docs/design.md §3);
 /// a render of the central 2×2 pixels at many samples agrees within 1 %.
 #[test]
 fn shadow_ground_radiance() {

@@ -1,11 +1,11 @@
 //! MUG converges with OurHVPA (NCG + aggregate gradient + aggregate HVP) from plateau
 //! starts, and SHADOW with OurHVPA's estimators and the two-sided negative-curvature step
-//! from the DESIGN's starts, each for a stated fraction of fixed seeds (docs/notes/2026-11-23-benchmarks-before-auto.md,
+//! from the design's starts (docs/design.md §3), each for a stated fraction of fixed seeds (docs/notes/2026-11-23-benchmarks-before-auto.md,
 //! section "Convergence of OurHVPA from plateau starts").
 //!
 //! The objectives are the tasks' own scenes at a reduced resolution and sample count, so
 //! that the suite stays fast in debug builds; the hyper-parameters are the paper's
-//! (DESIGN §3) with the iteration budgets stated per test.
+//! (docs/design.md §3) with the iteration budgets stated per test.
 
 mod common;
 
@@ -95,7 +95,7 @@ fn mug_converges_from_plateau_starts() {
     assert!(wins >= 4, "MUG: {wins}/20 seeds converged");
 }
 
-/// SHADOW's paper hyper-parameters (DESIGN §3) with `pairs` pairs, `ls` line-search steps
+/// SHADOW's paper hyper-parameters (docs/design.md §3) with `pairs` pairs, `ls` line-search steps
 /// and common random numbers, and OurHVPA's NCG with `negative_curvature`.
 fn shadow_method(pairs: usize, ls: usize, nc: NegativeCurvature) -> (Method<f64>, Hyper<f64>) {
     let h = Hyper {
@@ -111,7 +111,7 @@ fn shadow_method(pairs: usize, ls: usize, nc: NegativeCurvature) -> (Method<f64>
     (Preset::OurHvpa.method(&h), h)
 }
 
-/// SHADOW from the DESIGN's starts ((0.55, 0.55) ± 0.1, on a mesa of the loss whose
+/// SHADOW from the design's starts (docs/design.md §3) ((0.55, 0.55) ± 0.1, on a mesa of the loss whose
 /// smoothed Hessian is negative definite; θ* is a narrow well 1.56 away, along the
 /// direction the smoothed gradient points *away* from): NCG with the aggregate gradient
 /// and CRN HVP (OurHVPA's estimators), σ 0.5 → 0.01, trust region 3σ, and the two-sided

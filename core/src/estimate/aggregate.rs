@@ -1,4 +1,4 @@
-//! Aggregate importance sampling (DESIGN §1.3): a mixture of all element densities.
+//! Aggregate importance sampling (docs/design.md §1.3): a mixture of all element densities.
 //!
 //! Each sample picks a component k of the mixture q = (1/K)·Σₖ pₖ, draws t from pₖ, and
 //! weights *every* element e by Dκₑ/q (the balance heuristic), so one evaluation serves

@@ -1,4 +1,4 @@
-//! The FR22 baseline gradient (Fischer & Ritschel 2023; DESIGN §1.6).
+//! The FR22 baseline gradient (Fischer & Ritschel 2023; docs/design.md §1.6).
 //!
 //! One sample set for all n coordinates: every coordinate of t is drawn from p_G, and
 //! coordinate e is weighted −sign(tₑ)·Z. Each coordinate is blurred by the Gaussian only

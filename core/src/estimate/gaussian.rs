@@ -1,4 +1,4 @@
-//! Plain Gaussian ("Stein") estimators with shared samples (DESIGN §1.4).
+//! Plain Gaussian ("Stein") estimators with shared samples (docs/design.md §1.4).
 //!
 //! t ~ N(0, I) and the kernels divided by N are the weights:
 //! gradient −tₑ (×1/σ), Hessian tᵢtⱼ − δᵢⱼ (×1/σ²), HVP tᵢ(t·v) − vᵢ (×1/σ²).

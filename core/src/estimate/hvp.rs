@@ -1,4 +1,4 @@
-//! Hessian-vector products as differences of gradient estimates (DESIGN §1.5), u = v/‖v‖,
+//! Hessian-vector products as differences of gradient estimates (docs/design.md §1.5), u = v/‖v‖,
 //! ε = σ/3, each g a gradient estimate with P pairs:
 //!
 //! * central: Hv ≈ (g(θ + εu) − g(θ − εu)) / (2ε) · ‖v‖;
@@ -31,7 +31,7 @@ pub(super) enum Stencil<'g, T> {
     Forward(Option<&'g [T]>),
 }
 
-/// Hv by `stencil` from gradient estimates of `gradient` (DESIGN §1.5).
+/// Hv by `stencil` from gradient estimates of `gradient` (docs/design.md §1.5).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn difference<T: Real, R: Rng, O: Objective<T> + ?Sized>(
     estimator: &mut Estimator<T, R>,

@@ -1,7 +1,7 @@
 //! Monte Carlo estimators of the smoothed gradient, Hessian and Hessian-vector product.
 //!
 //! Every estimator draws standardised offsets t from a density p, evaluates the objective
-//! at antithetic points θ ∓ σt, and weights the values by Dκ/p (DESIGN §1.2–1.6):
+//! at antithetic points θ ∓ σt, and weights the values by Dκ/p (docs/design.md §1.2–1.6):
 //!
 //! * gradients use the odd combination (f(θ−τ) − f(θ+τ))/2 — the f(θ) part cancels;
 //! * Hessians and kernel HVPs use the even combination (f(θ−τ) + f(θ+τ))/2 − f(θ), with
@@ -51,21 +51,21 @@ use crate::workspace::{BatchBuffers, Workspace};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum GradientMethod {
-    /// The FR22 baseline (DESIGN §1.6): every coordinate drawn from p_G at once, element i
+    /// The FR22 baseline (docs/design.md §1.6): every coordinate drawn from p_G at once, element i
     /// weighted −sign(τᵢ)·Z. Exactly the Gaussian-smoothed gradient only for objectives
     /// that are separable or quadratic; otherwise it smooths the other coordinates with
     /// p_G instead of N₁.
     Fr22,
-    /// Per-element importance sampling (DESIGN §1.2): P pairs per element, tᵢ ~ p_G,
+    /// Per-element importance sampling (docs/design.md §1.2): P pairs per element, tᵢ ~ p_G,
     /// other coordinates N₁, weight −sign(τᵢ)·Z.
     #[cfg(feature = "per-element")]
     PerElement,
-    /// Aggregate importance sampling (DESIGN §1.3): each pair serves every element; the
+    /// Aggregate importance sampling (docs/design.md §1.3): each pair serves every element; the
     /// differentiated coordinate cycles through the elements from a random start, and
     /// weights are −nZτₑ/‖τ‖₁·σ (bounded).
     #[cfg(feature = "aggregate")]
     Aggregate,
-    /// Plain Gaussian ("Stein") sampling (DESIGN §1.4): τ ~ N(0, σ²I), weight −τₑ/σ².
+    /// Plain Gaussian ("Stein") sampling (docs/design.md §1.4): τ ~ N(0, σ²I), weight −τₑ/σ².
     #[cfg(feature = "gaussian")]
     Gaussian,
     /// Least squares on Gaussian samples: ĝ = (Σ ttᵀ)⁻¹ Σ t·(f(θ+σt) − f(θ−σt))/(2σ),
@@ -116,7 +116,7 @@ pub enum HessianMethod {
     /// elements i ≤ j; diagonal tᵢ ~ p_D with weight sign(τᵢ² − σ²)·C, off-diagonal
     /// tᵢ, tⱼ ~ p_G with weight sign(τᵢτⱼ)·Z².
     PerElement,
-    /// Aggregate importance sampling over the n(n+1)/2 element densities (DESIGN §1.3);
+    /// Aggregate importance sampling over the n(n+1)/2 element densities (docs/design.md §1.3);
     /// the mixture density costs O(n) per sample.
     #[cfg(feature = "aggregate")]
     Aggregate,
@@ -156,7 +156,7 @@ pub enum Draws {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum HvpMethod {
-    /// (g(θ + εu) − g(θ − εu))/(2ε)·‖v‖ with u = v/‖v‖, ε = σ/3 (DESIGN §1.5), each g
+    /// (g(θ + εu) − g(θ − εu))/(2ε)·‖v‖ with u = v/‖v‖, ε = σ/3 (docs/design.md §1.5), each g
     /// from `gradient` with P pairs. Biased by O(ε²) third derivatives of f̄.
     CentralDifference {
         /// The gradient estimator differenced.
@@ -174,7 +174,7 @@ pub enum HvpMethod {
         gradient: GradientMethod,
     },
     /// The Gaussian kernel (τ(τ·v)/σ⁴ − v/σ²) with τ ~ N(0, σ²I) and the f(θ) control
-    /// variate (DESIGN §1.4): unbiased, and the same samples give the gradient too
+    /// variate (docs/design.md §1.4): unbiased, and the same samples give the gradient too
     /// ([`Estimator::gradient_and_hvp`]).
     Kernel,
 }
@@ -536,7 +536,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
     }
 
     /// Smoothed gradient and Hessian-vector product from one shared set of Gaussian
-    /// samples (DESIGN §1.4): 2P + 1 evaluations for both.
+    /// samples (docs/design.md §1.4): 2P + 1 evaluations for both.
     ///
     /// # Errors
     /// As [`Estimator::hvp`].

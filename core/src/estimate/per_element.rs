@@ -1,4 +1,4 @@
-//! Per-element importance sampling (DESIGN §1.2).
+//! Per-element importance sampling (docs/design.md §1.2).
 //!
 //! Each element gets its own P pairs drawn from its own kernel density, so each weight
 //! collapses to a constant times a sign:

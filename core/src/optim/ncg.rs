@@ -1,4 +1,4 @@
-//! Nonlinear conjugate gradient, the paper's main optimiser (DESIGN §1.7).
+//! Nonlinear conjugate gradient, the paper's main optimiser (docs/design.md §1.7).
 //!
 //! Residual r = −ĝ, direction d. Each iteration:
 //!

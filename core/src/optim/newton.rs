@@ -1,4 +1,4 @@
-//! Newton's method with the full estimated Hessian (DESIGN §1.7).
+//! Newton's method with the full estimated Hessian (docs/design.md §1.7).
 //!
 //! p solves (Ĥ + λI)p = −ĝ, λ the smallest shift in {0, λ₀, 10λ₀, …} for which a
 //! Cholesky factorisation succeeds (so the step is a descent direction of the model even

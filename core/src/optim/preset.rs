@@ -11,7 +11,7 @@
 //! | `NcgKernel` | NCG | Gaussian | kernel HVP, samples shared with the gradient |
 //! | `NewtonCg(recipe)` | Newton-CG (Steihaug) | the [`Recipe`]'s | the [`Recipe`]'s |
 //!
-//! The first six are the paper's methods (DESIGN §4). Newton-CG is not a list of named
+//! The first six are the paper's methods (docs/design.md §4). Newton-CG is not a list of named
 //! variants but a [`Recipe`]: gradient × curvature × σ control × step comparison.
 //!
 //! Every preset anneals σ linearly from `sigma_start` to `sigma_end` over the budget (the
@@ -31,7 +31,7 @@ use crate::error::Error;
 use crate::estimate::{Draws, GradientMethod, HessianMethod, HvpMethod};
 use crate::real::Real;
 
-/// Per-task hyper-parameters (DESIGN §3: pairs / σ start → end / trust region /
+/// Per-task hyper-parameters (docs/design.md §3: pairs / σ start → end / trust region /
 /// line-search iterations / recompute; Adam's learning rate).
 ///
 /// [`Hyper::default`] holds the values below, common among the paper's tasks; a task

@@ -49,9 +49,8 @@ pub enum CurvatureSource {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SigmaControl {
     /// σ follows the run: it shrinks by [`Hyper::sigma_shrink`] after a short or
-    /// rejected step, from [`Hyper::sigma_start`] down to [`Hyper::sigma_end`]
-    /// ([`Schedule::Adaptive`]). The first k iterations do not depend on the budget.
-    /// The default.
+    /// rejected step, from [`Hyper::sigma_start`] down to [`Hyper::sigma_end`], never
+    /// above the linear schedule's σ ([`Schedule::Adaptive`]). The default.
     Adaptive,
     /// σ falls linearly from [`Hyper::sigma_start`] to [`Hyper::sigma_end`] over the
     /// budget ([`Schedule::Linear`], the paper's schedule).

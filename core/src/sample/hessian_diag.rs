@@ -1,7 +1,7 @@
 //! The Hessian-diagonal kernel density: |N₁″| normalised, in standardised units (σ = 1).
 //!
 //! p_D(t) = |t² − 1|·e^{(1−t²)/2}/4, C = ∫|N₁″| = 4e^{−½}/√(2π) (times 1/σ² for general σ).
-//! Its CDF is piecewise (DESIGN §1.1), with h(s) = s·e^{½−s²/2}/4:
+//! Its CDF is piecewise (docs/design.md §1.1), with h(s) = s·e^{½−s²/2}/4:
 //!
 //! P(t) = h(−t) for t < −1,  ½ − h(−t) for −1 ≤ t ≤ 0,  and P(t) = 1 − P(−t) for t > 0,
 //!
@@ -25,7 +25,7 @@
 //! * outer branch, s ≥ 1, far from 1: in s, start s₀ = √(a + ln a), a = 1 − 2L, bracket
 //!   [√a, √(2a)].
 //!
-//! Rejected: the table-plus-Newton scheme of DESIGN §1.1. These analytic starts are
+//! Rejected: the table-plus-Newton scheme of docs/design.md §1.1. These analytic starts are
 //! already within a few ulps after two or three steps and need no table in flash.
 
 use crate::real::Real;

@@ -17,7 +17,7 @@ pub fn gaussian<T: Real, R: Rng + ?Sized>(rng: &mut R, t: &mut [T]) {
     }
 }
 
-/// tᵢ ~ p_G, every other coordinate ~ N₁ (per-element gradient, DESIGN §1.2).
+/// tᵢ ~ p_G, every other coordinate ~ N₁ (per-element gradient, docs/design.md §1.2).
 #[inline]
 pub fn gradient_element<T: Real, R: Rng + ?Sized>(rng: &mut R, t: &mut [T], i: usize) {
     for (k, x) in t.iter_mut().enumerate() {
@@ -30,7 +30,7 @@ pub fn gradient_element<T: Real, R: Rng + ?Sized>(rng: &mut R, t: &mut [T], i: u
     }
 }
 
-/// Every coordinate ~ p_G (the FR22 baseline, DESIGN §1.6).
+/// Every coordinate ~ p_G (the FR22 baseline, docs/design.md §1.6).
 #[inline]
 pub fn gradient_all<T: Real, R: Rng + ?Sized>(rng: &mut R, t: &mut [T]) {
     for x in t.iter_mut() {

@@ -1,5 +1,5 @@
 //! The report harness: error against run time for every method on every task
-//! (DESIGN §4–5).
+//! (docs/design.md §4–5).
 //!
 //! For each task × method × seed it records, after every iteration, the optimisation
 //! wall time, the objective evaluations, the image error (the loss at a fixed noise

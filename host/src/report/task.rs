@@ -25,7 +25,7 @@ pub trait Task: Send + Sync {
     fn optimum(&self) -> Vec<f64>;
     /// A start from the task's start distribution, fixed by `seed`.
     fn start(&self, seed: u64) -> Vec<f64>;
-    /// Per-task hyper-parameters of `preset` (DESIGN §3; data, overridable).
+    /// Per-task hyper-parameters of `preset` (docs/design.md §3; data, overridable).
     fn hyper(&self, preset: Preset) -> Hyper<f64>;
     /// The hyper-parameters `preset` runs with: the paper's settings for this task
     /// ([`Task::hyper`]) for the paper's presets and NCG-kernel; for a Newton-CG
@@ -39,7 +39,7 @@ pub trait Task: Send + Sync {
     }
     /// σ₀: the distance over which the parameters matter, the scale every method that
     /// takes only a problem statement starts from (Auto, CMA-ES). Default: the paper's
-    /// σ_start for the task (DESIGN §3).
+    /// σ_start for the task (docs/design.md §3).
     fn scale(&self) -> f64 {
         self.hyper(Preset::OurHvpa).sigma_start
     }
@@ -100,7 +100,7 @@ pub fn recipe_hyper(scale: f64, n: usize) -> Hyper<f64> {
 /// σ_end / σ₀ of [`recipe_hyper`]: [`Hyper::default`]'s ratio.
 pub const RECIPE_SIGMA_END: f64 = 0.01;
 
-/// The paper's QUAD hyper-parameters (DESIGN §3): 4 pairs, σ 1 → 0.05, Δ = 50,
+/// The paper's QUAD hyper-parameters (docs/design.md §3): 4 pairs, σ 1 → 0.05, Δ = 50,
 /// 5 line-search steps, recompute 5; Adam η = 0.5; independent HVP draws.
 pub fn quad_hyper() -> Hyper<f64> {
     Hyper {
@@ -115,7 +115,7 @@ pub fn quad_hyper() -> Hyper<f64> {
     }
 }
 
-/// The paper's BOX2 hyper-parameters for BOX2-REF (DESIGN §3): 6 pairs, σ 100 → 0.01 px
+/// The paper's BOX2 hyper-parameters for BOX2-REF (docs/design.md §3): 6 pairs, σ 100 → 0.01 px
 /// (FR22: → 0.1), Δ = 2, 2 line-search steps, tolerance 1e-3, recompute 10; Adam
 /// η = 0.5 (FR22: 0.3).
 pub fn box2ref_hyper(preset: Preset) -> Hyper<f64> {

@@ -1,4 +1,4 @@
-//! The generalisation suite behind `hodr suite` (DESIGN §6): optimisers judged on
+//! The generalisation suite behind `hodr suite` (docs/design.md §6): optimisers judged on
 //! problems nobody tuned for, against baselines in the same run.
 //!
 //! * A [`Problem`] is one definition — f, f*, x*, the start distribution, σ₀, bounds,

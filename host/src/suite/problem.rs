@@ -1,5 +1,5 @@
 //! A suite problem: one definition holding everything a run may know about it, and
-//! nothing about any method (DESIGN §6).
+//! nothing about any method (docs/design.md §6).
 
 use std::fmt;
 

@@ -1,4 +1,4 @@
-//! The 3D inverse-rendering tasks (DESIGN §3): find the scene parameters θ whose
+//! The 3D inverse-rendering tasks (docs/design.md §3): find the scene parameters θ whose
 //! path-traced image matches a target rendered from the true parameters θ*.
 //!
 //! | name | n | what θ is |
@@ -106,7 +106,7 @@ pub trait Task3d: Send + Sync {
         None
     }
 
-    /// The paper's hyper-parameters for this task (DESIGN §3: pairs / σ start → end /
+    /// The paper's hyper-parameters for this task (docs/design.md §3: pairs / σ start → end /
     /// trust radius / line-search steps / recompute; Adam's rate), the same for every
     /// preset.
     fn hyper(&self) -> Hyper<f64>;
@@ -160,7 +160,7 @@ pub trait Task3d: Send + Sync {
     }
 }
 
-/// Every task, in the order of DESIGN §3.
+/// Every task, in the order of docs/design.md §3.
 pub fn all() -> Vec<Box<dyn Task3d>> {
     vec![
         Box::new(Shadow),

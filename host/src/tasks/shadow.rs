@@ -1,4 +1,4 @@
-//! SHADOW: find a sphere that the camera cannot see from its shadow (DESIGN §3, exact).
+//! SHADOW: find a sphere that the camera cannot see from its shadow (docs/design.md §3, exact).
 
 use hodr_core::optim::preset::Hyper;
 
@@ -7,7 +7,7 @@ use crate::render::{
     Camera, Depth, Emitter, Material, Object, Quad, RenderError, Rgb, Scene, Shape, Sphere, Vec3,
 };
 
-/// SHADOW, exactly as DESIGN §3 defines it (z up), so other renderers can render the
+/// SHADOW, exactly as docs/design.md §3 defines it (z up), so other renderers can render the
 /// identical scene:
 ///
 /// * ground: Lambertian square [−2, 2]² at z = 0, albedo 0.5;

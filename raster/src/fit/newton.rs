@@ -1,7 +1,7 @@
 //! The per-shape optimiser of the fit: hodr-core's [`Newton`] on the smoothed loss.
 //!
 //! Each iteration estimates the smoothed gradient and Hessian at θ with the aggregate
-//! estimators (DESIGN §1.3: 2P + 2P + 1 evaluations for all n + n(n+1)/2 elements; n
+//! estimators (docs/design.md §1.3: 2P + 2P + 1 evaluations for all n + n(n+1)/2 elements; n
 //! is 3–6 here, so the full Hessian is cheaper than HVP line searches), solves the
 //! shifted Newton system, truncates the step to the trust radius Δ·σ, and steps; σ
 //! anneals linearly over the iterations.
