@@ -1,66 +1,106 @@
 #!/usr/bin/env bash
-# hodr-core on a Cortex-M4F: builds firmware/ for each feature set, runs it under QEMU
-# (mps2-an386, semihosting) and checks its report against the host reference built from
-# the same code (hodr-embedded), then prints the size and stack table of
-# the top-level BENCHMARKS.md ("hodr-core on a microcontroller").
+# hodr-core on microcontrollers: builds firmware/ for each target and feature set, runs
+# it under QEMU (semihosting) and checks that its report equals, bit for bit, the host
+# reference built from the same code (hodr-embedded), then prints the size and stack
+# table of the top-level BENCHMARKS.md ("hodr-core on a microcontroller").
 #
-# Needs qemu-system-arm on the PATH; installs the Rust target and llvm-tools itself.
-# Exits non-zero when a build fails, the firmware fails or hangs, or a report differs.
+# Targets: Cortex-M4F (mps2-an386), Cortex-M0 (microbit), RISC-V RV32IMAC (virt).
+# Needs qemu-system-arm and qemu-system-riscv32 on the PATH; installs the Rust targets
+# and llvm-tools itself. With --count, also counts the instructions each firmware
+# executes (QEMU's exec log, one instruction per translation block: slow) and divides by
+# its objective evaluations.
+# Exits non-zero when a build fails, a firmware fails or hangs, or a report differs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-if ! command -v qemu-system-arm >/dev/null; then
-    echo "qemu-system-arm not found: apt-get install qemu-system-arm" >&2
-    exit 1
-fi
-rustup target add thumbv7em-none-eabihf
+count=false
+if [ "${1:-}" = "--count" ]; then count=true; fi
+
+for qemu in qemu-system-arm qemu-system-riscv32; do
+    if ! command -v "$qemu" >/dev/null; then
+        echo "$qemu not found: apt-get install qemu-system-arm qemu-system-misc" >&2
+        exit 1
+    fi
+done
+rustup target add thumbv7em-none-eabihf thumbv6m-none-eabi riscv32imac-unknown-none-elf
 rustup component add llvm-tools
 llvm_bin="$(rustc --print sysroot)/lib/rustlib/$(rustc -vV | sed -n 's/^host: //p')/bin"
 
 # The firmware is a workspace of its own: the host workspace's fmt and clippy skip it.
-(cd firmware && cargo fmt --check && cargo clippy --release --locked -- -D warnings)
+(cd firmware && cargo fmt --check)
 
+# name, Rust target, QEMU command (the ELF follows).
+targets=(
+    "Cortex-M4F|thumbv7em-none-eabihf|qemu-system-arm -machine mps2-an386 -cpu cortex-m4"
+    "Cortex-M0|thumbv6m-none-eabi|qemu-system-arm -machine microbit"
+    "RV32IMAC|riscv32imac-unknown-none-elf|qemu-system-riscv32 -machine virt -bios none"
+)
 # name, then the cargo feature flags shared by the firmware and its host reference.
 configs=(
     "minimal|--no-default-features"
+    "auto|--no-default-features --features auto"
     "ncg|--no-default-features --features ncg"
     "full|"
 )
 out=firmware/target/qemu-test
 mkdir -p "$out"
-table="| features | hodr-core features | .text | .rodata | .data | .bss | peak stack |
-|---|---|---|---|---|---|---|"
-for config in "${configs[@]}"; do
-    name=${config%%|*}
-    read -r -a flags <<<"${config#*|}"
-    echo "== $name: ${flags[*]:-default features}"
-    # -D warnings reaches hodr-core and hodr-embedded (path dependencies), whose
-    # feature-gated code the host workspace's clippy only sees with every feature.
-    (cd firmware && RUSTFLAGS="-D warnings" cargo build --release --locked "${flags[@]}")
-    elf="$out/hodr-firmware-$name"
-    cp firmware/target/thumbv7em-none-eabihf/release/hodr-firmware "$elf"
+header="| target | features | methods | .text | .rodata | .data | .bss | peak stack |"
+rule="|---|---|---|---|---|---|---|---|"
+if $count; then
+    header+=" instructions | evaluations | instructions per evaluation |"
+    rule+="---|---|---|"
+fi
+table="$header
+$rule"
+for target in "${targets[@]}"; do
+    IFS='|' read -r arch triple qemu_command <<<"$target"
+    read -r -a qemu <<<"$qemu_command"
+    (cd firmware && cargo clippy --release --locked --target "$triple" -- -D warnings)
+    for config in "${configs[@]}"; do
+        name=${config%%|*}
+        read -r -a flags <<<"${config#*|}"
+        echo "== $arch $name: ${flags[*]:-default features}"
+        # -D warnings reaches hodr-core and hodr-embedded (path dependencies), whose
+        # feature-gated code the host workspace's clippy only sees with every feature.
+        (cd firmware && RUSTFLAGS="-D warnings" cargo build --release --locked \
+            --target "$triple" "${flags[@]}")
+        elf="$out/hodr-firmware-$triple-$name"
+        cp "firmware/target/$triple/release/hodr-firmware" "$elf"
+        log="$out/$triple-$name.log"
 
-    # QEMU exits with the firmware's semihosting exit status; a hang hits the timeout.
-    if ! timeout 120 qemu-system-arm -machine mps2-an386 -cpu cortex-m4 -nographic \
-        -semihosting-config enable=on,target=native -kernel "$elf" >"$out/$name.log"; then
-        echo "firmware ($name) failed or timed out; its output:" >&2
-        cat "$out/$name.log" >&2
-        exit 1
-    fi
-    cat "$out/$name.log"
-    cargo run --quiet --locked -p hodr-embedded --example host_reference "${flags[@]}" \
-        -- --check "$out/$name.log"
+        # QEMU exits with the firmware's semihosting exit status; a hang hits the timeout.
+        if ! timeout 300 "${qemu[@]}" -nographic -semihosting-config enable=on,target=native \
+            -kernel "$elf" >"$log"; then
+            echo "firmware ($arch, $name) failed or timed out; its output:" >&2
+            cat "$log" >&2
+            exit 1
+        fi
+        cat "$log"
+        check=$(cargo run --quiet --locked -p hodr-embedded --example host_reference \
+            "${flags[@]}" -- --check "$log")
+        echo "$check"
+        if ! grep -q "bit-identical" <<<"$check"; then
+            echo "firmware ($arch, $name) is not bit-identical to the host" >&2
+            exit 1
+        fi
 
-    sizes=$("$llvm_bin/llvm-size" -A "$elf")
-    section() { awk -v s="$1" '$1 == s { print $2 }' <<<"$sizes"; }
-    core_features=$(case $name in
-        minimal) echo "none (gradient, Adam)" ;;
-        ncg) echo "hvp, aggregate, cg" ;;
-        full) echo "all (+ hessian)" ;;
-    esac)
-    stack=$(sed -n 's/^stack peak=\([0-9]*\) bytes.*/\1/p' "$out/$name.log")
-    table+="
-| $name | $core_features | $(section .text) | $(section .rodata) | $(section .data) | $(section .bss) | $stack |"
+        sizes=$("$llvm_bin/llvm-size" -A "$elf")
+        section() { awk -v s="$1" '$1 == s { print $2 }' <<<"$sizes"; }
+        methods=$(sed -n 's/^run [A-Z]* \([^ ]*\) .*/\1/p' "$log" | sort -u | paste -sd, -)
+        stack=$(sed -n 's/^stack peak=\([0-9]*\) bytes.*/\1/p' "$log")
+        row="| $arch | $name | $methods | $(section .text) | $(section .rodata) | $(section .data) | $(section .bss) | $stack |"
+        if $count; then
+            # One translation block per instruction, each logged as one "Trace" line.
+            instructions=$(timeout 3600 "${qemu[@]}" -nographic -singlestep \
+                -semihosting-config enable=on,target=native -d exec,nochain -D /dev/stderr \
+                -kernel "$elf" 2>&1 >/dev/null | grep -c '^Trace')
+            evaluations=$(sed -n 's/^run .* evaluations=\([0-9]*\) .*/\1/p' "$log" |
+                awk '{ s += $1 } END { print s }')
+            row+=" $instructions | $evaluations | $((instructions / evaluations)) |"
+        fi
+        table+="
+$row"
+    done
 done
 
 echo

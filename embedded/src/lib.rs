@@ -1,13 +1,14 @@
 //! # hodr-embedded
 //!
-//! The workload of hodr's Cortex-M firmware (`firmware/`), as a `no_std`, heap-free
+//! The workload of hodr's microcontroller firmware (`firmware/`), as a `no_std`, heap-free
 //! library, so that the firmware and its host reference run *the same code*: the same
 //! problems, settings, seeds and float type (`f32`), and the same report format.
 //!
 //! * [`problem`]: QUAD (f = 5x₀² + 5x₁² + 7.5x₀x₁) and PLATEAU (a 1-D well of zero loss
 //!   in a plateau of one), with their settings;
-//! * [`algorithm`]: FR22 (Adam), OurHVPA (NCG + aggregate HVP, feature `ncg`) and
-//!   OurH (NCG + per-element Hessian, feature `hessian`);
+//! * [`algorithm`]: FR22 (Adam), OurHVPA (NCG + aggregate HVP, feature `ncg`),
+//!   OurH (NCG + per-element Hessian, feature `hessian`) and Auto, hodr-core's default
+//!   optimiser (feature `auto`);
 //! * [`run_all`]: every problem with every compiled-in algorithm, in static memory
 //!   ([`Storage`]), one report line per run to an [`Output`];
 //! * [`report`]: writing those lines without `core::fmt` (printing one `f32` with it adds
@@ -38,4 +39,6 @@ pub mod report;
 mod run;
 
 pub use report::Output;
+#[cfg(feature = "auto")]
+pub use run::AUTO_FLOATS;
 pub use run::{MAX_DIM, OPTIMISER_FLOATS, ROWS, Storage, run_all, run_one};

@@ -51,6 +51,13 @@ pub fn write_run<O: Output + ?Sized>(
     out.write(b" end=");
     match result.end {
         End::Finished(t) => out.write(termination_name(t).as_bytes()),
+        #[cfg(feature = "auto")]
+        End::Auto(t) => out.write(match t {
+            hodr_core::optim::AutoTermination::Converged => b"converged",
+            hodr_core::optim::AutoTermination::Stagnated => b"stagnated",
+            hodr_core::optim::AutoTermination::MaxEvaluations => b"max-evaluations",
+            _ => b"other",
+        }),
         End::Failed { iteration, error } => {
             out.write(b"failed-at-");
             write_decimal(out, iteration);
@@ -95,6 +102,7 @@ fn error_name(e: Error) -> &'static str {
         Error::NonFiniteObjective { .. } => "non-finite-objective",
         Error::InvalidSetting { .. } => "invalid-setting",
         Error::NonFiniteEstimate { .. } => "non-finite-estimate",
+        Error::Cancelled => "cancelled",
         _ => "error",
     }
 }

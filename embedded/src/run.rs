@@ -1,5 +1,7 @@
 //! Running a problem with an algorithm in caller-provided static memory.
 
+#[cfg(feature = "auto")]
+use hodr_core::optim::{Auto, AutoOptions, AutoTermination};
 use hodr_core::optim::{Budget, Optimiser, Termination};
 use hodr_core::{Error, Estimator, MIN_ROWS, NoiseSeed, Workspace};
 use rand_xoshiro::Xoshiro128PlusPlus;
@@ -22,14 +24,31 @@ pub const OPTIMISER_FLOATS: usize = MAX_DIM * (4 + MAX_DIM);
 
 const WORKSPACE_FLOATS: usize = Workspace::<f32>::buffer_len(MAX_DIM, ROWS);
 
+/// Auto's memory: [`hodr_core::optim::auto::buffer_len`] of the largest problem, which
+/// covers the smaller ones (the length grows with n; checked at compile time below).
+#[cfg(feature = "auto")]
+pub const AUTO_FLOATS: usize = hodr_core::optim::auto::buffer_len(MAX_DIM);
+
+#[cfg(feature = "auto")]
+const _: () = {
+    let mut k = 0;
+    while k < PROBLEMS.len() {
+        assert!(hodr_core::optim::auto::buffer_len(PROBLEMS[k].start.len()) <= AUTO_FLOATS);
+        k += 1;
+    }
+};
+
 /// All the memory a run needs besides the stack, reused by every run. Put it in a
-/// `static` (the firmware) or anywhere else (the host): ≈ 0.2 KiB.
+/// `static` (the firmware) or anywhere else (the host): ≈ 0.2 KiB, and with Auto
+/// [`AUTO_FLOATS`] `f32`s more.
 #[derive(Clone, Debug)]
 pub struct Storage {
     theta: [f32; MAX_DIM],
     optimiser: [f32; OPTIMISER_FLOATS],
     workspace: [f32; WORKSPACE_FLOATS],
     seeds: [NoiseSeed; ROWS],
+    #[cfg(feature = "auto")]
+    auto: [f32; AUTO_FLOATS],
 }
 
 impl Storage {
@@ -40,6 +59,8 @@ impl Storage {
             optimiser: [0.0; OPTIMISER_FLOATS],
             workspace: [0.0; WORKSPACE_FLOATS],
             seeds: [0; ROWS],
+            #[cfg(feature = "auto")]
+            auto: [0.0; AUTO_FLOATS],
         }
     }
 }
@@ -55,6 +76,9 @@ impl Default for Storage {
 pub enum End {
     /// The optimiser stopped normally.
     Finished(Termination),
+    /// Auto stopped normally.
+    #[cfg(feature = "auto")]
+    Auto(AutoTermination),
     /// Setting up (iteration 0) or an iteration failed; θ is the last good one.
     Failed {
         /// The 1-based failed iteration, 0 for the set-up.
@@ -80,6 +104,18 @@ pub struct RunResult {
 }
 
 impl RunResult {
+    /// A run in dimension `n` that has done nothing yet, ending with `end` unless told
+    /// otherwise.
+    fn unstarted(n: usize, end: End) -> Self {
+        RunResult {
+            theta: [0.0; MAX_DIM],
+            dim: n,
+            evaluations: 0,
+            iterations: 0,
+            end,
+        }
+    }
+
     /// The final parameters θ (length n).
     pub fn theta(&self) -> &[f32] {
         &self.theta[..self.dim]
@@ -94,14 +130,14 @@ impl RunResult {
 /// # Panics
 /// If the problem's dimension exceeds [`MAX_DIM`] (the built-in problems do not).
 pub fn run_one(problem: &Problem, algorithm: Algorithm, storage: &mut Storage) -> RunResult {
-    let n = problem.start.len();
-    let mut result = RunResult {
-        theta: [0.0; MAX_DIM],
-        dim: n,
-        evaluations: 0,
-        iterations: 0,
-        end: End::Finished(Termination::MaxEvaluations),
+    let Some(method) = algorithm.method(&problem.settings) else {
+        #[cfg(feature = "auto")]
+        return run_auto(problem, storage);
+        #[cfg(not(feature = "auto"))]
+        unreachable!("every algorithm but Auto has a method");
     };
+    let n = problem.start.len();
+    let mut result = RunResult::unstarted(n, End::Finished(Termination::MaxEvaluations));
     let theta = &mut storage.theta[..n];
     theta.copy_from_slice(problem.start);
     let setup = |error| End::Failed {
@@ -113,7 +149,7 @@ pub fn run_one(problem: &Problem, algorithm: Algorithm, storage: &mut Storage) -
     let rng = Xoshiro128PlusPlus::seed_from_u64(problem.seed);
     let optimiser = Estimator::new(s.sigma_start, s.pairs, rng).and_then(|estimator| {
         Optimiser::new(
-            algorithm.method(s),
+            method,
             algorithm.schedule(s),
             Budget::evaluations(s.evaluations),
             estimator,
@@ -135,6 +171,45 @@ pub fn run_one(problem: &Problem, algorithm: Algorithm, storage: &mut Storage) -
             result.iterations = opt.iteration();
         }
         (Err(e), _) | (_, Err(e)) => result.end = setup(e),
+    }
+    result.theta[..n].copy_from_slice(&storage.theta[..n]);
+    result
+}
+
+/// Minimises `problem` with Auto from its start, its seed, its scale σ₀ (`sigma_start`)
+/// and its budget, in `storage`.
+#[cfg(feature = "auto")]
+fn run_auto(problem: &Problem, storage: &mut Storage) -> RunResult {
+    let n = problem.start.len();
+    let mut result = RunResult::unstarted(n, End::Auto(AutoTermination::MaxEvaluations));
+    let theta = &mut storage.theta[..n];
+    theta.copy_from_slice(problem.start);
+    let s = &problem.settings;
+    let rng = Xoshiro128PlusPlus::seed_from_u64(problem.seed);
+    let auto = AutoOptions::default()
+        .with_max_evaluations(s.evaluations)
+        .and_then(|options| {
+            Auto::new(theta, s.sigma_start, &mut storage.auto, rng).map(|a| a.with_options(options))
+        });
+    match auto {
+        Ok(mut auto) => {
+            let mut f = problem.objective;
+            result.end = match auto.run(&mut f, |_, _| {}) {
+                Ok(t) => End::Auto(t),
+                Err(error) => End::Failed {
+                    iteration: auto.iteration() + 1,
+                    error,
+                },
+            };
+            result.evaluations = auto.evaluations();
+            result.iterations = auto.iteration();
+        }
+        Err(error) => {
+            result.end = End::Failed {
+                iteration: 0,
+                error,
+            }
+        }
     }
     result.theta[..n].copy_from_slice(&storage.theta[..n]);
     result
@@ -171,14 +246,32 @@ mod tests {
         for p in PROBLEMS {
             for &a in Algorithm::ALL {
                 let r = run_one(&p, a, &mut storage);
-                assert_eq!(r.end, End::Finished(Termination::MaxEvaluations));
-                // The budget is spent up to less than one iteration, and not overrun: an
-                // iteration that would pass it at the costliest cost so far is not started.
                 assert!(r.evaluations <= p.settings.evaluations, "{r:?}");
-                assert!(r.evaluations * 10 >= p.settings.evaluations * 9, "{r:?}");
+                match r.end {
+                    // A preset spends its budget up to less than one iteration, and does
+                    // not overrun it: an iteration that would pass it at the costliest
+                    // cost so far is not started.
+                    End::Finished(t) => {
+                        assert_eq!(t, Termination::MaxEvaluations);
+                        assert!(r.evaluations * 10 >= p.settings.evaluations * 9, "{r:?}");
+                    }
+                    // Auto may converge before the budget is spent.
+                    #[cfg(feature = "auto")]
+                    End::Auto(_) => {}
+                    End::Failed { .. } => panic!("{} {}: {r:?}", p.name, a.name()),
+                }
                 let d = distance(&r, p.optimum);
                 std::println!("{} {}: {:?}, distance {d}", p.name, a.name(), r);
-                assert!(d < 0.05, "{} {}: {r:?}", p.name, a.name());
+                if r.end == End::Finished(Termination::MaxEvaluations) {
+                    // σ annealed to its end: θ is near the smoothed objective's minimiser.
+                    assert!(d < 0.05, "{} {}: {r:?}", p.name, a.name());
+                } else {
+                    // Auto minimises f itself: f(θ) is within 1e-6 of f at that minimiser
+                    // (on PLATEAU, θ anywhere in the well).
+                    let f = p.objective;
+                    let gap = f(r.theta()) - f(p.optimum);
+                    assert!(gap <= 1e-6, "{} {}: {r:?}", p.name, a.name());
+                }
             }
         }
     }
@@ -187,8 +280,9 @@ mod tests {
     fn optimiser_storage_fits_every_method() {
         for p in [QUAD, PLATEAU] {
             for &a in Algorithm::ALL {
-                let needed = a.method(&p.settings).buffer_len(p.start.len());
-                assert!(needed <= OPTIMISER_FLOATS);
+                if let Some(method) = a.method(&p.settings) {
+                    assert!(method.buffer_len(p.start.len()) <= OPTIMISER_FLOATS);
+                }
             }
         }
     }

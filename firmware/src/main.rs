@@ -1,6 +1,8 @@
 //! # hodr-firmware
 //!
-//! hodr-core on a Cortex-M4F, the Arm MPS2 AN386 board that QEMU emulates: QUAD and a
+//! hodr-core on microcontrollers that QEMU emulates — the Arm MPS2 AN386 board
+//! (Cortex-M4F, hardware `f32`), the BBC micro:bit (nRF51822, Cortex-M0, `f32` in
+//! software) and the RISC-V `virt` machine (RV32IMAC, `f32` in software): QUAD and a
 //! 1-D plateau minimised in `f32` with FR22 (Adam), OurHVPA (feature `ncg`) and OurH
 //! (feature `hessian`), exactly as `hodr-embedded`'s host reference runs them. All
 //! memory is static (`hodr_embedded::Storage` in .bss) or stack; there is no heap and
@@ -10,60 +12,43 @@
 //! exits QEMU with status 0 (1 after a panic).
 //!
 //! ```sh
-//! cd firmware && cargo run --release    # needs qemu-system-arm
+//! cd firmware && cargo run --release                                        # Cortex-M4F
+//! cd firmware && cargo run --release --target thumbv6m-none-eabi             # Cortex-M0
+//! cd firmware && cargo run --release --target riscv32imac-unknown-none-elf   # RISC-V
 //! ```
 
 #![no_std]
 #![no_main]
 #![deny(missing_docs, unsafe_code)]
 
+#[cfg(target_arch = "arm")]
 #[allow(unsafe_code)]
-mod stack;
+mod arm;
+#[cfg(target_arch = "riscv32")]
+#[allow(unsafe_code)]
+mod riscv;
 
-use cortex_m_rt::entry;
-use cortex_m_semihosting::{debug, hio};
 use hodr_embedded::report::write_decimal;
 use hodr_embedded::{Output, Storage, run_all};
 
-#[entry]
-fn main() -> ! {
-    // cortex-m-rt hands `static mut`s declared at the top of the entry function to it as
-    // `&'static mut`: the storage lives in .bss, not on the stack.
-    static mut STORAGE: Storage = Storage::new();
-
-    let status = match hio::hstdout() {
-        Ok(mut stdout) => {
-            // Nowhere to report a failed write to the host's stdout: drop it.
-            let mut out = |bytes: &[u8]| {
-                let _ = stdout.write_all(bytes);
-            };
-            run_all(&mut out, STORAGE);
-            let (used, size) = stack::peak();
-            out.write(b"stack peak=");
-            write_decimal(&mut out, used);
-            out.write(b" bytes of ");
-            write_decimal(&mut out, size);
-            out.write(b"\n");
-            debug::EXIT_SUCCESS
-        }
-        Err(()) => debug::EXIT_FAILURE,
+/// Runs every problem with every compiled-in method, writing the report to `stdout`,
+/// then the peak stack use that `stack_peak` measures afterwards (bytes used, bytes of
+/// the stack region). Returns false, having run nothing, when there is no `stdout`
+/// (the host refused the semihosting stream).
+fn run_and_report(
+    stdout: Option<impl FnMut(&[u8])>,
+    storage: &mut Storage,
+    stack_peak: impl Fn() -> (usize, usize),
+) -> bool {
+    let Some(mut out) = stdout else {
+        return false;
     };
-    debug::exit(status);
-    // Without a debugger or emulator to end the program, rest here.
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
-
-/// Reports the panic (without its message: formatting it would link `core::fmt`) and
-/// makes QEMU exit with a failure status, so a test fails at once rather than timing out.
-#[panic_handler]
-fn panic(_: &core::panic::PanicInfo) -> ! {
-    if let Ok(mut stderr) = hio::hstderr() {
-        let _ = stderr.write_all(b"panic\n");
-    }
-    debug::exit(debug::EXIT_FAILURE);
-    loop {
-        cortex_m::asm::wfi();
-    }
+    run_all(&mut out, storage);
+    let (used, size) = stack_peak();
+    out.write(b"stack peak=");
+    write_decimal(&mut out, used);
+    out.write(b" bytes of ");
+    write_decimal(&mut out, size);
+    out.write(b"\n");
+    true
 }

@@ -1,4 +1,4 @@
-//! Optimisers driven by the smoothed estimators (DESIGN §1.7).
+//! Optimisers driven by the smoothed estimators (docs/design.md §1.7).
 //!
 //! An [`Optimiser`] is a step machine: [`Optimiser::step`] performs one iteration and
 //! returns a plain-data [`StepReport`]; the caller owns the clock (no_std has none), any
@@ -52,7 +52,7 @@ use core::fmt;
 use rand_core::Rng;
 
 #[cfg(feature = "auto")]
-pub use auto::{Auto, AutoOptions, AutoReport, AutoStep, AutoTermination, NonFinite};
+pub use auto::{Auto, AutoOptions, AutoReport, AutoStep, AutoTermination, FixedAuto, NonFinite};
 pub use first_order::{Adam, GradientDescent};
 #[cfg(feature = "cg")]
 pub use ncg::{Curvature, Ncg};

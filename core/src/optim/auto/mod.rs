@@ -52,9 +52,12 @@
 //! [`Auto::history_len`] remembered points. Cost per iteration: O(m²n + m³) for the fit,
 //! O(n³) for the full model's eigen-decomposition.
 
+mod fixed;
 mod metric;
 mod model;
 mod trust;
+
+pub use fixed::FixedAuto;
 
 use core::fmt;
 
@@ -297,11 +300,15 @@ struct Memory<'b, T> {
 }
 
 /// Region lengths for dimension n, in [`Memory`]'s order.
-fn regions(n: usize) -> [usize; 33] {
+const fn regions(n: usize) -> [usize; 33] {
     let shape = Shape::for_dim(n);
     let m = history_len(n);
     let hl = shape.hessian_len(n);
-    let full = if shape == Shape::Full { n * n } else { 0 };
+    let full = if matches!(shape, Shape::Full) {
+        n * n
+    } else {
+        0
+    };
     let rows = stage_rows(n);
     let [gram, kp, schur, beta] = model::scratch_lens(m, n);
     [
@@ -341,13 +348,30 @@ fn regions(n: usize) -> [usize; 33] {
     ]
 }
 
-fn history_len(n: usize) -> usize {
+/// Floats of buffer an [`Auto`] run needs in dimension n, for m = [`Auto::history_len`]
+/// points remembered and the Hessian's h = n² floats (n ≤ [`FULL_MODEL_MAX_DIM`]) or n
+/// (above):
+/// m(2n + 3) + m² + m(n + 1) + (n + 1)² + 13n + 1 + 4h + (2n + 2)(n + 1) + n² + 5f,
+/// with f = n² for the full model and 0 for the diagonal one. A `const fn`, so that
+/// storage can be sized at compile time ([`FixedAuto`]).
+pub const fn buffer_len(n: usize) -> usize {
+    let lens = regions(n);
+    let mut sum = 0;
+    let mut k = 0;
+    while k < lens.len() {
+        sum += lens[k];
+        k += 1;
+    }
+    sum
+}
+
+const fn history_len(n: usize) -> usize {
     Shape::for_dim(n).coefficients(n) + n + 1
 }
 
 /// Points one batch can hold: the first iteration's 2n samples and θ, or a trial point
 /// and θ.
-fn stage_rows(n: usize) -> usize {
+const fn stage_rows(n: usize) -> usize {
     2 * n + 2
 }
 
@@ -475,15 +499,14 @@ impl<T: Real, R> fmt::Debug for Auto<'_, T, R> {
 }
 
 impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
-    /// Floats of buffer [`Auto::new`] needs in dimension n:
-    /// m(2n + 3) + m² + O(n²) for m = [`Auto::history_len`]`(n)`.
-    pub fn buffer_len(n: usize) -> usize {
-        regions(n).iter().sum()
+    /// Floats of buffer [`Auto::new`] needs in dimension n ([`buffer_len`]).
+    pub const fn buffer_len(n: usize) -> usize {
+        buffer_len(n)
     }
 
     /// Points remembered in dimension n: the model's coefficient count
     /// ((n+1)(n+2)/2 for a full Hessian, 2n + 1 for a diagonal one) plus n + 1.
-    pub fn history_len(n: usize) -> usize {
+    pub const fn history_len(n: usize) -> usize {
         history_len(n)
     }
 

@@ -5,26 +5,26 @@
 //!
 //! m(u) = c + gᵀu + ½uᵀHu,
 //!
-//! fitted by weighted ridge regression towards a prior model m₀ (the previous
-//! iteration's, moved to the current θ and σ):
+//! fitted by weighted least squares with its curvature drawn towards a prior model m₀
+//! (the previous iteration's, moved to the current θ and σ):
 //!
-//! minimise Σᵢ wᵢ (m(uᵢ) − vᵢ)² + λ_c (c − c₀)² + λ_g ‖g − g₀‖² + λ_H ‖H − H₀‖_F².
+//! minimise Σᵢ wᵢ (m(uᵢ) − vᵢ)² + λ_H ‖H − H₀‖_F², with c and g free.
 //!
 //! Where the points determine the model, the data decide; where they do not (fewer
-//! points than the (n+1)(n+2)/2 coefficients of a full quadratic), the model changes
+//! points than the (n+1)(n+2)/2 coefficients of a full quadratic), the curvature changes
 //! least from the prior: the least-change principle of Powell's NEWUOA, so curvature
 //! learnt on earlier iterations is kept. With the weights wᵢ, a Gaussian of the distance
 //! to θ at the scale of σ, an overdetermined fit is a local polynomial regression whose
 //! linear and quadratic coefficients estimate the smoothed function's gradient and
 //! Hessian: points averaged over the kernel, as hodr's estimators average samples.
 //!
-//! The regression is solved in its dual (kernel) form, an m×m system for m points, so
-//! that its cost does not depend on the number of coefficients: with ψᵢ = √wᵢ φ(uᵢ) the
-//! features and Λ the penalties, α solves (ΨΛ⁻¹Ψᵀ + I)α = √w ⊙ (v − m₀(u)), and the
-//! coefficients move by Λ⁻¹Ψᵀα. The features' inner product under Λ⁻¹ has a closed form:
-//! for the full Hessian with the Frobenius penalty, 1/λ_c + a·b/λ_g + (a·b)²/(4λ_H); for a
-//! diagonal Hessian (large n), the last term is Σⱼ aⱼ²bⱼ²/(4λ_H). The Hessian then moves
-//! by (1/(2λ_H)) Σᵢ √wᵢ αᵢ uᵢuᵢᵀ (its diagonal only, for the diagonal model).
+//! The fit is solved in its dual (kernel) form, an m×m system for m points, so that its
+//! cost does not depend on the number of coefficients: with ψᵢ the weighted quadratic
+//! features, K = ΨΨᵀ/λ_H + I and P the weighted linear features √wᵢ(1, uᵢ), the saddle
+//! system K α + P β = r, Pᵀα = 0 ([`fit`]). The features' inner product is (a·b)² for the
+//! full Hessian with the Frobenius penalty and Σⱼ aⱼ²bⱼ² for a diagonal Hessian (large
+//! n); the Hessian then moves by (1/(2λ_H)) Σᵢ √wᵢ αᵢ uᵢuᵢᵀ (its diagonal only, for the
+//! diagonal model).
 
 use crate::cholesky;
 use crate::real::Real;
@@ -40,7 +40,7 @@ pub(super) enum Shape {
 
 impl Shape {
     /// The shape used in dimension n.
-    pub(super) fn for_dim(n: usize) -> Shape {
+    pub(super) const fn for_dim(n: usize) -> Shape {
         if n <= super::FULL_MODEL_MAX_DIM {
             Shape::Full
         } else {
@@ -49,7 +49,7 @@ impl Shape {
     }
 
     /// Floats of a Hessian of this shape.
-    pub(super) fn hessian_len(self, n: usize) -> usize {
+    pub(super) const fn hessian_len(self, n: usize) -> usize {
         match self {
             Shape::Full => n * n,
             Shape::Diagonal => n,
@@ -57,7 +57,7 @@ impl Shape {
     }
 
     /// Coefficients of the model: 1 + n + n(n+1)/2 (full) or 1 + 2n (diagonal).
-    pub(super) fn coefficients(self, n: usize) -> usize {
+    pub(super) const fn coefficients(self, n: usize) -> usize {
         match self {
             Shape::Full => 1 + n + n * (n + 1) / 2,
             Shape::Diagonal => 1 + 2 * n,
@@ -121,7 +121,7 @@ pub(super) struct Scratch<'a, T> {
 }
 
 /// Floats of [`Scratch`] for m points in dimension n: (gram, kp, schur, beta).
-pub(super) fn scratch_lens(m: usize, n: usize) -> [usize; 4] {
+pub(super) const fn scratch_lens(m: usize, n: usize) -> [usize; 4] {
     [m * m, m * (n + 1), (n + 1) * (n + 1), n + 1]
 }
 
