@@ -1,0 +1,292 @@
+"""hodr: second-order optimisation of discontinuous black boxes, such as renderers.
+
+hodr smooths an objective f with a Gaussian of width sigma and estimates the smoothed
+function's gradient, Hessian and Hessian-vector products by Monte Carlo sampling, so a
+loss with jumps and plateaus (a shape that does not yet overlap its target) still has
+slope and curvature. Its default optimiser, Auto, needs only a start x0 and a scale
+sigma0 (the distance over which the parameters matter, as CMA-ES asks for).
+
+    >>> import numpy as np, hodr
+    >>> res = hodr.minimize(lambda x: float(np.sum(np.round(x) ** 2)), [3.2, -2.7], 1.0)
+    >>> res.success, res.fun
+    (True, 0.0)
+
+Functions:
+
+* ``minimize(fun, x0, sigma0, ...)`` -> ``OptimizeResult`` (scipy.optimize style);
+* ``gradient``, ``hessian``, ``hvp`` -> (estimate, evaluations).
+
+The objective receives float64 numpy arrays: one point of shape (n,), or with
+``batch=True`` a (k, n) array of points to evaluate at once (a renderer that renders a
+batch), returning k values. An exception it raises propagates unchanged; Ctrl-C
+(KeyboardInterrupt) stops the work within one batch of evaluations.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Callable, Optional, Sequence, Tuple
+
+import numpy as np
+
+from . import _hodr
+
+__all__ = ["OptimizeResult", "minimize", "gradient", "hessian", "hvp"]
+
+METHODS = ("auto",)
+
+
+class OptimizeResult(dict):
+    """The result of ``minimize``, as in scipy.optimize: a dict whose keys are also
+    attributes.
+
+    Attributes
+    ----------
+    x : ndarray
+        The best point found.
+    fun : float
+        f(x) (NaN if the run ended before evaluating x).
+    nfev : int
+        Objective evaluations.
+    nit : int
+        Iterations.
+    success : bool
+        True when the run converged (sigma fell below its tolerance) or stagnated (no
+        lower value within its patience); False when the budget ran out first or the
+        callback stopped it.
+    status : int
+        0 converged, 1 budget used, 2 stagnated, 3 stopped by the callback.
+    message : str
+        Why the run ended.
+    history : dict of ndarray
+        Per iteration: ``nfev`` (evaluations so far), ``fun`` (f at the best point) and
+        ``sigma`` (the smoothing width and trust radius).
+    """
+
+    def __getattr__(self, name: str) -> Any:
+        try:
+            return self[name]
+        except KeyError as e:
+            raise AttributeError(name) from e
+
+    __setattr__ = dict.__setitem__
+    __delattr__ = dict.__delitem__
+
+    def __repr__(self) -> str:
+        keys = ("message", "success", "status", "fun", "x", "nit", "nfev")
+        width = max(map(len, keys))
+        return "\n".join(f"{k.rjust(width)}: {self[k]!r}" for k in keys if k in self)
+
+
+def _bounds(bounds: Any, n: int) -> Optional[Tuple[list, list]]:
+    """(lower, upper) from the forms scipy accepts: an object with ``lb`` and ``ub``
+    (scipy.optimize.Bounds), or n (low, high) pairs with None for unbounded; also
+    (lower, upper) with scalars or length-n sequences when n != 2 (at n = 2 two pairs
+    read as per-variable pairs, as in scipy)."""
+    if bounds is None:
+        return None
+    if hasattr(bounds, "lb") and hasattr(bounds, "ub"):
+        pairs = [bounds.lb, bounds.ub]
+    else:
+        try:
+            pairs = list(bounds)
+        except TypeError:
+            raise TypeError("bounds must be (low, high) pairs or (lower, upper)") from None
+        if len(pairs) == n and all(np.ndim(p) == 1 and len(p) == 2 for p in pairs):
+            lower = [-np.inf if lo is None else float(lo) for lo, _ in pairs]
+            upper = [np.inf if hi is None else float(hi) for _, hi in pairs]
+            return lower, upper
+    if len(pairs) != 2:
+        raise ValueError(f"bounds must be {n} (low, high) pairs or (lower, upper), got {len(pairs)} entries")
+    try:
+        lower, upper = (np.broadcast_to(np.asarray(b, dtype=float), (n,)) for b in pairs)
+    except ValueError:
+        raise ValueError(f"bounds: lower and upper must be scalars or have {n} elements") from None
+    return lower.tolist(), upper.tolist()
+
+
+def _vector(name: str, value: Any) -> list:
+    """A 1-D float vector, or TypeError/ValueError naming the argument."""
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a sequence of real numbers") from None
+    if array.ndim != 1:
+        raise ValueError(f"{name} must be 1-D, got shape {array.shape}")
+    return array.tolist()
+
+
+def _count(name: str, value: Any, minimum: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name} must be an int, got {type(value).__name__}")
+    if value < minimum:
+        raise ValueError(f"{name} must be at least {minimum}, got {value}")
+    return int(value)
+
+
+def minimize(
+    fun: Callable[[np.ndarray], float],
+    x0: Sequence[float],
+    sigma0: float,
+    *,
+    bounds: Any = None,
+    budget: Optional[int] = None,
+    method: str = "auto",
+    seed: int = 0,
+    batch: bool = False,
+    noisy: bool = False,
+    callback: Optional[Callable[[np.ndarray, float], Any]] = None,
+) -> OptimizeResult:
+    """Minimise ``fun`` from ``x0`` with hodr's default optimiser, Auto.
+
+    Auto is a trust-region method on a quadratic model of the Gaussian-smoothed
+    objective, fitted to the evaluations it remembers; sigma is both the smoothing
+    width and the trust radius, widening on plateaus and shrinking as the model proves
+    right. It needs no settings beyond the problem's own.
+
+    Parameters
+    ----------
+    fun : callable
+        ``fun(x) -> float`` for x of shape (n,); with ``batch=True``,
+        ``fun(X) -> array of k floats`` for X of shape (k, n). NaN or inf counts as
+        worse than any value.
+    x0 : array_like, shape (n,)
+        The start.
+    sigma0 : float
+        The scale: how far the parameters must move to make a difference (> 0).
+    bounds : optional
+        n ``(low, high)`` pairs as in scipy (None for an open side), a
+        ``scipy.optimize.Bounds``, or ``(lower, upper)`` with scalars or length-n
+        sequences (n != 2); None for unbounded. Every evaluated point lies inside.
+    budget : int, optional
+        At most this many evaluations (never exceeded). Default: until converged.
+    method : str
+        ``"auto"`` (the only one).
+    seed : int
+        Seed of every random choice: the same seed gives the same points and result.
+    batch : bool
+        Call ``fun`` with batches of points (see ``fun``).
+    noisy : bool
+        ``fun`` is stochastic (a Monte Carlo renderer): Auto then compares steps by
+        evaluating both points again rather than trusting remembered values.
+    callback : callable, optional
+        ``callback(x, f)`` after every iteration with the best point so far and its
+        value; returning True stops the run.
+
+    Returns
+    -------
+    OptimizeResult
+
+    Raises
+    ------
+    TypeError, ValueError
+        For bad arguments, naming the argument.
+    Exception
+        Whatever ``fun`` or ``callback`` raised, unchanged.
+    """
+    if not isinstance(method, str) or method.lower() not in METHODS:
+        raise ValueError(f"unknown method {method!r} (methods: {', '.join(METHODS)})")
+    x0 = _vector("x0", x0)
+    try:
+        sigma0 = float(sigma0)
+    except (TypeError, ValueError):
+        raise TypeError(f"sigma0 must be a real number, got {type(sigma0).__name__}") from None
+    if budget is not None:
+        budget = _count("budget", budget, 1)
+    seed = _count("seed", seed, 0)
+    if callback is not None and not callable(callback):
+        raise TypeError("callback must be callable")
+    raw = _hodr.minimize_auto(
+        fun, x0, sigma0, _bounds(bounds, len(x0)), budget, seed, bool(batch), bool(noisy), callback
+    )
+    history = {k: raw.pop(f"history_{k}") for k in ("nfev", "fun", "sigma")}
+    result = OptimizeResult(raw)
+    result.history = history
+    return result
+
+
+def gradient(
+    fun: Callable,
+    x: Sequence[float],
+    sigma: float,
+    *,
+    pairs: int = 16,
+    method: str = "aggregate",
+    seed: int = 0,
+    batch: bool = False,
+    noisy: bool = False,
+) -> Tuple[np.ndarray, int]:
+    """Estimate the gradient of the Gaussian-smoothed ``fun`` at ``x``.
+
+    f_sigma(x) = E[f(x + sigma*eps)], eps ~ N(0, I). The estimate is unbiased (the
+    least-squares ``"ls"`` one consistent) with ``pairs`` antithetic pairs.
+
+    Parameters
+    ----------
+    method : str
+        ``"aggregate"`` (importance sampling, one pair serves every coordinate; 2·pairs
+        evaluations), ``"per-element"`` (2n·pairs), ``"gaussian"`` (2·pairs), ``"fr22"``
+        (the FR22 baseline; exact for separable f only), ``"ls"`` (least squares,
+        2·max(pairs, 2n+2)).
+
+    Returns
+    -------
+    (g, nfev) : (ndarray of shape (n,), int)
+    """
+    return _hodr.gradient(
+        fun, _vector("x", x), float(sigma), _count("pairs", pairs, 1), str(method),
+        _count("seed", seed, 0), bool(batch), bool(noisy),
+    )
+
+
+def hessian(
+    fun: Callable,
+    x: Sequence[float],
+    sigma: float,
+    *,
+    pairs: int = 16,
+    method: str = "aggregate",
+    seed: int = 0,
+    batch: bool = False,
+    noisy: bool = False,
+) -> Tuple[np.ndarray, int]:
+    """Estimate the Hessian of the Gaussian-smoothed ``fun`` at ``x`` (symmetric).
+
+    ``method``: ``"aggregate"`` (2·pairs + 1 evaluations), ``"gaussian"`` (2·pairs + 1),
+    ``"per-element"`` (n(n+1)·pairs + 1).
+
+    Returns
+    -------
+    (H, nfev) : (ndarray of shape (n, n), int)
+    """
+    return _hodr.hessian(
+        fun, _vector("x", x), float(sigma), _count("pairs", pairs, 1), str(method),
+        _count("seed", seed, 0), bool(batch), bool(noisy),
+    )
+
+
+def hvp(
+    fun: Callable,
+    x: Sequence[float],
+    v: Sequence[float],
+    sigma: float,
+    *,
+    pairs: int = 16,
+    method: str = "kernel",
+    seed: int = 0,
+    batch: bool = False,
+    noisy: bool = False,
+) -> Tuple[np.ndarray, int]:
+    """Estimate the product of the smoothed ``fun``'s Hessian at ``x`` with ``v``.
+
+    ``method``: ``"kernel"`` (Gaussian kernel, 2·pairs + 1 evaluations, unbiased) or
+    ``"central"`` (central difference of two aggregate gradients at x ± (sigma/3)·v/|v|
+    on common samples, 4·pairs evaluations).
+
+    Returns
+    -------
+    (Hv, nfev) : (ndarray of shape (n,), int)
+    """
+    return _hodr.hvp(
+        fun, _vector("x", x), _vector("v", v), float(sigma), _count("pairs", pairs, 1),
+        str(method), _count("seed", seed, 0), bool(batch), bool(noisy),
+    )

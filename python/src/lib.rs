@@ -1,0 +1,418 @@
+//! `hodr._hodr`: the Rust half of the `hodr` Python package. The Python half
+//! (`python/hodr/__init__.py`) holds the public functions, their docstrings and the result
+//! type; this module checks arguments, drives hodr-core and calls back into Python.
+//!
+//! A Python callable becomes a hodr-core [`Objective`] ([`PyObjective`]): each point (or,
+//! with `batch`, each batch of points as one (k, n) array) is handed to it as a float64
+//! numpy array, and it must return a real number (one per row). An exception raised by
+//! the callable, or a pending KeyboardInterrupt, is kept, ends the work at the next batch
+//! ([`Objective::cancelled`]) and is raised again unchanged to the caller.
+
+use hodr_core::optim::{Auto, AutoOptions, AutoTermination};
+use hodr_core::{
+    Batch, Error, Estimator, GradientMethod, HessianMethod, HvpMethod, NoiseSeed, Objective,
+    Workspace,
+};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyArray2};
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use rand_xoshiro::Xoshiro256PlusPlus;
+use rand_xoshiro::rand_core::SeedableRng;
+
+/// Points per batch handed to the objective (with `batch`, rows per call).
+const ROWS: usize = 64;
+
+/// A Python callable as a hodr-core objective.
+struct PyObjective<'py> {
+    py: Python<'py>,
+    fun: Bound<'py, PyAny>,
+    batch: bool,
+    noisy: bool,
+    /// The first exception the callable raised (or a KeyboardInterrupt); once set, no
+    /// more calls are made.
+    error: Option<PyErr>,
+}
+
+impl<'py> PyObjective<'py> {
+    fn new(fun: Bound<'py, PyAny>, batch: bool, noisy: bool) -> PyResult<Self> {
+        if !fun.is_callable() {
+            return Err(PyTypeError::new_err("fun must be callable"));
+        }
+        Ok(PyObjective {
+            py: fun.py(),
+            fun,
+            batch,
+            noisy,
+            error: None,
+        })
+    }
+
+    /// `fun(x)` as a float, or NaN with the error kept.
+    fn call_one(&mut self, theta: &[f64]) -> f64 {
+        if self.error.is_some() {
+            return f64::NAN;
+        }
+        let x = PyArray1::from_slice(self.py, theta);
+        match self.fun.call1((x,)).and_then(|v| v.extract::<f64>()) {
+            Ok(v) => v,
+            Err(e) => {
+                self.error = Some(e);
+                f64::NAN
+            }
+        }
+    }
+
+    /// `fun(X)` for a (k, n) array, as k floats.
+    fn call_batch(&mut self, batch: &Batch<'_, f64>, out: &mut [f64]) -> PyResult<()> {
+        let rows = Array2::from_shape_vec((batch.len(), batch.dim()), batch.points().to_vec())
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        let values: Vec<f64> = self.fun.call1((rows.into_pyarray(self.py),))?.extract()?;
+        if values.len() != out.len() {
+            return Err(PyValueError::new_err(format!(
+                "fun returned {} values for a batch of {} points (with batch=True it must return one per row)",
+                values.len(),
+                out.len()
+            )));
+        }
+        out.copy_from_slice(&values);
+        Ok(())
+    }
+
+    /// The kept exception, or `fallback` converted.
+    fn error_or(&mut self, fallback: Error) -> PyErr {
+        self.error.take().unwrap_or_else(|| core_error(fallback))
+    }
+}
+
+impl Objective<f64> for PyObjective<'_> {
+    fn evaluate(&mut self, theta: &[f64], _seed: NoiseSeed) -> f64 {
+        self.call_one(theta)
+    }
+
+    fn evaluate_batch(&mut self, batch: &Batch<'_, f64>, out: &mut [f64]) {
+        if !self.batch {
+            for (k, value) in out.iter_mut().enumerate() {
+                *value = self.call_one(batch.point(k));
+            }
+            return;
+        }
+        if self.error.is_some() {
+            out.fill(f64::NAN);
+            return;
+        }
+        if let Err(e) = self.call_batch(batch, out) {
+            self.error = Some(e);
+            out.fill(f64::NAN);
+        }
+    }
+
+    fn deterministic(&self) -> bool {
+        !self.noisy
+    }
+
+    fn cancelled(&mut self) -> bool {
+        if self.error.is_none()
+            && let Err(e) = self.py.check_signals()
+        {
+            self.error = Some(e);
+        }
+        self.error.is_some()
+    }
+}
+
+/// A hodr-core error as a Python exception: bad settings are `ValueError`s.
+fn core_error(error: Error) -> PyErr {
+    match error {
+        Error::InvalidSigma
+        | Error::NoSamples
+        | Error::DimensionMismatch { .. }
+        | Error::NonFiniteInput { .. }
+        | Error::InvalidSetting { .. } => PyValueError::new_err(error.to_string()),
+        other => PyRuntimeError::new_err(other.to_string()),
+    }
+}
+
+/// `values` as a vector of finite floats, or a `ValueError` naming `name`.
+fn finite_vector(name: &str, values: Vec<f64>) -> PyResult<Vec<f64>> {
+    if values.is_empty() {
+        return Err(PyValueError::new_err(format!(
+            "{name} must have at least one element"
+        )));
+    }
+    if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+        return Err(PyValueError::new_err(format!(
+            "{name}[{i}] is not finite ({})",
+            values[i]
+        )));
+    }
+    Ok(values)
+}
+
+/// σ as a finite positive float, or a `ValueError` naming `name`.
+fn positive(name: &str, sigma: f64) -> PyResult<f64> {
+    if sigma.is_finite() && sigma > 0.0 {
+        Ok(sigma)
+    } else {
+        Err(PyValueError::new_err(format!(
+            "{name} must be finite and > 0, got {sigma}"
+        )))
+    }
+}
+
+/// Minimises `fun` with Auto; returns the result's fields as a dict (the Python half
+/// makes it an `OptimizeResult`).
+#[pyfunction]
+#[pyo3(signature = (fun, x0, sigma0, bounds, budget, seed, batch, noisy, callback))]
+#[allow(clippy::too_many_arguments)]
+fn minimize_auto<'py>(
+    py: Python<'py>,
+    fun: Bound<'py, PyAny>,
+    x0: Vec<f64>,
+    sigma0: f64,
+    bounds: Option<(Vec<f64>, Vec<f64>)>,
+    budget: Option<usize>,
+    seed: u64,
+    batch: bool,
+    noisy: bool,
+    callback: Option<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let mut theta = finite_vector("x0", x0)?;
+    let sigma0 = positive("sigma0", sigma0)?;
+    let n = theta.len();
+    let mut objective = PyObjective::new(fun, batch, noisy)?;
+    let mut options = AutoOptions::default();
+    if let Some(budget) = budget {
+        options = options
+            .with_max_evaluations(budget)
+            .map_err(|_| PyValueError::new_err("budget must be at least 1"))?;
+    }
+    let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)];
+    let mut auto = Auto::new(
+        &mut theta,
+        sigma0,
+        &mut buffer,
+        Xoshiro256PlusPlus::seed_from_u64(seed),
+    )
+    .map_err(core_error)?
+    .with_options(options);
+    if let Some((lower, upper)) = &bounds {
+        if lower.len() != n || upper.len() != n {
+            return Err(PyValueError::new_err(format!(
+                "bounds must give {n} lower and {n} upper limits, got {} and {}",
+                lower.len(),
+                upper.len()
+            )));
+        }
+        if let Some(i) =
+            (0..n).find(|&i| lower[i].is_nan() || upper[i].is_nan() || lower[i] > upper[i])
+        {
+            return Err(PyValueError::new_err(format!(
+                "bounds[{i}]: lower {} must not exceed upper {}",
+                lower[i], upper[i]
+            )));
+        }
+        auto = auto.with_bounds(lower, upper).map_err(core_error)?;
+    }
+    let (mut nfev, mut best, mut sigma) = (Vec::new(), Vec::new(), Vec::new());
+    let mut stopped_by_callback = false;
+    let end = loop {
+        match auto.step(&mut objective) {
+            Ok(Some(report)) => {
+                nfev.push(report.evaluations as u64);
+                best.push(report.value.unwrap_or(f64::NAN));
+                sigma.push(report.sigma);
+                if let Some(cb) = &callback {
+                    let x = PyArray1::from_slice(py, auto.theta());
+                    let stop = cb.call1((x, report.value.unwrap_or(f64::NAN)))?;
+                    if stop.is_truthy()? {
+                        stopped_by_callback = true;
+                        break None;
+                    }
+                }
+            }
+            Ok(None) => break auto.termination(),
+            Err(error) => return Err(objective.error_or(error)),
+        }
+    };
+    let (success, status, message) = match (stopped_by_callback, end) {
+        (true, _) => (false, 3, "stopped by the callback".to_string()),
+        (false, Some(AutoTermination::MaxEvaluations)) | (false, None) => {
+            (false, 1, AutoTermination::MaxEvaluations.to_string())
+        }
+        (false, Some(t @ AutoTermination::Converged)) => (true, 0, t.to_string()),
+        (false, Some(t)) => (true, 2, t.to_string()),
+    };
+    let result = PyDict::new(py);
+    result.set_item("x", PyArray1::from_slice(py, auto.theta()))?;
+    result.set_item("fun", auto.value().unwrap_or(f64::NAN))?;
+    result.set_item("nfev", auto.evaluations())?;
+    result.set_item("nit", auto.iteration())?;
+    result.set_item("success", success)?;
+    result.set_item("status", status)?;
+    result.set_item("message", message)?;
+    result.set_item("history_nfev", nfev.into_pyarray(py))?;
+    result.set_item("history_fun", best.into_pyarray(py))?;
+    result.set_item("history_sigma", sigma.into_pyarray(py))?;
+    Ok(result)
+}
+
+/// The estimator for these settings.
+fn estimator(sigma: f64, pairs: usize, seed: u64) -> PyResult<Estimator<f64, Xoshiro256PlusPlus>> {
+    let sigma = positive("sigma", sigma)?;
+    if pairs == 0 {
+        return Err(PyValueError::new_err("pairs must be at least 1"));
+    }
+    Estimator::new(sigma, pairs, Xoshiro256PlusPlus::seed_from_u64(seed)).map_err(core_error)
+}
+
+/// Runs `estimate` with a workspace for dimension n (with a moment region for least
+/// squares), turning a cancellation into the callable's own exception.
+fn with_workspace<'py, R>(
+    objective: &mut PyObjective<'py>,
+    n: usize,
+    estimate: impl FnOnce(&mut PyObjective<'py>, &mut Workspace<'_, f64>) -> Result<R, Error>,
+) -> PyResult<R> {
+    let mut buffer =
+        vec![0.0; Workspace::<f64>::buffer_len(n, ROWS) + Workspace::<f64>::moments_len(n)];
+    let mut seeds = vec![0; ROWS];
+    let mut ws = Workspace::new(n, &mut buffer, &mut seeds).map_err(core_error)?;
+    estimate(objective, &mut ws).map_err(|e| objective.error_or(e))
+}
+
+/// The gradient estimator called `name`.
+fn gradient_method(name: &str) -> PyResult<GradientMethod> {
+    Ok(match name.to_ascii_lowercase().as_str() {
+        "aggregate" => GradientMethod::Aggregate,
+        "per-element" | "per_element" => GradientMethod::PerElement,
+        "gaussian" => GradientMethod::Gaussian,
+        "fr22" => GradientMethod::Fr22,
+        "ls" | "regression" => GradientMethod::Regression,
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "unknown gradient method {name:?} (methods: aggregate, per-element, gaussian, fr22, ls)"
+            )));
+        }
+    })
+}
+
+/// ∇f_σ(x) and the evaluations it took.
+#[pyfunction]
+#[pyo3(signature = (fun, x, sigma, pairs, method, seed, batch, noisy))]
+#[allow(clippy::too_many_arguments)]
+fn gradient<'py>(
+    py: Python<'py>,
+    fun: Bound<'py, PyAny>,
+    x: Vec<f64>,
+    sigma: f64,
+    pairs: usize,
+    method: &str,
+    seed: u64,
+    batch: bool,
+    noisy: bool,
+) -> PyResult<(Bound<'py, PyArray1<f64>>, usize)> {
+    let x = finite_vector("x", x)?;
+    let method = gradient_method(method)?;
+    let mut est = estimator(sigma, pairs, seed)?;
+    let mut objective = PyObjective::new(fun, batch, noisy)?;
+    let mut g = vec![0.0; x.len()];
+    let report = with_workspace(&mut objective, x.len(), |o, ws| {
+        est.gradient(method, o, &x, ws, &mut g)
+    })?;
+    Ok((g.into_pyarray(py), report.evaluations))
+}
+
+/// ∇²f_σ(x) (n×n) and the evaluations it took.
+#[pyfunction]
+#[pyo3(signature = (fun, x, sigma, pairs, method, seed, batch, noisy))]
+#[allow(clippy::too_many_arguments)]
+fn hessian<'py>(
+    py: Python<'py>,
+    fun: Bound<'py, PyAny>,
+    x: Vec<f64>,
+    sigma: f64,
+    pairs: usize,
+    method: &str,
+    seed: u64,
+    batch: bool,
+    noisy: bool,
+) -> PyResult<(Bound<'py, PyArray2<f64>>, usize)> {
+    let x = finite_vector("x", x)?;
+    let method = match method.to_ascii_lowercase().as_str() {
+        "aggregate" => HessianMethod::Aggregate,
+        "per-element" | "per_element" => HessianMethod::PerElement,
+        "gaussian" => HessianMethod::Gaussian,
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "unknown Hessian method {method:?} (methods: aggregate, per-element, gaussian)"
+            )));
+        }
+    };
+    let mut est = estimator(sigma, pairs, seed)?;
+    let mut objective = PyObjective::new(fun, batch, noisy)?;
+    let n = x.len();
+    let mut h = vec![0.0; n * n];
+    let report = with_workspace(&mut objective, n, |o, ws| {
+        est.hessian(method, o, &x, ws, &mut h)
+    })?;
+    let h =
+        Array2::from_shape_vec((n, n), h).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    Ok((h.into_pyarray(py), report.evaluations))
+}
+
+/// ∇²f_σ(x)·v and the evaluations it took.
+#[pyfunction]
+#[pyo3(signature = (fun, x, v, sigma, pairs, method, seed, batch, noisy))]
+#[allow(clippy::too_many_arguments)]
+fn hvp<'py>(
+    py: Python<'py>,
+    fun: Bound<'py, PyAny>,
+    x: Vec<f64>,
+    v: Vec<f64>,
+    sigma: f64,
+    pairs: usize,
+    method: &str,
+    seed: u64,
+    batch: bool,
+    noisy: bool,
+) -> PyResult<(Bound<'py, PyArray1<f64>>, usize)> {
+    let x = finite_vector("x", x)?;
+    let v = finite_vector("v", v)?;
+    if v.len() != x.len() {
+        return Err(PyValueError::new_err(format!(
+            "v has {} elements, x has {}",
+            v.len(),
+            x.len()
+        )));
+    }
+    let method = match method.to_ascii_lowercase().as_str() {
+        "kernel" => HvpMethod::Kernel,
+        "central" => HvpMethod::CentralDifference {
+            gradient: GradientMethod::Aggregate,
+            draws: hodr_core::Draws::Common,
+        },
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "unknown HVP method {method:?} (methods: kernel, central)"
+            )));
+        }
+    };
+    let mut est = estimator(sigma, pairs, seed)?;
+    let mut objective = PyObjective::new(fun, batch, noisy)?;
+    let mut hv = vec![0.0; x.len()];
+    let report = with_workspace(&mut objective, x.len(), |o, ws| {
+        est.hvp(method, o, &x, &v, ws, &mut hv)
+    })?;
+    Ok((hv.into_pyarray(py), report.evaluations))
+}
+
+/// The extension module.
+#[pymodule]
+fn _hodr(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(minimize_auto, m)?)?;
+    m.add_function(wrap_pyfunction!(gradient, m)?)?;
+    m.add_function(wrap_pyfunction!(hessian, m)?)?;
+    m.add_function(wrap_pyfunction!(hvp, m)?)?;
+    Ok(())
+}

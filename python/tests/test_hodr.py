@@ -1,0 +1,210 @@
+"""hodr's Python API: estimators against closed forms, minimize on smooth and plateau
+problems, batches, reproducibility, and every bad-input path."""
+
+import math
+import signal
+import threading
+
+import numpy as np
+import pytest
+
+import hodr
+
+A = np.array([[3.0, 1.0, 0.0], [1.0, 2.0, 0.5], [0.0, 0.5, 1.0]])
+B = np.array([1.0, -2.0, 0.5])
+
+
+def quadratic(x):
+    """f = ½xᵀAx + bᵀx: f_σ has the same gradient Ax + b and Hessian A at every σ."""
+    return float(0.5 * x @ A @ x + B @ x)
+
+
+def sin_sum(x):
+    """f = Σ sin(xᵢ): ∇f_σ = e^{−σ²/2} cos(x)."""
+    return float(np.sum(np.sin(x)))
+
+
+X = np.array([0.3, -0.7, 1.1])
+
+
+def within_standard_errors(estimates, truth, k=5.0):
+    """Mean of independent estimates within k standard errors of the truth, per element."""
+    estimates = np.asarray(estimates)
+    mean = estimates.mean(axis=0)
+    se = estimates.std(axis=0, ddof=1) / math.sqrt(len(estimates)) + 1e-12
+    return np.all(np.abs(mean - truth) <= k * se + 1e-9), mean, se
+
+
+@pytest.mark.parametrize("method", ["aggregate", "per-element", "gaussian", "ls"])
+def test_gradient_matches_the_smoothed_closed_form(method):
+    sigma = 0.5
+    truth = math.exp(-sigma**2 / 2) * np.cos(X)
+    runs = [hodr.gradient(sin_sum, X, sigma, pairs=32, method=method, seed=s)[0] for s in range(40)]
+    ok, mean, se = within_standard_errors(runs, truth)
+    assert ok, (method, mean, truth, se)
+
+
+def test_gradient_reports_its_evaluations():
+    g, nfev = hodr.gradient(quadratic, X, 0.3, pairs=8, method="aggregate")
+    assert g.shape == (3,) and g.dtype == np.float64
+    assert nfev == 16
+    _, nfev = hodr.gradient(quadratic, X, 0.3, pairs=8, method="per-element")
+    assert nfev == 2 * 3 * 8
+
+
+@pytest.mark.parametrize("method", ["aggregate", "gaussian", "per-element"])
+def test_hessian_matches_the_closed_form(method):
+    runs = [hodr.hessian(quadratic, X, 0.4, pairs=64, method=method, seed=s)[0] for s in range(30)]
+    ok, mean, se = within_standard_errors(runs, A)
+    assert ok, (method, mean, se)
+    assert np.allclose(runs[0], runs[0].T)
+
+
+@pytest.mark.parametrize("method", ["kernel", "central"])
+def test_hvp_matches_the_closed_form(method):
+    v = np.array([1.0, 0.0, -2.0])
+    runs = [hodr.hvp(quadratic, X, v, 0.4, pairs=64, method=method, seed=s)[0] for s in range(30)]
+    ok, mean, se = within_standard_errors(runs, A @ v)
+    assert ok, (method, mean, se)
+
+
+def test_minimize_solves_a_rotated_quadratic_to_its_optimum():
+    res = hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0)
+    optimum = np.linalg.solve(A, -B)
+    assert res.success, res
+    assert np.linalg.norm(res.x - optimum) < 1e-6
+    assert res.nfev == res.history["nfev"][-1]
+    assert len(res.history["sigma"]) == res.nit
+    assert abs(res.fun - quadratic(res.x)) < 1e-12
+
+
+def test_minimize_crosses_a_plateau():
+    """Rounded coordinates: zero slope almost everywhere, minimum 0 on the unit cell."""
+    f = lambda x: float(np.sum(np.round(x - 0.3) ** 2))
+    solved = sum(hodr.minimize(f, [4.2, -3.6], 1.0, seed=s, budget=2000).fun == 0.0 for s in range(10))
+    assert solved >= 9
+
+
+def test_budget_is_never_exceeded_and_the_seed_fixes_the_run():
+    calls = []
+
+    def f(x):
+        calls.append(x.copy())
+        return quadratic(x)
+
+    res = hodr.minimize(f, [2.0, 2.0, -1.0], 1.0, budget=25, seed=3)
+    assert len(calls) == res.nfev <= 25
+    again = hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, budget=25, seed=3)
+    assert np.array_equal(res.x, again.x) and res.fun == again.fun
+
+
+def test_batches_give_the_same_run():
+    sizes = []
+
+    def batched(X):
+        sizes.append(len(X))
+        return [quadratic(x) for x in X]
+
+    one = hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, budget=200, seed=1)
+    many = hodr.minimize(batched, [2.0, 2.0, -1.0], 1.0, budget=200, seed=1, batch=True)
+    assert np.array_equal(one.x, many.x) and one.nfev == many.nfev
+    assert max(sizes) > 1
+    g1, _ = hodr.gradient(quadratic, X, 0.3, seed=2)
+    g2, _ = hodr.gradient(batched, X, 0.3, seed=2, batch=True)
+    assert np.array_equal(g1, g2)
+
+
+def test_bounds_are_respected_in_every_form():
+    outside = []
+
+    def f(x):
+        if np.any(x < -1.0) or np.any(x > 0.5):
+            outside.append(x)
+        return float(np.sum((x - 3.0) ** 2))
+
+    for bounds in ([(-1.0, 0.5)] * 3, (-1.0, 0.5), ([-1.0] * 3, [0.5] * 3)):
+        res = hodr.minimize(f, [0.0, 0.0, 0.0], 1.0, bounds=bounds, budget=300)
+        assert np.allclose(res.x, 0.5)
+    assert not outside
+
+
+def test_the_callback_sees_iterations_and_can_stop_the_run():
+    seen = []
+    res = hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, callback=lambda x, f: seen.append(f) or len(seen) == 5)
+    assert len(seen) == 5 and res.nit == 5
+    assert not res.success and res.status == 3
+
+
+def test_exceptions_in_fun_propagate_unchanged():
+    class Boom(Exception):
+        pass
+
+    def f(x):
+        if x[0] > 2.5:
+            raise Boom("renderer crashed")
+        return quadratic(x)
+
+    with pytest.raises(Boom, match="renderer crashed"):
+        hodr.minimize(f, [2.0, 2.0, -1.0], 1.0)
+    with pytest.raises(Boom):
+        hodr.gradient(f, [2.4, 0.0, 0.0], 1.0, pairs=1000)
+
+
+def test_keyboard_interrupt_stops_within_a_batch():
+    calls = []
+
+    def f(x):
+        calls.append(1)
+        if len(calls) == 50:
+            signal.raise_signal(signal.SIGINT)
+        return quadratic(x)
+
+    with pytest.raises(KeyboardInterrupt):
+        hodr.gradient(f, X, 0.3, pairs=1_000_000)
+    assert len(calls) < 50 + 64
+
+
+def test_nan_values_count_as_worse_than_any_value():
+    f = lambda x: float("nan") if x[0] < 0 else float(np.sum((x - 1.0) ** 2))
+    res = hodr.minimize(f, [0.5, 0.5], 1.0, budget=500)
+    assert np.linalg.norm(res.x - 1.0) < 1e-4
+
+
+@pytest.mark.parametrize(
+    "call, error, culprit",
+    [
+        (lambda: hodr.minimize(quadratic, [], 1.0), ValueError, "x0"),
+        (lambda: hodr.minimize(quadratic, [1.0, float("nan"), 0.0], 1.0), ValueError, "x0[1]"),
+        (lambda: hodr.minimize(quadratic, [[1.0, 2.0]], 1.0), ValueError, "x0"),
+        (lambda: hodr.minimize(quadratic, "abc", 1.0), TypeError, "x0"),
+        (lambda: hodr.minimize(quadratic, X, 0.0), ValueError, "sigma0"),
+        (lambda: hodr.minimize(quadratic, X, float("inf")), ValueError, "sigma0"),
+        (lambda: hodr.minimize(quadratic, X, "big"), TypeError, "sigma0"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, budget=0), ValueError, "budget"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, budget=2.5), TypeError, "budget"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, seed=-1), ValueError, "seed"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, method="bfgs"), ValueError, "method"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, bounds=[(0, 1)] * 4), ValueError, "bounds"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, bounds=([1.0] * 3, [0.0] * 3)), ValueError, "bounds[0]"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, callback=3), TypeError, "callback"),
+        (lambda: hodr.minimize(3, X, 1.0), TypeError, "fun"),
+        (lambda: hodr.minimize(lambda x: "a", X, 1.0), TypeError, ""),
+        (lambda: hodr.minimize(lambda X: [1.0], X, 1.0, batch=True), ValueError, "batch"),
+        (lambda: hodr.gradient(quadratic, X, -1.0), ValueError, "sigma"),
+        (lambda: hodr.gradient(quadratic, X, 1.0, pairs=0), ValueError, "pairs"),
+        (lambda: hodr.gradient(quadratic, X, 1.0, method="magic"), ValueError, "aggregate"),
+        (lambda: hodr.hessian(quadratic, X, 1.0, method="fr22"), ValueError, "per-element"),
+        (lambda: hodr.hvp(quadratic, X, [1.0], 1.0), ValueError, "v has 1"),
+        (lambda: hodr.hvp(quadratic, X, X, 1.0, method="exact"), ValueError, "kernel"),
+    ],
+)
+def test_bad_input_names_the_culprit(call, error, culprit):
+    with pytest.raises(error, match=None) as info:
+        call()
+    assert culprit in str(info.value)
+
+
+def test_help_teaches_the_api():
+    doc = hodr.minimize.__doc__
+    for word in ("x0", "sigma0", "bounds", "budget", "batch", "callback", "OptimizeResult"):
+        assert word in doc
