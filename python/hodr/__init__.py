@@ -14,6 +14,8 @@ sigma0 (the distance over which the parameters matter, as CMA-ES asks for).
 Functions:
 
 * ``minimize(fun, x0, sigma0, ...)`` -> ``OptimizeResult`` (scipy.optimize style);
+* ``Optimizer(x0, sigma0, ...)`` with ``ask()``, ``tell(values)``, ``stop()`` and
+  ``result`` (pycma style), for evaluating batches wherever you like;
 * ``gradient``, ``hessian``, ``hvp`` -> (estimate, evaluations).
 
 The objective receives float64 numpy arrays: one point of shape (n,), or with
@@ -30,7 +32,7 @@ import numpy as np
 
 from . import _hodr
 
-__all__ = ["OptimizeResult", "minimize", "gradient", "hessian", "hvp"]
+__all__ = ["OptimizeResult", "Optimizer", "minimize", "gradient", "hessian", "hvp"]
 
 METHODS = ("auto",)
 
@@ -202,6 +204,72 @@ def minimize(
     result = OptimizeResult(raw)
     result.history = history
     return result
+
+
+class Optimizer:
+    """Auto driven by ask and tell, as in pycma: the caller evaluates every batch.
+
+    ::
+
+        opt = hodr.Optimizer(x0, sigma0, budget=1000, seed=0)
+        while not opt.stop():
+            X = opt.ask()                              # (k, n) array of points
+            opt.tell([render_loss(x) for x in X])      # or a pool, a GPU batch, a cluster
+        res = opt.result                               # an OptimizeResult
+
+    With the same arguments and seed, the points asked and the result are those of
+    ``minimize(fun, x0, sigma0, batch=True, ...)``. Arguments as in ``minimize``. The
+    optimiser runs on a thread of its own between ``tell`` and the next ``ask``; a
+    batch must be told before the next is asked. ``result`` is available at any time
+    (the best point so far). Dropping the object ends the run.
+    """
+
+    def __init__(
+        self,
+        x0: Sequence[float],
+        sigma0: float,
+        *,
+        bounds: Any = None,
+        budget: Optional[int] = None,
+        seed: int = 0,
+        noisy: bool = False,
+    ) -> None:
+        x0 = _vector("x0", x0)
+        try:
+            sigma0 = float(sigma0)
+        except (TypeError, ValueError):
+            raise TypeError(f"sigma0 must be a real number, got {type(sigma0).__name__}") from None
+        if budget is not None:
+            budget = _count("budget", budget, 1)
+        self._run = _hodr.AskTell(
+            x0, sigma0, _bounds(bounds, len(x0)), budget, _count("seed", seed, 0), bool(noisy)
+        )
+
+    def ask(self) -> np.ndarray:
+        """The next batch of points, a float64 array of shape (k, n); (0, n) once the
+        run has ended."""
+        return self._run.ask()
+
+    def tell(self, values: Sequence[float]) -> None:
+        """The objective's values at the points last asked, in their order."""
+        try:
+            array = np.asarray(values, dtype=float)
+        except (TypeError, ValueError):
+            raise TypeError("values must be a sequence of real numbers") from None
+        self._run.tell(np.ascontiguousarray(array.ravel()))
+
+    def stop(self) -> bool:
+        """True once the run has ended (converged, stagnated or out of budget)."""
+        return self._run.stop()
+
+    @property
+    def result(self) -> OptimizeResult:
+        """The run's ``OptimizeResult`` (while running: the best point so far)."""
+        raw = self._run.result()
+        history = {k: raw.pop(f"history_{k}") for k in ("nfev", "fun", "sigma")}
+        result = OptimizeResult(raw)
+        result.history = history
+        return result
 
 
 def gradient(

@@ -21,6 +21,8 @@ use pyo3::types::PyDict;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 
+mod ask_tell;
+
 /// Points per batch handed to the objective (with `batch`, rows per call).
 const ROWS: usize = 64;
 
@@ -123,7 +125,7 @@ impl Objective<f64> for PyObjective<'_> {
 }
 
 /// A hodr-core error as a Python exception: bad settings are `ValueError`s.
-fn core_error(error: Error) -> PyErr {
+pub(crate) fn core_error(error: Error) -> PyErr {
     match error {
         Error::InvalidSigma
         | Error::NoSamples
@@ -135,7 +137,7 @@ fn core_error(error: Error) -> PyErr {
 }
 
 /// `values` as a vector of finite floats, or a `ValueError` naming `name`.
-fn finite_vector(name: &str, values: Vec<f64>) -> PyResult<Vec<f64>> {
+pub(crate) fn finite_vector(name: &str, values: Vec<f64>) -> PyResult<Vec<f64>> {
     if values.is_empty() {
         return Err(PyValueError::new_err(format!(
             "{name} must have at least one element"
@@ -151,13 +153,98 @@ fn finite_vector(name: &str, values: Vec<f64>) -> PyResult<Vec<f64>> {
 }
 
 /// σ as a finite positive float, or a `ValueError` naming `name`.
-fn positive(name: &str, sigma: f64) -> PyResult<f64> {
+pub(crate) fn positive(name: &str, sigma: f64) -> PyResult<f64> {
     if sigma.is_finite() && sigma > 0.0 {
         Ok(sigma)
     } else {
         Err(PyValueError::new_err(format!(
             "{name} must be finite and > 0, got {sigma}"
         )))
+    }
+}
+
+/// A problem statement for Auto, checked: x₀, σ₀, bounds, budget and seed.
+pub(crate) struct Problem {
+    x0: Vec<f64>,
+    sigma0: f64,
+    bounds: Option<(Vec<f64>, Vec<f64>)>,
+    options: AutoOptions<f64>,
+    seed: u64,
+}
+
+impl Problem {
+    /// Checks the arguments, naming the culprit in a `ValueError`.
+    pub(crate) fn new(
+        x0: Vec<f64>,
+        sigma0: f64,
+        bounds: Option<(Vec<f64>, Vec<f64>)>,
+        budget: Option<usize>,
+        seed: u64,
+    ) -> PyResult<Problem> {
+        let x0 = finite_vector("x0", x0)?;
+        let sigma0 = positive("sigma0", sigma0)?;
+        let n = x0.len();
+        let mut options = AutoOptions::default();
+        if let Some(budget) = budget {
+            options = options
+                .with_max_evaluations(budget)
+                .map_err(|_| PyValueError::new_err("budget must be at least 1"))?;
+        }
+        if let Some((lower, upper)) = &bounds {
+            if lower.len() != n || upper.len() != n {
+                return Err(PyValueError::new_err(format!(
+                    "bounds must give {n} lower and {n} upper limits, got {} and {}",
+                    lower.len(),
+                    upper.len()
+                )));
+            }
+            let bad = |i: usize| lower[i].is_nan() || upper[i].is_nan() || lower[i] > upper[i];
+            if let Some(i) = (0..n).find(|&i| bad(i)) {
+                return Err(PyValueError::new_err(format!(
+                    "bounds[{i}]: lower {} must not exceed upper {}",
+                    lower[i], upper[i]
+                )));
+            }
+        }
+        let problem = Problem {
+            x0,
+            sigma0,
+            bounds,
+            options,
+            seed,
+        };
+        // Whatever else Auto refuses, refuse it here, before any evaluation.
+        let (mut theta, mut buffer) = problem.memory();
+        problem.auto(&mut theta, &mut buffer).map_err(core_error)?;
+        Ok(problem)
+    }
+
+    /// The dimension n.
+    pub(crate) fn dim(&self) -> usize {
+        self.x0.len()
+    }
+
+    /// θ (x₀) and Auto's buffer.
+    pub(crate) fn memory(&self) -> (Vec<f64>, Vec<f64>) {
+        let n = self.dim();
+        (
+            self.x0.clone(),
+            vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)],
+        )
+    }
+
+    /// Auto on this problem, in `theta` and `buffer` from [`Problem::memory`].
+    pub(crate) fn auto<'b>(
+        &self,
+        theta: &'b mut [f64],
+        buffer: &'b mut [f64],
+    ) -> Result<Auto<'b, f64, Xoshiro256PlusPlus>, Error> {
+        let rng = Xoshiro256PlusPlus::seed_from_u64(self.seed);
+        let auto = Auto::new(theta, self.sigma0, buffer, rng)?.with_options(self.options);
+        match &self.bounds {
+            Some((lower, upper)) => auto.with_bounds(lower, upper),
+            None => Ok(auto),
+        }
     }
 }
 
@@ -178,45 +265,11 @@ fn minimize_auto<'py>(
     noisy: bool,
     callback: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let mut theta = finite_vector("x0", x0)?;
-    let sigma0 = positive("sigma0", sigma0)?;
-    let n = theta.len();
+    let problem = Problem::new(x0, sigma0, bounds, budget, seed)?;
     let mut objective = PyObjective::new(fun, batch, noisy)?;
-    let mut options = AutoOptions::default();
-    if let Some(budget) = budget {
-        options = options
-            .with_max_evaluations(budget)
-            .map_err(|_| PyValueError::new_err("budget must be at least 1"))?;
-    }
-    let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)];
-    let mut auto = Auto::new(
-        &mut theta,
-        sigma0,
-        &mut buffer,
-        Xoshiro256PlusPlus::seed_from_u64(seed),
-    )
-    .map_err(core_error)?
-    .with_options(options);
-    if let Some((lower, upper)) = &bounds {
-        if lower.len() != n || upper.len() != n {
-            return Err(PyValueError::new_err(format!(
-                "bounds must give {n} lower and {n} upper limits, got {} and {}",
-                lower.len(),
-                upper.len()
-            )));
-        }
-        if let Some(i) =
-            (0..n).find(|&i| lower[i].is_nan() || upper[i].is_nan() || lower[i] > upper[i])
-        {
-            return Err(PyValueError::new_err(format!(
-                "bounds[{i}]: lower {} must not exceed upper {}",
-                lower[i], upper[i]
-            )));
-        }
-        auto = auto.with_bounds(lower, upper).map_err(core_error)?;
-    }
+    let (mut theta, mut buffer) = problem.memory();
+    let mut auto = problem.auto(&mut theta, &mut buffer).map_err(core_error)?;
     let (mut nfev, mut best, mut sigma) = (Vec::new(), Vec::new(), Vec::new());
-    let mut stopped_by_callback = false;
     let end = loop {
         match auto.step(&mut objective) {
             Ok(Some(report)) => {
@@ -227,34 +280,61 @@ fn minimize_auto<'py>(
                     let x = PyArray1::from_slice(py, auto.theta());
                     let stop = cb.call1((x, report.value.unwrap_or(f64::NAN)))?;
                     if stop.is_truthy()? {
-                        stopped_by_callback = true;
-                        break None;
+                        break End::Callback;
                     }
                 }
             }
-            Ok(None) => break auto.termination(),
+            Ok(None) => break End::Auto(auto.termination()),
             Err(error) => return Err(objective.error_or(error)),
         }
     };
-    let (success, status, message) = match (stopped_by_callback, end) {
-        (true, _) => (false, 3, "stopped by the callback".to_string()),
-        (false, Some(AutoTermination::MaxEvaluations)) | (false, None) => {
-            (false, 1, AutoTermination::MaxEvaluations.to_string())
-        }
-        (false, Some(t @ AutoTermination::Converged)) => (true, 0, t.to_string()),
-        (false, Some(t)) => (true, 2, t.to_string()),
-    };
-    let result = PyDict::new(py);
-    result.set_item("x", PyArray1::from_slice(py, auto.theta()))?;
-    result.set_item("fun", auto.value().unwrap_or(f64::NAN))?;
-    result.set_item("nfev", auto.evaluations())?;
-    result.set_item("nit", auto.iteration())?;
-    result.set_item("success", success)?;
-    result.set_item("status", status)?;
-    result.set_item("message", message)?;
+    let result = result_dict(
+        py,
+        end,
+        auto.theta(),
+        auto.value(),
+        auto.evaluations(),
+        auto.iteration(),
+    )?;
     result.set_item("history_nfev", nfev.into_pyarray(py))?;
     result.set_item("history_fun", best.into_pyarray(py))?;
     result.set_item("history_sigma", sigma.into_pyarray(py))?;
+    Ok(result)
+}
+
+/// How a run ended.
+pub(crate) enum End {
+    /// Auto ended it (`None`: it had not ended, the budget's end is reported).
+    Auto(Option<AutoTermination>),
+    /// The caller's callback stopped it.
+    Callback,
+}
+
+/// The `OptimizeResult` fields of a run, history aside.
+pub(crate) fn result_dict<'py>(
+    py: Python<'py>,
+    end: End,
+    theta: &[f64],
+    value: Option<f64>,
+    evaluations: usize,
+    iterations: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (success, status, message) = match end {
+        End::Callback => (false, 3, "stopped by the callback".to_string()),
+        End::Auto(Some(AutoTermination::MaxEvaluations)) | End::Auto(None) => {
+            (false, 1, AutoTermination::MaxEvaluations.to_string())
+        }
+        End::Auto(Some(t @ AutoTermination::Converged)) => (true, 0, t.to_string()),
+        End::Auto(Some(t)) => (true, 2, t.to_string()),
+    };
+    let result = PyDict::new(py);
+    result.set_item("x", PyArray1::from_slice(py, theta))?;
+    result.set_item("fun", value.unwrap_or(f64::NAN))?;
+    result.set_item("nfev", evaluations)?;
+    result.set_item("nit", iterations)?;
+    result.set_item("success", success)?;
+    result.set_item("status", status)?;
+    result.set_item("message", message)?;
     Ok(result)
 }
 
@@ -414,5 +494,6 @@ fn _hodr(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(gradient, m)?)?;
     m.add_function(wrap_pyfunction!(hessian, m)?)?;
     m.add_function(wrap_pyfunction!(hvp, m)?)?;
+    m.add_class::<ask_tell::AskTell>()?;
     Ok(())
 }

@@ -208,3 +208,58 @@ def test_help_teaches_the_api():
     doc = hodr.minimize.__doc__
     for word in ("x0", "sigma0", "bounds", "budget", "batch", "callback", "OptimizeResult"):
         assert word in doc
+
+
+def test_ask_tell_asks_the_points_minimize_evaluates():
+    asked = []
+
+    def batched(X):
+        asked.append(X.copy())
+        return [quadratic(x) for x in X]
+
+    reference = hodr.minimize(batched, [2.0, 2.0, -1.0], 1.0, budget=300, seed=4, batch=True)
+    opt = hodr.Optimizer([2.0, 2.0, -1.0], 1.0, budget=300, seed=4)
+    k = 0
+    while not opt.stop():
+        X = opt.ask()
+        assert np.array_equal(X, asked[k])
+        opt.tell(np.array([quadratic(x) for x in X]))
+        k += 1
+    assert k == len(asked)
+    res = opt.result
+    assert np.array_equal(res.x, reference.x) and res.fun == reference.fun
+    assert res.nfev == reference.nfev and res.nit == reference.nit
+    assert res.message == reference.message
+    assert np.array_equal(res.history["sigma"], reference.history["sigma"])
+    assert opt.ask().shape == (0, 3)
+
+
+def test_ask_tell_misuse_is_an_error_not_a_hang():
+    opt = hodr.Optimizer([1.0, 1.0], 1.0, seed=0)
+    with pytest.raises(RuntimeError, match="without ask"):
+        opt.tell([1.0])
+    X = opt.ask()
+    with pytest.raises(RuntimeError, match="before tell"):
+        opt.ask()
+    with pytest.raises(ValueError, match="values has"):
+        opt.tell([1.0] * (len(X) + 1))
+    opt.tell([float(x @ x) for x in X])
+    partial = opt.result
+    assert partial.message == "running" and not partial.success
+    del opt  # ends the optimiser's thread
+
+
+def test_ask_tell_with_a_process_pool():
+    """Batches evaluated in other processes, as on a cluster."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    opt = hodr.Optimizer([3.0, -2.0], 1.0, budget=400, seed=0)
+    with ProcessPoolExecutor(max_workers=2) as pool:
+        while not opt.stop():
+            X = opt.ask()
+            opt.tell(list(pool.map(rosenbrock, X)))
+    assert opt.result.fun < 1e-6
+
+
+def rosenbrock(x):
+    return float(100.0 * (x[1] - x[0] ** 2) ** 2 + (1.0 - x[0]) ** 2)

@@ -1,0 +1,325 @@
+//! Ask/tell: Auto runs on a thread of its own, and its objective hands each batch of
+//! points to the caller and waits for their values. The caller evaluates a batch however
+//! it likes (a process pool, a GPU, a cluster) and tells the values back; the run is the
+//! same as `minimize(..., batch=True)` with the same seed, point for point.
+//!
+//! Dropping the object (or a value count that does not match) ends the thread: its
+//! objective then reports [`Objective::cancelled`], and Auto stops at once.
+
+use std::sync::Mutex;
+use std::sync::mpsc::{Receiver, RecvError, Sender, channel};
+use std::thread::JoinHandle;
+
+use hodr_core::optim::AutoTermination;
+use hodr_core::{Batch, NoiseSeed, Objective};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray2, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::{End, Problem, result_dict};
+
+/// What the Auto thread says.
+enum FromAuto {
+    /// Points to evaluate, row-major.
+    Batch(Vec<f64>),
+    /// An iteration ended: evaluations so far, f at the best point, σ, the best point.
+    Iteration {
+        evaluations: usize,
+        value: f64,
+        sigma: f64,
+        theta: Vec<f64>,
+    },
+    /// The run ended.
+    Done {
+        termination: Option<AutoTermination>,
+        evaluations: usize,
+        iterations: usize,
+        /// Why the run failed, if it did.
+        error: Option<String>,
+    },
+}
+
+/// The Auto thread's objective: batches out, values back.
+struct Channel {
+    to_caller: Sender<FromAuto>,
+    values: Receiver<Vec<f64>>,
+    noisy: bool,
+    closed: bool,
+}
+
+impl Objective<f64> for Channel {
+    fn evaluate(&mut self, theta: &[f64], _seed: NoiseSeed) -> f64 {
+        let mut out = [f64::NAN];
+        self.exchange(theta, &mut out);
+        out[0]
+    }
+
+    fn evaluate_batch(&mut self, batch: &Batch<'_, f64>, out: &mut [f64]) {
+        self.exchange(batch.points(), out);
+    }
+
+    fn deterministic(&self) -> bool {
+        !self.noisy
+    }
+
+    fn cancelled(&mut self) -> bool {
+        self.closed
+    }
+}
+
+impl Channel {
+    fn exchange(&mut self, points: &[f64], out: &mut [f64]) {
+        out.fill(f64::NAN);
+        if self.closed
+            || self
+                .to_caller
+                .send(FromAuto::Batch(points.to_vec()))
+                .is_err()
+        {
+            self.closed = true;
+            return;
+        }
+        match self.values.recv() {
+            Ok(values) if values.len() == out.len() => out.copy_from_slice(&values),
+            _ => self.closed = true,
+        }
+    }
+}
+
+/// Auto driven by ask and tell (the Python class `hodr.Optimizer` wraps it).
+#[pyclass(module = "hodr._hodr")]
+pub struct AskTell {
+    n: usize,
+    /// In a mutex only so that the class is `Sync`, as Python classes must be.
+    from_auto: Option<Mutex<Receiver<FromAuto>>>,
+    values: Option<Sender<Vec<f64>>>,
+    thread: Option<JoinHandle<()>>,
+    /// The batch asked and not yet told.
+    asked: Option<Vec<f64>>,
+    /// A batch received and not yet asked for.
+    pending: Option<Vec<f64>>,
+    best: (Vec<f64>, f64),
+    history: (Vec<u64>, Vec<f64>, Vec<f64>),
+    done: Option<(Option<AutoTermination>, usize, usize)>,
+    error: Option<String>,
+}
+
+impl AskTell {
+    /// Reads what the thread says until it asks for a batch or ends.
+    fn advance(&mut self, py: Python<'_>) {
+        while self.pending.is_none() && self.done.is_none() {
+            let Some(rx) = self.from_auto.take() else {
+                return;
+            };
+            let (message, rx) = py.detach(move || {
+                let message = rx.lock().map_or(Err(RecvError), |r| r.recv());
+                (message, rx)
+            });
+            self.from_auto = Some(rx);
+            match message {
+                Ok(FromAuto::Batch(points)) => self.pending = Some(points),
+                Ok(FromAuto::Iteration {
+                    evaluations,
+                    value,
+                    sigma,
+                    theta,
+                }) => {
+                    self.history.0.push(evaluations as u64);
+                    self.history.1.push(value);
+                    self.history.2.push(sigma);
+                    self.best = (theta, value);
+                }
+                Ok(FromAuto::Done {
+                    termination,
+                    evaluations,
+                    iterations,
+                    error,
+                }) => {
+                    self.done = Some((termination, evaluations, iterations));
+                    self.error = error;
+                    if let Some(thread) = self.thread.take() {
+                        let _ = thread.join();
+                    }
+                }
+                Err(_) => {
+                    self.done = Some((None, 0, 0));
+                    self.error = Some("the optimiser's thread ended unexpectedly".into());
+                }
+            }
+        }
+    }
+}
+
+#[pymethods]
+impl AskTell {
+    #[new]
+    #[pyo3(signature = (x0, sigma0, bounds, budget, seed, noisy))]
+    fn new(
+        x0: Vec<f64>,
+        sigma0: f64,
+        bounds: Option<(Vec<f64>, Vec<f64>)>,
+        budget: Option<usize>,
+        seed: u64,
+        noisy: bool,
+    ) -> PyResult<Self> {
+        let problem = Problem::new(x0, sigma0, bounds, budget, seed)?;
+        let n = problem.dim();
+        let best = (problem.memory().0, f64::NAN);
+        let (to_caller, from_auto) = channel();
+        let (values, from_caller) = channel();
+        let thread = std::thread::spawn(move || {
+            let mut objective = Channel {
+                to_caller: to_caller.clone(),
+                values: from_caller,
+                noisy,
+                closed: false,
+            };
+            let (mut theta, mut buffer) = problem.memory();
+            let mut error = None;
+            let (termination, evaluations, iterations) = match problem.auto(&mut theta, &mut buffer)
+            {
+                Ok(mut auto) => {
+                    loop {
+                        match auto.step(&mut objective) {
+                            Ok(Some(report)) => {
+                                let iteration = FromAuto::Iteration {
+                                    evaluations: report.evaluations,
+                                    value: report.value.unwrap_or(f64::NAN),
+                                    sigma: report.sigma,
+                                    theta: auto.theta().to_vec(),
+                                };
+                                if to_caller.send(iteration).is_err() {
+                                    break;
+                                }
+                            }
+                            Ok(None) => break,
+                            Err(e) => {
+                                if !objective.closed {
+                                    error = Some(e.to_string());
+                                }
+                                break;
+                            }
+                        }
+                    }
+                    (auto.termination(), auto.evaluations(), auto.iteration())
+                }
+                Err(e) => {
+                    error = Some(e.to_string());
+                    (None, 0, 0)
+                }
+            };
+            let _ = to_caller.send(FromAuto::Done {
+                termination,
+                evaluations,
+                iterations,
+                error,
+            });
+        });
+        Ok(AskTell {
+            n,
+            from_auto: Some(Mutex::new(from_auto)),
+            values: Some(values),
+            thread: Some(thread),
+            asked: None,
+            pending: None,
+            best,
+            history: (Vec::new(), Vec::new(), Vec::new()),
+            done: None,
+            error: None,
+        })
+    }
+
+    /// The next batch as a (k, n) array; (0, n) once the run has ended.
+    fn ask<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        if self.asked.is_some() {
+            return Err(PyRuntimeError::new_err(
+                "ask() again before tell(): tell the values of the batch asked first",
+            ));
+        }
+        self.advance(py);
+        let points = self.pending.take().unwrap_or_default();
+        let rows = points.len() / self.n;
+        let array = Array2::from_shape_vec((rows, self.n), points.clone())
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        if rows > 0 {
+            self.asked = Some(points);
+        }
+        Ok(array.into_pyarray(py))
+    }
+
+    /// The values of the batch last asked, one per row, in order.
+    fn tell(&mut self, values: PyReadonlyArrayDyn<'_, f64>) -> PyResult<()> {
+        let Some(points) = self.asked.take() else {
+            return Err(PyRuntimeError::new_err(
+                "tell() without ask(): nothing was asked",
+            ));
+        };
+        let rows = points.len() / self.n;
+        if values.len() != rows {
+            self.asked = Some(points);
+            return Err(PyValueError::new_err(format!(
+                "values has {} elements, the batch asked has {rows} points",
+                values.len()
+            )));
+        }
+        let values = values
+            .as_slice()
+            .map(<[f64]>::to_vec)
+            .unwrap_or_else(|_| values.as_array().iter().copied().collect());
+        if let Some(tx) = &self.values {
+            let _ = tx.send(values);
+        }
+        Ok(())
+    }
+
+    /// True once the run has ended (waits for the optimiser to say what it wants next).
+    fn stop(&mut self, py: Python<'_>) -> PyResult<bool> {
+        if self.asked.is_some() {
+            return Ok(false);
+        }
+        self.advance(py);
+        match &self.error {
+            Some(e) => Err(PyRuntimeError::new_err(e.clone())),
+            None => Ok(self.done.is_some()),
+        }
+    }
+
+    /// The result so far (the best point and its value) as `OptimizeResult` fields.
+    fn result<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let (termination, evaluations, iterations) = self.done.unwrap_or((
+            None,
+            self.history.0.last().copied().unwrap_or(0) as usize,
+            self.history.0.len(),
+        ));
+        let value = Some(self.best.1).filter(|v| !v.is_nan());
+        let result = result_dict(
+            py,
+            End::Auto(termination),
+            &self.best.0,
+            value,
+            evaluations,
+            iterations,
+        )?;
+        if self.done.is_none() {
+            result.set_item("success", false)?;
+            result.set_item("message", "running")?;
+        }
+        result.set_item("history_nfev", self.history.0.clone().into_pyarray(py))?;
+        result.set_item("history_fun", self.history.1.clone().into_pyarray(py))?;
+        result.set_item("history_sigma", self.history.2.clone().into_pyarray(py))?;
+        Ok(result)
+    }
+}
+
+impl Drop for AskTell {
+    fn drop(&mut self) {
+        // Closing both channels makes the thread's objective report cancellation.
+        self.values = None;
+        self.from_auto = None;
+        if let Some(thread) = self.thread.take() {
+            let _ = thread.join();
+        }
+    }
+}
