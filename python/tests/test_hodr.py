@@ -263,3 +263,21 @@ def test_ask_tell_with_a_process_pool():
 
 def rosenbrock(x):
     return float(100.0 * (x[1] - x[0] ** 2) ** 2 + (1.0 - x[0]) ** 2)
+
+
+def test_the_dask_example_runs_on_a_local_cluster():
+    distributed = pytest.importorskip("dask.distributed")
+    import importlib.util
+    import pathlib
+
+    path = pathlib.Path(__file__).parents[1] / "examples" / "dask_ask_tell.py"
+    spec = importlib.util.spec_from_file_location("dask_ask_tell", path)
+    example = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(example)
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False)
+    with distributed.Client(cluster) as client:
+        res = example.optimise(client, [-2.0, 3.0, 0.0], budget=600, seconds=0.0)
+    serial = hodr.minimize(lambda x: example.render_loss(x, 0.0), [-2.0, 3.0, 0.0], 1.0, budget=600)
+    # The same run as minimize's, at the rounded grid's best value 0.05² + 0.1² + 0.05².
+    assert np.array_equal(res.x, serial.x) and res.fun == serial.fun
+    assert abs(res.fun - 0.015) < 1e-12
