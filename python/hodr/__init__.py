@@ -81,29 +81,30 @@ class OptimizeResult(dict):
 
 def _bounds(bounds: Any, n: int) -> Optional[Tuple[list, list]]:
     """(lower, upper) from the forms scipy accepts: an object with ``lb`` and ``ub``
-    (scipy.optimize.Bounds), or n (low, high) pairs with None for unbounded; also
-    (lower, upper) with scalars or length-n sequences when n != 2 (at n = 2 two pairs
-    read as per-variable pairs, as in scipy)."""
+    (``scipy.optimize.Bounds``, scalars or length-n), n (low, high) pairs with None for
+    an open side, or one (low, high) pair of scalars for every coordinate."""
     if bounds is None:
         return None
     if hasattr(bounds, "lb") and hasattr(bounds, "ub"):
-        pairs = [bounds.lb, bounds.ub]
-    else:
         try:
-            pairs = list(bounds)
-        except TypeError:
-            raise TypeError("bounds must be (low, high) pairs or (lower, upper)") from None
-        if len(pairs) == n and all(np.ndim(p) == 1 and len(p) == 2 for p in pairs):
-            lower = [-np.inf if lo is None else float(lo) for lo, _ in pairs]
-            upper = [np.inf if hi is None else float(hi) for _, hi in pairs]
-            return lower, upper
-    if len(pairs) != 2:
-        raise ValueError(f"bounds must be {n} (low, high) pairs or (lower, upper), got {len(pairs)} entries")
+            lower, upper = (np.broadcast_to(np.asarray(b, dtype=float), (n,)) for b in (bounds.lb, bounds.ub))
+        except ValueError:
+            raise ValueError(f"bounds: lb and ub must be scalars or have {n} elements") from None
+        return lower.tolist(), upper.tolist()
     try:
-        lower, upper = (np.broadcast_to(np.asarray(b, dtype=float), (n,)) for b in pairs)
-    except ValueError:
-        raise ValueError(f"bounds: lower and upper must be scalars or have {n} elements") from None
-    return lower.tolist(), upper.tolist()
+        pairs = list(bounds)
+    except TypeError:
+        raise TypeError("bounds must be (low, high) pairs, one (low, high) pair or a Bounds") from None
+    if len(pairs) == 2 and all(p is None or np.ndim(p) == 0 for p in pairs):
+        pairs = [tuple(pairs)] * n
+    if len(pairs) != n or not all(np.ndim(p) == 1 and len(p) == 2 for p in pairs):
+        raise ValueError(
+            f"bounds must be {n} (low, high) pairs, one (low, high) pair of scalars, or an "
+            "object with lb and ub (scipy.optimize.Bounds)"
+        )
+    lower = [-np.inf if lo is None else float(lo) for lo, _ in pairs]
+    upper = [np.inf if hi is None else float(hi) for _, hi in pairs]
+    return lower, upper
 
 
 def _vector(name: str, value: Any) -> list:
@@ -156,9 +157,11 @@ def minimize(
     sigma0 : float
         The scale: how far the parameters must move to make a difference (> 0).
     bounds : optional
-        n ``(low, high)`` pairs as in scipy (None for an open side), a
-        ``scipy.optimize.Bounds``, or ``(lower, upper)`` with scalars or length-n
-        sequences (n != 2); None for unbounded. Every evaluated point lies inside.
+        n ``(low, high)`` pairs as in scipy (None for an open side), one ``(low, high)``
+        pair of scalars for every coordinate, or an object with ``lb`` and ``ub`` (a
+        ``scipy.optimize.Bounds``); None for unbounded. For arrays ``lower`` and
+        ``upper``, pass ``list(zip(lower, upper))``: a pair of two arrays reads as
+        per-coordinate pairs when n = 2, as in scipy. Every evaluated point lies inside.
     budget : int, optional
         At most this many evaluations (never exceeded). Default: until converged.
     method : str

@@ -122,7 +122,10 @@ def test_bounds_are_respected_in_every_form():
             outside.append(x)
         return float(np.sum((x - 3.0) ** 2))
 
-    for bounds in ([(-1.0, 0.5)] * 3, (-1.0, 0.5), ([-1.0] * 3, [0.5] * 3)):
+    from types import SimpleNamespace
+
+    as_scipy = SimpleNamespace(lb=np.full(3, -1.0), ub=0.5)  # what scipy.optimize.Bounds holds
+    for bounds in ([(-1.0, 0.5)] * 3, (-1.0, 0.5), as_scipy):
         res = hodr.minimize(f, [0.0, 0.0, 0.0], 1.0, bounds=bounds, budget=300)
         assert np.allclose(res.x, 0.5)
     assert not outside
@@ -185,7 +188,8 @@ def test_nan_values_count_as_worse_than_any_value():
         (lambda: hodr.minimize(quadratic, X, 1.0, seed=-1), ValueError, "seed"),
         (lambda: hodr.minimize(quadratic, X, 1.0, method="bfgs"), ValueError, "method"),
         (lambda: hodr.minimize(quadratic, X, 1.0, bounds=[(0, 1)] * 4), ValueError, "bounds"),
-        (lambda: hodr.minimize(quadratic, X, 1.0, bounds=([1.0] * 3, [0.0] * 3)), ValueError, "bounds[0]"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, bounds=[(1.0, 0.0)] * 3), ValueError, "bounds[0]"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, bounds=([1.0] * 3, [0.0] * 3)), ValueError, "pairs"),
         (lambda: hodr.minimize(quadratic, X, 1.0, callback=3), TypeError, "callback"),
         (lambda: hodr.minimize(3, X, 1.0), TypeError, "fun"),
         (lambda: hodr.minimize(lambda x: "a", X, 1.0), TypeError, ""),

@@ -1,0 +1,103 @@
+"""hodr's default optimiser, pycma and BOBYQA on COCO's `bbob` (or `bbob-mixint`) suite,
+for BENCHMARKS.md.
+
+Each solver runs on every function and instance of the suite in the given dimensions
+with COCO's standard observer, then COCO's own post-processing (cocopp) compares them:
+
+    pip install ./python cma nlopt coco-experiment cocopp six matplotlib
+    python python/bench/coco_bbob.py --solver hodr  --dims 2,3,5,10 --budget 1000
+    python python/bench/coco_bbob.py --solver cma   --dims 2,3,5,10 --budget 1000
+    python python/bench/coco_bbob.py --solver bobyqa --dims 2,3,5,10 --budget 1000
+    python -m cocopp -o ppdata exdata/bbob-hodr* exdata/bbob-cma* exdata/bbob-bobyqa*
+
+`--suite bbob-mixint` runs the mixed-integer suite (integer variables: plateaus) in its
+own dimensions (5, 10, 20, ...), where the solvers see the same continuous box and the
+suite rounds the integer coordinates.
+
+Every solver gets the same problem statement: COCO's initial solution, a scale of 2 (a
+fifth of the [-5, 5] box, pycma's usual choice on bbob), the box as bounds where the
+solver takes bounds (hodr, BOBYQA; pycma runs unbounded, as in COCO's own examples) and
+a budget of `budget`·n evaluations, spent in independent restarts from uniform points
+in [-4, 4]ⁿ until the budget is used or the final target is hit. Solver settings are
+each library's defaults: hodr `minimize` (Auto), `cma.fmin2`, nlopt's `LN_BOBYQA` with
+its default interpolation set and a relative x tolerance of 1e-12.
+"""
+
+import argparse
+import time
+
+import numpy as np
+
+SIGMA0 = 2.0
+
+
+def run_hodr(problem, x0, budget, seed):
+    import hodr
+
+    bounds = list(zip(problem.lower_bounds, problem.upper_bounds))
+    hodr.minimize(problem, x0, SIGMA0, bounds=bounds,
+                  budget=budget, seed=seed)
+
+
+def run_cma(problem, x0, budget, seed):
+    import warnings
+
+    warnings.filterwarnings("ignore")
+    import cma
+
+    cma.fmin2(problem, x0, SIGMA0, {"maxfevals": budget, "verbose": -9, "seed": seed + 1})
+
+
+def run_bobyqa(problem, x0, budget, seed):
+    import nlopt
+
+    opt = nlopt.opt(nlopt.LN_BOBYQA, len(x0))
+    opt.set_lower_bounds(problem.lower_bounds)
+    opt.set_upper_bounds(problem.upper_bounds)
+    opt.set_min_objective(lambda x, grad: float(problem(x)))
+    opt.set_initial_step(SIGMA0)
+    opt.set_maxeval(budget)
+    opt.set_xtol_rel(1e-12)
+    try:
+        opt.optimize(np.clip(x0, problem.lower_bounds, problem.upper_bounds))
+    except (nlopt.RoundoffLimited, RuntimeError, ValueError):
+        pass  # ends the restart; COCO has logged every evaluation
+
+
+SOLVERS = {"hodr": run_hodr, "cma": run_cma, "bobyqa": run_bobyqa}
+
+
+def main():
+    import cocoex
+
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--solver", choices=sorted(SOLVERS), required=True)
+    parser.add_argument("--suite", default="bbob", choices=["bbob", "bbob-mixint"])
+    parser.add_argument("--dims", default="2,3,5,10")
+    parser.add_argument("--budget", type=int, default=1000, help="evaluations per dimension")
+    parser.add_argument("--instances", default="1-15")
+    args = parser.parse_args()
+    solve = SOLVERS[args.solver]
+    suite = cocoex.Suite(args.suite, "", f"dimensions:{args.dims} instance_indices:{args.instances}")
+    folder = f"{args.suite}-{args.solver}"
+    observer = cocoex.Observer(args.suite, f"result_folder: {folder} algorithm_name: {args.solver}")
+    rng = np.random.default_rng(0)
+    start = time.perf_counter()
+    for k, problem in enumerate(suite):
+        problem.observe_with(observer)
+        budget = args.budget * problem.dimension
+        x0 = problem.initial_solution
+        restart = 0
+        while problem.evaluations < budget and not problem.final_target_hit:
+            solve(problem, x0, budget - problem.evaluations, seed=restart)
+            restart += 1
+            x0 = rng.uniform(-4.0, 4.0, problem.dimension)
+        problem.free()
+        if k % 60 == 0:
+            print(f"{args.solver}: {k + 1}/{len(suite)} problems, {time.perf_counter() - start:.0f} s",
+                  flush=True)
+    print(f"{args.solver}: done in {time.perf_counter() - start:.0f} s")
+
+
+if __name__ == "__main__":
+    main()
