@@ -55,7 +55,10 @@ def run_bobyqa(problem, x0, budget, seed):
     opt.set_lower_bounds(problem.lower_bounds)
     opt.set_upper_bounds(problem.upper_bounds)
     opt.set_min_objective(lambda x, grad: float(problem(x)))
-    opt.set_initial_step(SIGMA0)
+    # BOBYQA refuses an initial trust region wider than half of a coordinate's range
+    # (the integer coordinates of bbob-mixint have narrow ones).
+    width = np.asarray(problem.upper_bounds) - np.asarray(problem.lower_bounds)
+    opt.set_initial_step(np.minimum(SIGMA0, 0.45 * width))
     opt.set_maxeval(budget)
     opt.set_xtol_rel(1e-12)
     try:
