@@ -171,8 +171,12 @@ def minimize(
     batch : bool
         Call ``fun`` with batches of points (see ``fun``).
     noisy : bool
-        ``fun`` is stochastic (a Monte Carlo renderer): Auto then compares steps by
-        evaluating both points again rather than trusting remembered values.
+        ``fun`` is stochastic (a Monte Carlo renderer): it is called as
+        ``fun(x, seed)`` (with ``batch=True``, ``fun(X, seeds)``, one uint64 seed per
+        row) and must draw all of its randomness from the seed, equal seeds giving equal
+        noise. Both halves of an antithetic pair, and the points a step compares, get
+        one seed, so the renderer's noise cancels in their difference. Auto then
+        re-evaluates rather than trusting remembered values.
     callback : callable, optional
         ``callback(x, f)`` after every iteration with the best point so far and its
         value; returning True stops the run.
@@ -221,7 +225,8 @@ class Optimizer:
         res = opt.result                               # an OptimizeResult
 
     With the same arguments and seed, the points asked and the result are those of
-    ``minimize(fun, x0, sigma0, batch=True, ...)``. Arguments as in ``minimize``. The
+    ``minimize(fun, x0, sigma0, batch=True, ...)``. Arguments as in ``minimize``; with
+    ``noisy=True``, render row k of the batch asked with noise seed ``seeds[k]``. The
     optimiser runs on a thread of its own between ``tell`` and the next ``ask``; a
     batch must be told before the next is asked. ``result`` is available at any time
     (the best point so far). Dropping the object ends the run.
@@ -252,6 +257,12 @@ class Optimizer:
         """The next batch of points, a float64 array of shape (k, n); (0, n) once the
         run has ended."""
         return self._run.ask()
+
+    @property
+    def seeds(self) -> np.ndarray:
+        """The noise seeds (uint64) of the batch last asked, one per row: a stochastic
+        objective (``noisy=True``) draws row k's randomness from ``seeds[k]``."""
+        return self._run.seeds
 
     def tell(self, values: Sequence[float]) -> None:
         """The objective's values at the points last asked, in their order."""
@@ -286,7 +297,8 @@ def gradient(
     batch: bool = False,
     noisy: bool = False,
 ) -> Tuple[np.ndarray, int]:
-    """Estimate the gradient of the Gaussian-smoothed ``fun`` at ``x``.
+    """Estimate the gradient of the Gaussian-smoothed ``fun`` at ``x`` (``batch`` and
+    ``noisy`` as in ``minimize``).
 
     f_sigma(x) = E[f(x + sigma*eps)], eps ~ N(0, I). The estimate is unbiased (the
     least-squares ``"ls"`` one consistent) with ``pairs`` antithetic pairs.

@@ -13,7 +13,7 @@ use std::thread::JoinHandle;
 use hodr_core::optim::AutoTermination;
 use hodr_core::{Batch, NoiseSeed, Objective};
 use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyArray2, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -22,8 +22,8 @@ use crate::{End, Problem, result_dict};
 
 /// What the Auto thread says.
 enum FromAuto {
-    /// Points to evaluate, row-major.
-    Batch(Vec<f64>),
+    /// Points to evaluate, row-major, and their noise seeds.
+    Batch(Vec<f64>, Vec<NoiseSeed>),
     /// An iteration ended: evaluations so far, f at the best point, σ, the best point.
     Iteration {
         evaluations: usize,
@@ -50,14 +50,14 @@ struct Channel {
 }
 
 impl Objective<f64> for Channel {
-    fn evaluate(&mut self, theta: &[f64], _seed: NoiseSeed) -> f64 {
+    fn evaluate(&mut self, theta: &[f64], seed: NoiseSeed) -> f64 {
         let mut out = [f64::NAN];
-        self.exchange(theta, &mut out);
+        self.exchange(theta, &[seed], &mut out);
         out[0]
     }
 
     fn evaluate_batch(&mut self, batch: &Batch<'_, f64>, out: &mut [f64]) {
-        self.exchange(batch.points(), out);
+        self.exchange(batch.points(), batch.seeds(), out);
     }
 
     fn deterministic(&self) -> bool {
@@ -70,12 +70,12 @@ impl Objective<f64> for Channel {
 }
 
 impl Channel {
-    fn exchange(&mut self, points: &[f64], out: &mut [f64]) {
+    fn exchange(&mut self, points: &[f64], seeds: &[NoiseSeed], out: &mut [f64]) {
         out.fill(f64::NAN);
         if self.closed
             || self
                 .to_caller
-                .send(FromAuto::Batch(points.to_vec()))
+                .send(FromAuto::Batch(points.to_vec(), seeds.to_vec()))
                 .is_err()
         {
             self.closed = true;
@@ -98,8 +98,10 @@ pub struct AskTell {
     thread: Option<JoinHandle<()>>,
     /// The batch asked and not yet told.
     asked: Option<Vec<f64>>,
-    /// A batch received and not yet asked for.
-    pending: Option<Vec<f64>>,
+    /// A batch received and not yet asked for, with its seeds.
+    pending: Option<(Vec<f64>, Vec<NoiseSeed>)>,
+    /// The noise seeds of the batch last asked.
+    seeds: Vec<NoiseSeed>,
     best: (Vec<f64>, f64),
     history: (Vec<u64>, Vec<f64>, Vec<f64>),
     done: Option<(Option<AutoTermination>, usize, usize)>,
@@ -119,7 +121,7 @@ impl AskTell {
             });
             self.from_auto = Some(rx);
             match message {
-                Ok(FromAuto::Batch(points)) => self.pending = Some(points),
+                Ok(FromAuto::Batch(points, seeds)) => self.pending = Some((points, seeds)),
                 Ok(FromAuto::Iteration {
                     evaluations,
                     value,
@@ -224,6 +226,7 @@ impl AskTell {
             thread: Some(thread),
             asked: None,
             pending: None,
+            seeds: Vec::new(),
             best,
             history: (Vec::new(), Vec::new(), Vec::new()),
             done: None,
@@ -239,7 +242,8 @@ impl AskTell {
             ));
         }
         self.advance(py);
-        let points = self.pending.take().unwrap_or_default();
+        let (points, seeds) = self.pending.take().unwrap_or_default();
+        self.seeds = seeds;
         let rows = points.len() / self.n;
         let array = Array2::from_shape_vec((rows, self.n), points.clone())
             .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
@@ -272,6 +276,12 @@ impl AskTell {
             let _ = tx.send(values);
         }
         Ok(())
+    }
+
+    /// The noise seeds of the batch last asked, one per row (equal seeds: equal noise).
+    #[getter]
+    fn seeds<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<NoiseSeed>> {
+        PyArray1::from_slice(py, &self.seeds)
     }
 
     /// True once the run has ended (waits for the optimiser to say what it wants next).

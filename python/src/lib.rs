@@ -4,7 +4,9 @@
 //!
 //! A Python callable becomes a hodr-core [`Objective`] ([`PyObjective`]): each point (or,
 //! with `batch`, each batch of points as one (k, n) array) is handed to it as a float64
-//! numpy array, and it must return a real number (one per row). An exception raised by
+//! numpy array, and it must return a real number (one per row). With `noisy` it also
+//! receives the noise seed (with `batch`, a uint64 array of one seed per row): equal
+//! seeds must give equal noise, so that the halves of an antithetic pair share it. An exception raised by
 //! the callable, or a pending KeyboardInterrupt, is kept, ends the work at the next batch
 //! ([`Objective::cancelled`]) and is raised again unchanged to the caller.
 
@@ -31,6 +33,7 @@ struct PyObjective<'py> {
     py: Python<'py>,
     fun: Bound<'py, PyAny>,
     batch: bool,
+    /// A stochastic callable, called with the noise seed.
     noisy: bool,
     /// The first exception the callable raised (or a KeyboardInterrupt); once set, no
     /// more calls are made.
@@ -51,13 +54,18 @@ impl<'py> PyObjective<'py> {
         })
     }
 
-    /// `fun(x)` as a float, or NaN with the error kept.
-    fn call_one(&mut self, theta: &[f64]) -> f64 {
+    /// `fun(x)` (noisy: `fun(x, seed)`) as a float, or NaN with the error kept.
+    fn call_one(&mut self, theta: &[f64], seed: NoiseSeed) -> f64 {
         if self.error.is_some() {
             return f64::NAN;
         }
         let x = PyArray1::from_slice(self.py, theta);
-        match self.fun.call1((x,)).and_then(|v| v.extract::<f64>()) {
+        let value = if self.noisy {
+            self.fun.call1((x, seed))
+        } else {
+            self.fun.call1((x,))
+        };
+        match value.and_then(|v| v.extract::<f64>()) {
             Ok(v) => v,
             Err(e) => {
                 self.error = Some(e);
@@ -66,11 +74,18 @@ impl<'py> PyObjective<'py> {
         }
     }
 
-    /// `fun(X)` for a (k, n) array, as k floats.
+    /// `fun(X)` (noisy: `fun(X, seeds)`) for a (k, n) array, as k floats.
     fn call_batch(&mut self, batch: &Batch<'_, f64>, out: &mut [f64]) -> PyResult<()> {
         let rows = Array2::from_shape_vec((batch.len(), batch.dim()), batch.points().to_vec())
             .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-        let values: Vec<f64> = self.fun.call1((rows.into_pyarray(self.py),))?.extract()?;
+        let rows = rows.into_pyarray(self.py);
+        let values = if self.noisy {
+            let seeds = PyArray1::from_slice(self.py, batch.seeds());
+            self.fun.call1((rows, seeds))?
+        } else {
+            self.fun.call1((rows,))?
+        };
+        let values: Vec<f64> = values.extract()?;
         if values.len() != out.len() {
             return Err(PyValueError::new_err(format!(
                 "fun returned {} values for a batch of {} points (with batch=True it must return one per row)",
@@ -89,14 +104,14 @@ impl<'py> PyObjective<'py> {
 }
 
 impl Objective<f64> for PyObjective<'_> {
-    fn evaluate(&mut self, theta: &[f64], _seed: NoiseSeed) -> f64 {
-        self.call_one(theta)
+    fn evaluate(&mut self, theta: &[f64], seed: NoiseSeed) -> f64 {
+        self.call_one(theta, seed)
     }
 
     fn evaluate_batch(&mut self, batch: &Batch<'_, f64>, out: &mut [f64]) {
         if !self.batch {
             for (k, value) in out.iter_mut().enumerate() {
-                *value = self.call_one(batch.point(k));
+                *value = self.call_one(batch.point(k), batch.seed(k));
             }
             return;
         }

@@ -285,3 +285,37 @@ def test_the_dask_example_runs_on_a_local_cluster():
     # The same run as minimize's, at the rounded grid's best value 0.05² + 0.1² + 0.05².
     assert np.array_equal(res.x, serial.x) and res.fun == serial.fun
     assert abs(res.fun - 0.015) < 1e-12
+
+
+def noisy_render(x, seed):
+    """A stochastic objective: f plus noise drawn from the seed alone."""
+    return quadratic(x) + 0.01 * np.random.default_rng(int(seed)).standard_normal()
+
+
+def test_a_noisy_objective_gets_seeds_and_antithetic_halves_share_them():
+    seen = []
+
+    def f(x, seed):
+        seen.append(int(seed))
+        return noisy_render(x, seed)
+
+    hodr.gradient(f, X, 0.3, pairs=8, noisy=True)
+    assert seen[0::2] == seen[1::2], "the two halves of each pair share a seed"
+    assert len(set(seen)) > 1
+    res = hodr.minimize(noisy_render, [2.0, 2.0, -1.0], 1.0, budget=600, noisy=True)
+    assert np.linalg.norm(res.x - np.linalg.solve(A, -B)) < 0.3
+    again = hodr.minimize(noisy_render, [2.0, 2.0, -1.0], 1.0, budget=600, noisy=True)
+    assert np.array_equal(res.x, again.x)
+
+
+def test_ask_tell_hands_out_the_seeds_of_a_noisy_run():
+    def batched(X, seeds):
+        return [noisy_render(x, s) for x, s in zip(X, seeds)]
+
+    reference = hodr.minimize(batched, [2.0, 2.0, -1.0], 1.0, budget=200, noisy=True, batch=True)
+    opt = hodr.Optimizer([2.0, 2.0, -1.0], 1.0, budget=200, noisy=True)
+    while not opt.stop():
+        X = opt.ask()
+        assert opt.seeds.dtype == np.uint64 and len(opt.seeds) == len(X)
+        opt.tell(batched(X, opt.seeds))
+    assert np.array_equal(opt.result.x, reference.x)
