@@ -319,3 +319,22 @@ def test_ask_tell_hands_out_the_seeds_of_a_noisy_run():
         assert opt.seeds.dtype == np.uint64 and len(opt.seeds) == len(X)
         opt.tell(batched(X, opt.seeds))
     assert np.array_equal(opt.result.x, reference.x)
+
+
+def test_the_mitsuba_example_at_a_tiny_size():
+    """hodr's half of python/examples/mitsuba_shadow.py, on Mitsuba's scalar variant
+    (no LLVM needed) at 16×16."""
+    mi = pytest.importorskip("mitsuba")
+    import importlib.util
+    import pathlib
+
+    path = pathlib.Path(__file__).parents[1] / "examples" / "mitsuba_shadow.py"
+    spec = importlib.util.spec_from_file_location("mitsuba_shadow", path)
+    example = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(example)
+    mi.set_variant("scalar_rgb")
+    shadow = example.Shadow(mi, 16, spp=1, target_spp=16)
+    assert shadow.loss(example.TRUTH, 7) < shadow.loss(example.start(0), 7)
+    assert shadow.loss([0.1, 0.2], 7) == shadow.loss([0.1, 0.2], 7), "a seed fixes the noise"
+    theta, renders = example.run_hodr(shadow, seed=0, budget=40)
+    assert renders <= 40 and np.all(np.isfinite(theta)) and np.all(np.abs(theta) <= 2.0)
