@@ -28,10 +28,11 @@ mod ask_tell;
 /// Points per batch handed to the objective (with `batch`, rows per call).
 const ROWS: usize = 64;
 
-/// A Python callable as a hodr-core objective.
-struct PyObjective<'py> {
-    py: Python<'py>,
-    fun: Bound<'py, PyAny>,
+/// A Python callable as a hodr-core objective. It holds no GIL: every call attaches to
+/// the interpreter for its duration, so the optimiser's own work runs detached (other
+/// Python threads go on meanwhile).
+struct PyObjective {
+    fun: Py<PyAny>,
     batch: bool,
     /// A stochastic callable, called with the noise seed.
     noisy: bool,
@@ -40,14 +41,13 @@ struct PyObjective<'py> {
     error: Option<PyErr>,
 }
 
-impl<'py> PyObjective<'py> {
-    fn new(fun: Bound<'py, PyAny>, batch: bool, noisy: bool) -> PyResult<Self> {
+impl PyObjective {
+    fn new(fun: Bound<'_, PyAny>, batch: bool, noisy: bool) -> PyResult<Self> {
         if !fun.is_callable() {
             return Err(PyTypeError::new_err("fun must be callable"));
         }
         Ok(PyObjective {
-            py: fun.py(),
-            fun,
+            fun: fun.unbind(),
             batch,
             noisy,
             error: None,
@@ -59,13 +59,17 @@ impl<'py> PyObjective<'py> {
         if self.error.is_some() {
             return f64::NAN;
         }
-        let x = PyArray1::from_slice(self.py, theta);
-        let value = if self.noisy {
-            self.fun.call1((x, seed))
-        } else {
-            self.fun.call1((x,))
-        };
-        match value.and_then(|v| v.extract::<f64>()) {
+        let value = Python::attach(|py| {
+            let x = PyArray1::from_slice(py, theta);
+            let fun = self.fun.bind(py);
+            let value = if self.noisy {
+                fun.call1((x, seed))
+            } else {
+                fun.call1((x,))
+            };
+            value.and_then(|v| v.extract::<f64>())
+        });
+        match value {
             Ok(v) => v,
             Err(e) => {
                 self.error = Some(e);
@@ -78,14 +82,17 @@ impl<'py> PyObjective<'py> {
     fn call_batch(&mut self, batch: &Batch<'_, f64>, out: &mut [f64]) -> PyResult<()> {
         let rows = Array2::from_shape_vec((batch.len(), batch.dim()), batch.points().to_vec())
             .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-        let rows = rows.into_pyarray(self.py);
-        let values = if self.noisy {
-            let seeds = PyArray1::from_slice(self.py, batch.seeds());
-            self.fun.call1((rows, seeds))?
-        } else {
-            self.fun.call1((rows,))?
-        };
-        let values: Vec<f64> = values.extract()?;
+        let values: Vec<f64> = Python::attach(|py| {
+            let rows = rows.into_pyarray(py);
+            let fun = self.fun.bind(py);
+            let values = if self.noisy {
+                let seeds = PyArray1::from_slice(py, batch.seeds());
+                fun.call1((rows, seeds))?
+            } else {
+                fun.call1((rows,))?
+            };
+            values.extract()
+        })?;
         if values.len() != out.len() {
             return Err(PyValueError::new_err(format!(
                 "fun returned {} values for a batch of {} points (with batch=True it must return one per row)",
@@ -103,7 +110,7 @@ impl<'py> PyObjective<'py> {
     }
 }
 
-impl Objective<f64> for PyObjective<'_> {
+impl Objective<f64> for PyObjective {
     fn evaluate(&mut self, theta: &[f64], seed: NoiseSeed) -> f64 {
         self.call_one(theta, seed)
     }
@@ -131,7 +138,7 @@ impl Objective<f64> for PyObjective<'_> {
 
     fn cancelled(&mut self) -> bool {
         if self.error.is_none()
-            && let Err(e) = self.py.check_signals()
+            && let Err(e) = Python::attach(|py| py.check_signals())
         {
             self.error = Some(e);
         }
@@ -284,25 +291,32 @@ fn minimize_auto<'py>(
     let mut objective = PyObjective::new(fun, batch, noisy)?;
     let (mut theta, mut buffer) = problem.memory();
     let mut auto = problem.auto(&mut theta, &mut buffer).map_err(core_error)?;
+    let callback = callback.map(Bound::unbind);
     let (mut nfev, mut best, mut sigma) = (Vec::new(), Vec::new(), Vec::new());
-    let end = loop {
-        match auto.step(&mut objective) {
-            Ok(Some(report)) => {
-                nfev.push(report.evaluations as u64);
-                best.push(report.value.unwrap_or(f64::NAN));
-                sigma.push(report.sigma);
-                if let Some(cb) = &callback {
-                    let x = PyArray1::from_slice(py, auto.theta());
-                    let stop = cb.call1((x, report.value.unwrap_or(f64::NAN)))?;
-                    if stop.is_truthy()? {
-                        break End::Callback;
+    // The run holds no GIL; the objective and the callback attach for their calls.
+    let end = py.detach(|| -> PyResult<End> {
+        loop {
+            match auto.step(&mut objective) {
+                Ok(Some(report)) => {
+                    let value = report.value.unwrap_or(f64::NAN);
+                    nfev.push(report.evaluations as u64);
+                    best.push(value);
+                    sigma.push(report.sigma);
+                    if let Some(cb) = &callback {
+                        let stop = Python::attach(|py| {
+                            let x = PyArray1::from_slice(py, auto.theta());
+                            cb.bind(py).call1((x, value))?.is_truthy()
+                        })?;
+                        if stop {
+                            return Ok(End::Callback);
+                        }
                     }
                 }
+                Ok(None) => return Ok(End::Auto(auto.termination())),
+                Err(error) => return Err(objective.error_or(error)),
             }
-            Ok(None) => break End::Auto(auto.termination()),
-            Err(error) => return Err(objective.error_or(error)),
         }
-    };
+    })?;
     let result = result_dict(
         py,
         end,
@@ -362,18 +376,20 @@ fn estimator(sigma: f64, pairs: usize, seed: u64) -> PyResult<Estimator<f64, Xos
     Estimator::new(sigma, pairs, Xoshiro256PlusPlus::seed_from_u64(seed)).map_err(core_error)
 }
 
-/// Runs `estimate` with a workspace for dimension n (with a moment region for least
-/// squares), turning a cancellation into the callable's own exception.
-fn with_workspace<'py, R>(
-    objective: &mut PyObjective<'py>,
+/// Runs `estimate` without the GIL, with a workspace for dimension n (with a moment
+/// region for least squares), turning a cancellation into the callable's own exception.
+fn with_workspace<R: Send>(
+    py: Python<'_>,
+    objective: &mut PyObjective,
     n: usize,
-    estimate: impl FnOnce(&mut PyObjective<'py>, &mut Workspace<'_, f64>) -> Result<R, Error>,
+    estimate: impl FnOnce(&mut PyObjective, &mut Workspace<'_, f64>) -> Result<R, Error> + Send,
 ) -> PyResult<R> {
     let mut buffer =
         vec![0.0; Workspace::<f64>::buffer_len(n, ROWS) + Workspace::<f64>::moments_len(n)];
     let mut seeds = vec![0; ROWS];
     let mut ws = Workspace::new(n, &mut buffer, &mut seeds).map_err(core_error)?;
-    estimate(objective, &mut ws).map_err(|e| objective.error_or(e))
+    // Without the GIL: the objective attaches for its calls.
+    py.detach(|| estimate(objective, &mut ws).map_err(|e| objective.error_or(e)))
 }
 
 /// The gradient estimator called `name`.
@@ -412,7 +428,7 @@ fn gradient<'py>(
     let mut est = estimator(sigma, pairs, seed)?;
     let mut objective = PyObjective::new(fun, batch, noisy)?;
     let mut g = vec![0.0; x.len()];
-    let report = with_workspace(&mut objective, x.len(), |o, ws| {
+    let report = with_workspace(py, &mut objective, x.len(), |o, ws| {
         est.gradient(method, o, &x, ws, &mut g)
     })?;
     Ok((g.into_pyarray(py), report.evaluations))
@@ -448,7 +464,7 @@ fn hessian<'py>(
     let mut objective = PyObjective::new(fun, batch, noisy)?;
     let n = x.len();
     let mut h = vec![0.0; n * n];
-    let report = with_workspace(&mut objective, n, |o, ws| {
+    let report = with_workspace(py, &mut objective, n, |o, ws| {
         est.hessian(method, o, &x, ws, &mut h)
     })?;
     let h =
@@ -496,7 +512,7 @@ fn hvp<'py>(
     let mut est = estimator(sigma, pairs, seed)?;
     let mut objective = PyObjective::new(fun, batch, noisy)?;
     let mut hv = vec![0.0; x.len()];
-    let report = with_workspace(&mut objective, x.len(), |o, ws| {
+    let report = with_workspace(py, &mut objective, x.len(), |o, ws| {
         est.hvp(method, o, &x, &v, ws, &mut hv)
     })?;
     Ok((hv.into_pyarray(py), report.evaluations))
