@@ -56,7 +56,8 @@ class OptimizeResult(dict):
         lower value within its patience); False when the budget ran out first or the
         callback stopped it.
     status : int
-        0 converged, 1 budget used, 2 stagnated, 3 stopped by the callback.
+        0 converged, 1 budget used, 2 stagnated, 3 stopped by the callback, 4
+        interrupted (the ``result`` of the KeyboardInterrupt).
     message : str
         Why the run ended.
     history : dict of ndarray
@@ -189,6 +190,9 @@ def minimize(
     ------
     TypeError, ValueError
         For bad arguments, naming the argument.
+    KeyboardInterrupt
+        On Ctrl-C, within one batch of evaluations; its ``result`` attribute holds the
+        run so far (status 4).
     Exception
         Whatever ``fun`` or ``callback`` raised, unchanged.
     """
@@ -204,9 +208,20 @@ def minimize(
     seed = _count("seed", seed, 0)
     if callback is not None and not callable(callback):
         raise TypeError("callback must be callable")
-    raw = _hodr.minimize_auto(
-        fun, x0, sigma0, _bounds(bounds, len(x0)), budget, seed, bool(batch), bool(noisy), callback
-    )
+    try:
+        raw = _hodr.minimize_auto(
+            fun, x0, sigma0, _bounds(bounds, len(x0)), budget, seed, bool(batch), bool(noisy),
+            callback,
+        )
+    except KeyboardInterrupt as interrupt:
+        if isinstance(getattr(interrupt, "result", None), dict):
+            interrupt.result = _result(interrupt.result)
+        raise
+    return _result(raw)
+
+
+def _result(raw: dict) -> OptimizeResult:
+    """An OptimizeResult from the extension's fields, the history grouped."""
     history = {k: raw.pop(f"history_{k}") for k in ("nfev", "fun", "sigma")}
     result = OptimizeResult(raw)
     result.history = history
@@ -279,11 +294,7 @@ class Optimizer:
     @property
     def result(self) -> OptimizeResult:
         """The run's ``OptimizeResult`` (while running: the best point so far)."""
-        raw = self._run.result()
-        history = {k: raw.pop(f"history_{k}") for k in ("nfev", "fun", "sigma")}
-        result = OptimizeResult(raw)
-        result.history = history
-        return result
+        return _result(self._run.result())
 
 
 def gradient(

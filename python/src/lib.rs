@@ -17,7 +17,7 @@ use hodr_core::{
 };
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
-use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -316,10 +316,10 @@ fn minimize_auto<'py>(
                 Err(error) => return Err(objective.error_or(error)),
             }
         }
-    })?;
+    });
     let result = result_dict(
         py,
-        end,
+        end.as_ref().map_or(End::Interrupted, |e| *e),
         auto.theta(),
         auto.value(),
         auto.evaluations(),
@@ -328,15 +328,27 @@ fn minimize_auto<'py>(
     result.set_item("history_nfev", nfev.into_pyarray(py))?;
     result.set_item("history_fun", best.into_pyarray(py))?;
     result.set_item("history_sigma", sigma.into_pyarray(py))?;
-    Ok(result)
+    match end {
+        Ok(_) => Ok(result),
+        Err(error) => {
+            // A Ctrl-C carries the run so far, for the Python half to hand back.
+            if error.is_instance_of::<PyKeyboardInterrupt>(py) {
+                error.value(py).setattr("result", result)?;
+            }
+            Err(error)
+        }
+    }
 }
 
 /// How a run ended.
+#[derive(Clone, Copy)]
 pub(crate) enum End {
     /// Auto ended it (`None`: it had not ended, the budget's end is reported).
     Auto(Option<AutoTermination>),
     /// The caller's callback stopped it.
     Callback,
+    /// Ctrl-C (KeyboardInterrupt) stopped it.
+    Interrupted,
 }
 
 /// The `OptimizeResult` fields of a run, history aside.
@@ -350,6 +362,7 @@ pub(crate) fn result_dict<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let (success, status, message) = match end {
         End::Callback => (false, 3, "stopped by the callback".to_string()),
+        End::Interrupted => (false, 4, "interrupted (KeyboardInterrupt)".to_string()),
         End::Auto(Some(AutoTermination::MaxEvaluations)) | End::Auto(None) => {
             (false, 1, AutoTermination::MaxEvaluations.to_string())
         }

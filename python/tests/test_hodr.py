@@ -167,6 +167,24 @@ def test_keyboard_interrupt_stops_within_a_batch():
     assert len(calls) < 50 + 64
 
 
+def test_keyboard_interrupt_keeps_the_run_so_far():
+    calls = []
+
+    def f(x):
+        calls.append(1)
+        if len(calls) == 200:
+            signal.raise_signal(signal.SIGINT)
+        return quadratic(x)
+
+    with pytest.raises(KeyboardInterrupt) as info:
+        hodr.minimize(f, [2.0, 2.0, -1.0], 1.0, budget=10_000)
+    partial = info.value.result
+    assert isinstance(partial, hodr.OptimizeResult)
+    assert partial.status == 4 and not partial.success
+    assert 0 < partial.nfev <= 200 + 64 and partial.nit == len(partial.history["nfev"])
+    assert partial.fun <= quadratic(np.array([2.0, 2.0, -1.0]))
+
+
 def test_nan_values_count_as_worse_than_any_value():
     f = lambda x: float("nan") if x[0] < 0 else float(np.sum((x - 1.0) ** 2))
     res = hodr.minimize(f, [0.5, 0.5], 1.0, budget=500)
