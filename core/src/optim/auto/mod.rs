@@ -16,8 +16,8 @@
 //!   A full Hessian is modelled for n ≤ [`FULL_MODEL_MAX_DIM`], a diagonal one above.
 //! * **Samples.** Where fewer than n + 1 remembered points lie within z ≤ ρ, the
 //!   iteration evaluates antithetic pairs θ ± σ√n·b along the columns b of a random
-//!   orthonormal frame (2n points, with θ, on the first iteration). The two halves of a
-//!   pair share a noise seed.
+//!   orthonormal frame (2n points, with θ, on the first iteration), mirrored into the
+//!   bounds at the faces they cross. The two halves of a pair share a noise seed.
 //! * **Step.** The model's minimiser within ‖s‖ ≤ σ√n (the `trust` module: exact for
 //!   indefinite H, so a non-PSD model steps along its negative curvature), over the
 //!   coordinates no bound holds and projected into the bounds, is evaluated. It
@@ -33,10 +33,13 @@
 //!   2n within reach: then a pair is drawn at the same σ first), or the fit finds f rough at this scale (residual scatter
 //!   above [`ROUGH`] of the values' spread) and the trial lies within twice that scatter
 //!   (then σ doubles, as on a plateau).
-//! * **Plateaus.** Where the remembered values within reach tie, σ doubles (up to
+//! * **Plateaus.** Where most of an iteration's samples tie with f(θ) (or, where it
+//!   drew none, every remembered value within reach does), σ doubles (up to
 //!   [`PLATEAU_WIDTH`]·σ₀) and an exploring pair is drawn at a Gaussian distance σ‖t‖,
 //!   t ~ N(0, I): where a model-based method sees zero slope, the wider kernel reaches
-//!   the slope.
+//!   the slope. A smooth f never ties, so where some samples tie (a lattice, a
+//!   staircase) f is piecewise constant at σ: a failed step there draws another pair at
+//!   the same σ instead of shrinking it below the steps' width.
 //! * **Anytime.** Nothing depends on a budget: the first k evaluations of a run are the
 //!   same whatever its [`AutoOptions::max_evaluations`], which only stops it (never
 //!   exceeded, even inside an iteration). When σ falls below
@@ -453,6 +456,9 @@ struct State<T> {
     survey: bool,
     /// Restarts since the last gain, each at twice the scale of the one before.
     widenings: u32,
+    /// Some remembered point within reach other than θ ties with f(θ): f is piecewise
+    /// constant at this scale, so a failed step is no reason to shrink σ.
+    lattice: bool,
     finished: Option<AutoTermination>,
 }
 
@@ -566,6 +572,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 bounded: false,
                 survey: false,
                 widenings: 0,
+                lattice: false,
                 finished: None,
             },
         })
@@ -799,7 +806,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             for sign in [T::ONE, -T::ONE] {
                 for i in 0..n {
                     let x = self.theta[i] + sign * radius * self.mem.rs[i];
-                    self.mem.stage[rows * n + i] = x.max(self.mem.lower[i]).min(self.mem.upper[i]);
+                    self.mem.stage[rows * n + i] = reflect(x, self.mem.lower[i], self.mem.upper[i]);
                 }
                 rows += 1;
             }
@@ -848,13 +855,23 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if allowed < rows {
             return Ok(Some(AutoStep::OutOfBudget));
         }
-        // A plateau: every value within reach ties with f(θ).
-        let spread = self.spread(T::from_f64(REACH));
-        let tie = self
-            .st
-            .value
-            .map_or(T::MAX, |v| T::from_f64(16.0) * T::EPSILON * v.abs());
-        if self.st.value.is_none() || spread <= tie {
+        // A plateau: most of this iteration's samples tie with f(θ) or, where it drew
+        // none, every value within reach does. A smooth f never ties, so even one tie
+        // says that f is piecewise constant at this scale.
+        let fresh = usize::from(first)..allowed;
+        let (near, ties) = if fresh.is_empty() {
+            self.ties_within(T::from_f64(REACH))
+        } else {
+            let v = self.st.value.unwrap_or(T::MAX);
+            self.mem.stage_f[fresh]
+                .iter()
+                .filter(|f| f.is_finite())
+                .fold((0, 0), |(near, ties), &f| {
+                    (near + 1, ties + usize::from(ties_with(f, v)))
+                })
+        };
+        self.st.lattice = ties > 0 && ties < near;
+        if self.st.value.is_none() || 2 * ties > near || ties == near {
             self.st.sigma = self.widened_sigma(PLATEAU_WIDTH);
             return Ok(Some(AutoStep::Plateau));
         }
@@ -956,19 +973,21 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         let boundary = length >= T::from_f64(0.9) * radius;
         let determined = fitted > self.shape.coefficients(n);
-        self.st.sigma = if ratio < T::from_f64(0.1) && !determined && !validated {
-            // Too few points to blame the scale: sample more at this σ first.
-            self.st.resample = true;
-            sigma
-        } else if ratio < T::from_f64(0.1) && !tie {
-            sigma * T::HALF
-        } else if ratio >= T::from_f64(0.7) && boundary {
-            self.widened_sigma(GROWTH_WIDTH)
-        } else if length < T::HALF * radius && validated {
-            sigma * (T::TWO * length / radius).max(T::HALF)
-        } else {
-            sigma
-        };
+        self.st.sigma =
+            if ratio < T::from_f64(0.1) && !tie && (self.st.lattice || !determined && !validated) {
+                // Too few points to blame the scale, or f is piecewise constant at it:
+                // sample more at this σ first.
+                self.st.resample = true;
+                sigma
+            } else if ratio < T::from_f64(0.1) && !tie {
+                sigma * T::HALF
+            } else if ratio >= T::from_f64(0.7) && boundary {
+                self.widened_sigma(GROWTH_WIDTH)
+            } else if length < T::HALF * radius && validated {
+                sigma * (T::TWO * length / radius).max(T::HALF)
+            } else {
+                sigma
+            };
         if accepted {
             if ratio >= T::from_f64(0.1) {
                 // The model predicted the decrease: trust its curvature's shape.
@@ -1232,6 +1251,19 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             .count()
     }
 
+    /// Remembered points within z other than θ, and how many of them tie with f(θ);
+    /// (0, 0) when f(θ) is unknown.
+    fn ties_within(&self, z: T) -> (usize, usize) {
+        let Some(v) = self.st.value else {
+            return (0, 0);
+        };
+        (0..self.st.count)
+            .filter(|&k| (T::ZERO..=z).contains(&self.reach_of(k)) && self.reach_of(k) > T::ZERO)
+            .fold((0, 0), |(near, ties), k| {
+                (near + 1, ties + usize::from(ties_with(self.mem.fs[k], v)))
+            })
+    }
+
     /// max |f − f(θ)| over remembered points within z (0 when f(θ) is unknown).
     fn spread(&self, z: T) -> T {
         let Some(v) = self.st.value else {
@@ -1387,4 +1419,26 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             },
         );
     }
+}
+
+/// f ties with v: equal to within 16 ulps of v (a smooth f almost never does).
+fn ties_with<T: Real>(f: T, v: T) -> bool {
+    (f - v).abs() <= T::from_f64(16.0) * T::EPSILON * v.abs()
+}
+
+/// x mirrored into [lower, upper] at the bounds it crosses (clamped after a few
+/// reflections, for a point many box widths out). A sample is reflected rather than
+/// clamped: clamping piles samples on the box's faces, where f is constant along every
+/// clamped coordinate, so a wide survey of a bounded problem would learn nothing there.
+fn reflect<T: Real>(mut x: T, lower: T, upper: T) -> T {
+    for _ in 0..4 {
+        if x > upper {
+            x = upper - (x - upper);
+        } else if x < lower {
+            x = lower + (lower - x);
+        } else {
+            return x;
+        }
+    }
+    x.max(lower).min(upper)
 }
