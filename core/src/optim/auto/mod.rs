@@ -45,11 +45,11 @@
 //!   exceeded, even inside an iteration). When σ falls below
 //!   [`AutoOptions::tolerance`]·σ₀ (or below what T resolves at θ), or after
 //!   [`AutoOptions::patience`] iterations without a lower f(θ), the run restarts from
-//!   the best point with a survey of n pairs: at σ₀ if f(θ) fell since the last
-//!   restart, otherwise at twice the last restart's σ (up to [`PLATEAU_WIDTH`]·σ₀),
-//!   where the smoothed objective averages over the basin that held it; after
-//!   [`AutoOptions::restarts`] restarts in a row without a gain it ends, converged or
-//!   stagnated.
+//!   the best point with a survey of n pairs, at the next scale of the cycle σ₀, 2σ₀,
+//!   …, [`PLATEAU_WIDTH`]·σ₀, σ₀, … (wider scales average over more of the basin that
+//!   held it; a gain does not send the next restart back to σ₀, since on a lattice of
+//!   small steps some gain is always found there); after [`AutoOptions::restarts`]
+//!   restarts in a row without a gain it ends, converged or stagnated.
 //!
 //! Memory: one caller buffer of [`Auto::buffer_len`] floats, O(n² + m²) for m =
 //! [`Auto::history_len`] remembered points. Cost per iteration: O(m²n + m³) for the fit,
@@ -92,6 +92,9 @@ pub const ROUGH: f64 = 0.25;
 /// meet a distant basin ever more rarely. σ₀ states where the parameters matter.
 pub const PLATEAU_WIDTH: f64 = 16.0;
 
+/// Scales in the restarts' cycle σ₀, 2σ₀, …, [`PLATEAU_WIDTH`]·σ₀.
+const RESTART_SCALES: u32 = 5;
+
 /// σ/σ₀ beyond which a confirmed step to the trust boundary no longer widens σ.
 const GROWTH_WIDTH: f64 = 1_048_576.0;
 
@@ -119,10 +122,10 @@ pub struct AutoOptions<T> {
     /// (see [`AutoOptions::restarts`]) or ends stagnated. Default: `None`, meaning
     /// 20 + 10n.
     pub patience: Option<usize>,
-    /// Restarts in a row without a lower f(θ) before the run ends. The first restart
-    /// after a gain is at σ₀; each further one at twice the σ of the one before, up to
-    /// [`PLATEAU_WIDTH`]·σ₀ (and, with bounds, half the box's widest side), and there
-    /// again. Each looks around its new scale with n antithetic pairs. Default: 8.
+    /// Restarts in a row without a lower f(θ) before the run ends. The k-th restart of
+    /// a run is at σ₀·2^(k mod 5): σ₀, 2σ₀, …, [`PLATEAU_WIDTH`]·σ₀ (and, with bounds, at
+    /// most half the box's widest side), then σ₀ again. Each looks around its scale
+    /// with n antithetic pairs. Default: 8.
     pub restarts: usize,
     /// Objective evaluations after which the run stops; never exceeded. Default: none.
     pub max_evaluations: Option<usize>,
@@ -447,15 +450,17 @@ struct State<T> {
     resample: bool,
     /// Iterations since f(θ) last fell.
     stale: usize,
-    /// f(θ) fell since the last restart (or the run began): a stagnation restarts at σ₀
+    /// f(θ) fell since the last restart (or the run began): a stagnation restarts
     /// instead of ending the run.
     may_restart: bool,
     bounded: bool,
     /// Draw n pairs along a fresh frame this iteration, as the first does: a restart
     /// looks around at its new scale before the model decides anything.
     survey: bool,
-    /// Restarts since the last gain, each at twice the scale of the one before.
+    /// Restarts in a row since the last gain.
     widenings: u32,
+    /// Restarts so far: the k-th is at σ₀·2^(k mod [`RESTART_SCALES`]).
+    cycle: u32,
     /// Some remembered point within reach other than θ ties with f(θ): f is piecewise
     /// constant at this scale, so a failed step is no reason to shrink σ.
     lattice: bool,
@@ -572,6 +577,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 bounded: false,
                 survey: false,
                 widenings: 0,
+                cycle: 0,
                 lattice: false,
                 finished: None,
             },
@@ -717,17 +723,19 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let stagnated = self.st.stale >= patience;
         let termination = if kind == AutoStep::OutOfBudget || self.remaining() == 0 {
             Some(AutoTermination::MaxEvaluations)
-        } else if (converged || stagnated) && self.st.may_restart {
+        } else if (converged || stagnated)
+            && (self.st.may_restart || (self.st.widenings as usize) < self.options.restarts)
+        {
             // A kink or a lattice can hold σ far from the optimum: look again from the
-            // best point at the scale σ₀ the caller stated.
-            self.st.widenings = 0;
-            self.restart(self.st.sigma0);
-            None
-        } else if (converged || stagnated) && (self.st.widenings as usize) < self.options.restarts {
-            // No gain since the last restart: look again at twice its scale, where the
-            // smoothed objective averages over the basin that held the run.
-            self.st.widenings += 1;
+            // best point, at the next scale of the cycle σ₀, 2σ₀, …, where the smoothed
+            // objective averages over ever more of the basin that held the run.
+            if self.st.may_restart {
+                self.st.widenings = 0;
+            } else {
+                self.st.widenings += 1;
+            }
             self.restart(self.restart_sigma());
+            self.st.cycle += 1;
             None
         } else if converged {
             Some(AutoTermination::Converged)
@@ -1105,10 +1113,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         (self.st.sigma * T::TWO).min(cap).max(self.st.sigma)
     }
 
-    /// σ₀·2ᵏ for the k-th restart in a row without a gain, at most [`PLATEAU_WIDTH`]·σ₀
-    /// and, with bounds, half the box's widest side.
+    /// σ₀·2^(k mod [`RESTART_SCALES`]) for the k-th restart of the run, at most
+    /// [`PLATEAU_WIDTH`]·σ₀ and, with bounds, half the box's widest side.
     fn restart_sigma(&self) -> T {
-        let doublings = self.st.widenings.min(32) as i32;
+        let doublings = (self.st.cycle % RESTART_SCALES) as i32;
         let sigma = self.st.sigma0 * T::from_f64(libm::pow(2.0, f64::from(doublings)));
         let mut cap = self.st.sigma0 * T::from_f64(PLATEAU_WIDTH);
         if self.st.bounded {
@@ -1389,7 +1397,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.has_prior = true;
     }
 
-    /// Starts over from the best point at σ₀ with the memory of points but without the
+    /// Starts over from the best point at `sigma` with the memory of points but without the
     /// model or metric learnt at the scale the run had shrunk to.
     fn restart(&mut self, sigma: T) {
         self.st.may_restart = false;
