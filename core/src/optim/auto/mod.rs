@@ -1397,15 +1397,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.has_prior = true;
     }
 
-    /// Starts over from the best point at `sigma` with the memory of points but without the
-    /// model or metric learnt at the scale the run had shrunk to.
+    /// Starts over from the best point at `sigma` with the memory of points and the
+    /// sampling metric, but without the model learnt at the scale the run had shrunk to.
+    /// The metric is kept: it is a shape, not a scale, and the shape that a narrow valley
+    /// or ridge taught is what the next descent along it needs.
     fn restart(&mut self, sigma: T) {
         self.st.may_restart = false;
         self.st.stale = 0;
         self.st.sigma = sigma;
         self.st.survey = true;
         self.st.has_prior = false;
-        metric::reset(self.mem.c, self.mem.l, self.mem.li, self.theta.len());
     }
 
     /// Moves the sampling metric towards the shape of the prior's curvature H₀.
