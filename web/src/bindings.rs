@@ -185,6 +185,7 @@ pub fn fit_image(
     on_target: &Function,
     on_shape: &Function,
 ) -> Result<JsValue, JsError> {
+    let options = fit::options(kind, shapes as usize, u64::from(seed)).map_err(js_error)?;
     let target = match bytes {
         Some(bytes) => fit::load(&bytes),
         None => fit::landscape(),
@@ -199,22 +200,16 @@ pub fn fit_image(
             &height.into(),
         )
         .map_err(|_| JsError::new("the page's target callback failed"))?;
-    let result = fit::shapes(
-        &target,
-        kind,
-        shapes as usize,
-        u64::from(seed),
-        &mut |scene, rmse| {
-            let pixels = Uint8Array::from(scene.render().data());
-            // A failing observer only loses a frame of the animation.
-            let _ = on_shape.call3(
-                &JsValue::NULL,
-                &pixels,
-                &(scene.shapes().len() as u32).into(),
-                &rmse.into(),
-            );
-        },
-    )
+    let result = fit::shapes(&target, &options, &mut |scene, rmse| {
+        let pixels = Uint8Array::from(scene.render().data());
+        // A failing observer only loses a frame of the animation.
+        let _ = on_shape.call3(
+            &JsValue::NULL,
+            &pixels,
+            &(scene.shapes().len() as u32).into(),
+            &rmse.into(),
+        );
+    })
     .map_err(js_error)?;
     Ok(Record::new()
         .set("svg", result.scene().to_svg())

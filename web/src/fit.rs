@@ -69,19 +69,12 @@ pub fn landscape() -> Result<Target, Error> {
     Ok(hodr_raster::test_image::landscape(FIT_SIDE)?)
 }
 
-/// Fits `shapes` shapes of kind `kind` (`triangle`, `rect`, `ellipse` or `circle`) to
-/// `target` with `seed`, calling `placed(scene, rmse)` after each.
+/// The fit's options for `shapes` shapes of kind `kind` (`triangle`, `rect`, `ellipse`
+/// or `circle`) with `seed`, checked before any image is decoded.
 ///
 /// # Errors
-/// [`Error::Setting`] for a count outside 1..=[`MAX_DEMO_SHAPES`] or another kind;
-/// the fit's own errors.
-pub fn shapes(
-    target: &Target,
-    kind: &str,
-    shapes: usize,
-    seed: u64,
-    placed: &mut dyn FnMut(&Scene, f64),
-) -> Result<Fit, Error> {
+/// [`Error::Setting`] for a count outside 1..=[`MAX_DEMO_SHAPES`] or another kind.
+pub fn options(kind: &str, shapes: usize, seed: u64) -> Result<FitOptions, Error> {
     if !(1..=MAX_DEMO_SHAPES).contains(&shapes) {
         return Err(Error::Setting {
             name: "shape count",
@@ -101,9 +94,21 @@ pub fn shapes(
     };
     let mut options = FitOptions::new(shapes, kind);
     options.seed = seed;
+    Ok(options)
+}
+
+/// Fits `target`, calling `placed(scene, rmse)` after each shape.
+///
+/// # Errors
+/// The fit's own errors.
+pub fn shapes(
+    target: &Target,
+    options: &FitOptions,
+    placed: &mut dyn FnMut(&Scene, f64),
+) -> Result<Fit, Error> {
     Ok(fit::fit_watched(
         target,
-        &options,
+        options,
         &AtomicBool::new(false),
         placed,
     )?)
@@ -146,12 +151,14 @@ mod tests {
     fn fits_report_each_shape_and_refuse_zero() {
         let target = landscape().unwrap();
         let mut seen = Vec::new();
-        let fit = shapes(&target, "triangle", 3, 1, &mut |scene, rmse| {
+        let options = options("triangle", 3, 1).unwrap();
+        let fit = shapes(&target, &options, &mut |scene, rmse| {
             seen.push((scene.shapes().len(), rmse))
         })
         .unwrap();
         assert_eq!(seen.len(), fit.scene().shapes().len());
-        assert!(shapes(&target, "triangle", 0, 1, &mut |_, _| {}).is_err());
-        assert!(shapes(&target, "polygon", 3, 1, &mut |_, _| {}).is_err());
+        let zero = super::options("triangle", 0, 1).unwrap_err();
+        assert!(zero.to_string().starts_with("shape count"), "{zero}");
+        assert!(super::options("polygon", 3, 1).is_err());
     }
 }

@@ -60,7 +60,7 @@ class Browser:
         args = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
                 "--no-first-run", "--disable-background-networking",
                 "--disable-component-update", "--disable-sync",
-                f"--user-data-dir={profile}", "--window-size=1280,1000"]
+                f"--user-data-dir={profile}", "--window-size=1280,1100"]
         caps = {"capabilities": {"alwaysMatch": {
             "browserName": "chrome",
             "goog:chromeOptions": {"binary": CHROMIUM, "args": args}}}}
@@ -175,15 +175,21 @@ def main():
         assert page["error"] <= 0.01 * page["initialError"], "no 99 % parameter-error reduction"
         results["box2"] = {"page": page, "native": reference}
 
-        print(f"BOX2 render speed: {RENDERS} renders, page against native")
-        wasm_bench = browser.js(f"return window.hodr.bench({RENDERS});")
-        native_again = native("bench", RENDERS)
-        native_rate = max(native_bench["rendersPerSecond"], native_again["rendersPerSecond"])
-        ratio = native_rate / wasm_bench["rendersPerSecond"]
-        print(f"  wasm {wasm_bench['rendersPerSecond']:.0f}/s, native {native_rate:.0f}/s: "
-              f"native is {ratio:.2f}× the wasm build")
-        assert wasm_bench["checksum"] == native_bench["checksum"], "renders differ from native"
-        results["bench"] = {"wasm": wasm_bench, "native": [native_bench, native_again], "ratio": ratio}
+        print(f"BOX2 render speed: {RENDERS} renders, page against native, best of 3 alternating")
+        wasm_runs, native_runs = [], [native_bench]
+        browser.js("window.hodr.stop();")
+        time.sleep(0.5)
+        for _ in range(3):
+            wasm_runs.append(browser.js(f"return window.hodr.bench({RENDERS});"))
+            native_runs.append(native("bench", RENDERS))
+        wasm_rate = max(r["rendersPerSecond"] for r in wasm_runs)
+        native_rate = max(r["rendersPerSecond"] for r in native_runs)
+        ratio = native_rate / wasm_rate
+        print(f"  wasm {wasm_rate:.0f}/s, native {native_rate:.0f}/s: native is {ratio:.2f}× the wasm build")
+        assert all(r["checksum"] == native_bench["checksum"] for r in wasm_runs + native_runs), \
+            "the page's renders differ from native"
+        results["bench"] = {"wasm": wasm_runs, "native": native_runs, "ratio": ratio,
+                            "wasmRendersPerSecond": wasm_rate, "nativeRendersPerSecond": native_rate}
         assert ratio <= 2.0, f"the wasm build renders BOX2 {ratio:.2f}× slower than native"
 
         print("screenshots of each scene")

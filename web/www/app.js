@@ -24,7 +24,7 @@ function nextFrame() {
   return new Promise((resolve) => {
     if (frameWaiters.push(resolve) === 1) {
       requestAnimationFrame(() => {
-        frameStart = performance.now();
+        frameStart = meter.mark = performance.now();
         const waiting = frameWaiters;
         frameWaiters = [];
         waiting.forEach((r) => r());
@@ -34,23 +34,28 @@ function nextFrame() {
 }
 async function frames(n) { for (let i = 0; i < n; i++) await nextFrame(); }
 
+/** Evaluations per second of the scene's runs: the evaluations over the time the page
+ * spent in WebAssembly, i.e. between leaving one of our callbacks (or the start of a
+ * frame) and entering the next one. */
+const meter = { evaluations: 0, ms: 0, mark: performance.now() };
+function meterReset() { meter.evaluations = 0; meter.ms = 0; meter.mark = performance.now(); }
+
 /** One paced run of a method; `onIteration(progress)` redraws, `yieldAfter(progress)`
  * says how many frames to wait (0: go on while the frame has time). */
 class Run {
   constructor(task, method, settings, onIteration, yieldAfter) {
     this.method = method;
     this.evaluations = 0;
-    this.compute = 0;
     this.history = [];
     this.last = null;
     this.outcome = null;
     this.cancelled = false;
     this.sinceYield = 0;
-    this.resumed = performance.now();
     const { seed, sigma0, pairs, start } = settings;
+    meter.mark = performance.now();
     this.done = runMethod(task, method, seed, sigma0, pairs, start, undefined, (p) => {
-      const now = performance.now();
-      this.compute += now - this.resumed;
+      meter.ms += performance.now() - meter.mark;
+      meter.evaluations += p.evaluations - this.evaluations;
       this.sinceYield += p.evaluations - this.evaluations;
       this.evaluations = p.evaluations;
       this.history.push([p.evaluations, p.error]);
@@ -58,17 +63,14 @@ class Run {
       if (this.cancelled) return false;
       onIteration(p, this);
       const wait = yieldAfter(p, this);
-      if (wait > 0 || performance.now() - frameStart > FRAME_BUDGET_MS) {
+      meter.mark = performance.now();
+      if (wait > 0 || meter.mark - frameStart > FRAME_BUDGET_MS) {
         this.sinceYield = 0;
-        return frames(Math.max(1, wait)).then(() => {
-          this.resumed = performance.now();
-          return !this.cancelled;
-        });
+        return frames(Math.max(1, wait)).then(() => !this.cancelled);
       }
-      this.resumed = performance.now();
       return true;
-    }).then((out) => { this.outcome = out; onIteration(this.last, this); return out; },
-      (e) => { if (!this.cancelled) say(`${method}: ${errorText(e)}`); });
+    }).then((out) => { this.outcome = out; onIteration(this.last, this); meter.mark = performance.now(); return out; },
+      (e) => { if (!this.cancelled) say(`${method}: ${errorText(e)}`); meter.mark = performance.now(); });
   }
   cancel() { this.cancelled = true; }
 }
@@ -76,19 +78,18 @@ class Run {
 // ---------------------------------------------------------------- status bar
 const status = { runs: [], fit: null };
 function updateStatus() {
-  let evals = 0, ms = 0;
-  for (const r of status.runs) { evals += r.evaluations; ms += r.compute; }
+  let evals = meter.evaluations, ms = meter.ms;
   if (status.fit) { evals = status.fit.evaluations; ms = status.fit.ms; }
   $('evals').textContent = evals.toLocaleString('en');
   $('rate').textContent = ms > 0 ? Math.round(evals / (ms / 1000)).toLocaleString('en') : '–';
 }
 
 // ---------------------------------------------------------------- drawing helpers
-function drawRgba(canvas, rgba, width, height, { alpha = 1, clear = true } = {}) {
+function drawRgba(canvas, rgba, width, height, { alpha = 1, clear = true, smooth = false } = {}) {
   const off = new OffscreenCanvas(width, height);
   off.getContext('2d').putImageData(new ImageData(new Uint8ClampedArray(rgba), width, height), 0, 0);
   const ctx = canvas.getContext('2d');
-  ctx.imageSmoothingEnabled = false;
+  ctx.imageSmoothingEnabled = smooth;
   if (clear) ctx.clearRect(0, 0, canvas.width, canvas.height);
   ctx.globalAlpha = alpha;
   ctx.drawImage(off, 0, 0, canvas.width, canvas.height);
@@ -131,28 +132,20 @@ function triSetup() {
   $('t-pairs').value = info.pairs;
 }
 
-/** The raw loss at θ (θ beyond the clamp renders as at the clamp). */
-function triRawAt(x) {
-  const g = tri.grid, n = g.length;
-  const t = (x - g[0]) / (g[n - 1] - g[0]) * (n - 1);
-  const i = Math.max(0, Math.min(n - 1, Math.round(t)));
-  return tri.raw[i];
-}
-
-/** f̄(θ) = E f(θ − τ), τ ~ N(0, σ²), by quadrature over ±4σ. */
+/** f̄(θ) = E f(θ − τ), τ ~ N(0, σ²), as a discrete convolution on the grid; beyond the
+ * grid f keeps its edge values (θ beyond the clamp renders as at the clamp). */
 function triSmoothed(sigma) {
-  const K = 121, out = new Float64Array(tri.grid.length);
-  const w = [], tau = [];
+  const g = tri.grid, n = g.length, h = g[1] - g[0];
+  if (sigma < h) return tri.raw;
+  const radius = Math.ceil(4 * sigma / h), w = new Float64Array(2 * radius + 1);
   let total = 0;
-  for (let k = 0; k < K; k++) {
-    const t = -4 + 8 * k / (K - 1);
-    tau.push(t * sigma); w.push(Math.exp(-0.5 * t * t)); total += w[k];
-  }
-  tri.grid.forEach((x, i) => {
+  for (let k = -radius; k <= radius; k++) { w[k + radius] = Math.exp(-0.5 * (k * h / sigma) ** 2); total += w[k + radius]; }
+  const out = new Float64Array(n);
+  for (let i = 0; i < n; i++) {
     let s = 0;
-    for (let k = 0; k < K; k++) s += w[k] * triRawAt(x - tau[k]);
+    for (let k = -radius; k <= radius; k++) s += w[k + radius] * tri.raw[Math.max(0, Math.min(n - 1, i - k))];
     out[i] = s / total;
-  });
+  }
   return out;
 }
 
@@ -174,14 +167,15 @@ function triDraw() {
   ctx.strokeStyle = '#1d2330'; ctx.setLineDash([4, 4]); ctx.beginPath();
   ctx.moveTo(xs.map(tri.info.thetaTrue[0]), box.y); ctx.lineTo(xs.map(tri.info.thetaTrue[0]), box.y + box.h); ctx.stroke();
   ctx.setLineDash([]);
-  let legendY = box.y + 16;
+  const legendX = box.x + box.w * 0.42;
+  let legendY = box.y + box.h * 0.62;
   ctx.textAlign = 'left'; ctx.font = '13px system-ui, sans-serif';
-  ctx.fillStyle = '#9aa3b2'; ctx.fillText('raw loss', box.x + 10, legendY);
+  ctx.fillStyle = '#9aa3b2'; ctx.fillText('raw loss (θ* = 2 dashed)', legendX, legendY);
   for (const run of tri.runs) {
     const p = run.last, colour = COLOURS[run.method];
     legendY += 17; ctx.fillStyle = colour;
     const state = run.outcome ? ` — ${run.outcome.stopped}` : '';
-    ctx.fillText(`${run.method}: smoothed at σ = ${p ? p.sigma.toPrecision(3) : '…'}, ${run.evaluations} evaluations${state}`, box.x + 10, legendY);
+    ctx.fillText(`${run.method}: smoothed at σ = ${p ? p.sigma.toPrecision(3) : '…'}, ${run.evaluations} evaluations${state}`, legendX, legendY);
     if (!p) continue;
     curve(triSmoothed(p.sigma), colour, 2.5);
     ctx.fillStyle = colour; ctx.globalAlpha = 0.75;
@@ -219,7 +213,7 @@ function triReset() {
     run.start = start;
     return run;
   });
-  status.runs = tri.runs; status.fit = null;
+  status.runs = tri.runs; status.fit = null; meterReset();
   triDraw(); updateStatus();
 }
 
@@ -247,7 +241,7 @@ function panelFor(method) {
   if (!fig) {
     fig = document.createElement('figure');
     fig.dataset.method = method;
-    fig.innerHTML = `<canvas width="192" height="192"></canvas><figcaption style="color:${COLOURS[method]}">${method}</figcaption>`;
+    fig.innerHTML = `<canvas width="176" height="176"></canvas><figcaption style="color:${COLOURS[method]}">${method}</figcaption>`;
     $('r-panels').appendChild(fig);
   }
   return fig;
@@ -339,6 +333,7 @@ function raceReset(keepStart = false) {
   const methods = [...document.querySelectorAll('.methods input:checked')].map((i) => i.value);
   if (!methods.length) say('pick at least one method');
   const speed = () => parseInt($('r-speed').value, 10);
+  meterReset();
   race.runs = methods.map((m) => new Run(race.task, m, settings, (p, run) => {
     if (run.hit === undefined && p && p.error <= 0.01 * race.initialError) run.hit = p.evaluations;
   }, (p, run) => (speed() < 200 && run.sinceYield >= speed() ? 1 : 0)));
@@ -379,7 +374,8 @@ function raceDrag() {
 
 function raceLoop() {
   if (scene === 'race') raceDraw();
-  else if (scene === 'tri1d') updateStatus();
+  else updateStatus();
+  meter.mark = performance.now();
   requestAnimationFrame(raceLoop);
 }
 
@@ -417,11 +413,11 @@ function imgFit() {
     if (data.type === 'target') {
       img.size = [data.width, data.height];
       fitCanvases(data.width, data.height);
-      drawRgba($('i-target'), data.rgba, data.width, data.height);
+      drawRgba($('i-target'), data.rgba, data.width, data.height, { smooth: true });
       $('i-fit').getContext('2d').clearRect(0, 0, $('i-fit').width, $('i-fit').height);
     } else if (data.type === 'shape') {
       const [w, h] = img.size;
-      drawRgba($('i-fit'), data.rgba, w, h);
+      drawRgba($('i-fit'), data.rgba, w, h, { smooth: true });
       img.fitCanvas = new OffscreenCanvas(w, h);
       img.fitCanvas.getContext('2d').putImageData(new ImageData(new Uint8ClampedArray(data.rgba), w, h), 0, 0);
       $('i-cap').textContent = `shapes: ${data.count} of ${count}, RMSE ${data.rmse.toFixed(4)}`;
@@ -517,6 +513,12 @@ window.hodr = {
   show: guard(show),
   /** One run to the end without pacing: the numbers the native reference prints. */
   run: (task, method, seed) => runMethod(task, method, seed, undefined, undefined, undefined, undefined, () => true),
+  /** Stops the scene's runs and the fit, leaving the page idle (before timing). */
+  stop() {
+    tri.runs.forEach((r) => r.cancel());
+    race.runs.forEach((r) => r.cancel());
+    imgStop();
+  },
   /** BENCHMARKS.md's render loop: BOX2 renders per second in this page. */
   bench(renders) {
     const bench = new RenderBench();
