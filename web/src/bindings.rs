@@ -174,7 +174,8 @@ fn rgba_of_rgb(rgb: &[u8]) -> Uint8Array {
 
 /// Image to shapes: decodes `bytes` (PNG or JPEG; the shipped landscape when absent),
 /// calls `on_target(rgba, width, height)`, then fits `shapes` shapes of `kind`, calling
-/// `on_shape(rgba, count, rmse)` after each; returns `{svg, count, rmse, evaluations}`.
+/// `on_shape(rgba, [count, rmse, evaluations])` after each; returns
+/// `{svg, count, rmse, evaluations}`.
 /// Blocking: the page calls it in a worker.
 #[wasm_bindgen(js_name = fitImage)]
 pub fn fit_image(
@@ -200,15 +201,12 @@ pub fn fit_image(
             &height.into(),
         )
         .map_err(|_| JsError::new("the page's target callback failed"))?;
-    let result = fit::shapes(&target, &options, &mut |scene, rmse| {
+    let result = fit::shapes(&target, &options, &mut |scene, rmse, evaluations| {
         let pixels = Uint8Array::from(scene.render().data());
+        let numbers =
+            Float64Array::from([scene.shapes().len() as f64, rmse, evaluations as f64].as_slice());
         // A failing observer only loses a frame of the animation.
-        let _ = on_shape.call3(
-            &JsValue::NULL,
-            &pixels,
-            &(scene.shapes().len() as u32).into(),
-            &rmse.into(),
-        );
+        let _ = on_shape.call2(&JsValue::NULL, &pixels, &numbers);
     })
     .map_err(js_error)?;
     Ok(Record::new()

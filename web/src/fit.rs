@@ -97,14 +97,14 @@ pub fn options(kind: &str, shapes: usize, seed: u64) -> Result<FitOptions, Error
     Ok(options)
 }
 
-/// Fits `target`, calling `placed(scene, rmse)` after each shape.
+/// Fits `target`, calling `placed(scene, rmse, evaluations)` after each shape.
 ///
 /// # Errors
 /// The fit's own errors.
 pub fn shapes(
     target: &Target,
     options: &FitOptions,
-    placed: &mut dyn FnMut(&Scene, f64),
+    placed: &mut dyn FnMut(&Scene, f64, u64),
 ) -> Result<Fit, Error> {
     Ok(fit::fit_watched(
         target,
@@ -152,7 +152,7 @@ mod tests {
         let target = landscape().unwrap();
         let mut seen = Vec::new();
         let options = options("triangle", 3, 1).unwrap();
-        let fit = shapes(&target, &options, &mut |scene, rmse| {
+        let fit = shapes(&target, &options, &mut |scene, rmse, _| {
             seen.push((scene.shapes().len(), rmse))
         })
         .unwrap();

@@ -111,7 +111,8 @@ function axes(ctx, box, xs, ys, xlabel, ylabel) {
 
 function linear(lo, hi, a, b) {
   const map = (v) => a + (v - lo) / (hi - lo) * (b - a);
-  const step = Math.pow(10, Math.floor(Math.log10((hi - lo) / 4)));
+  const raw = (hi - lo) / 6, decade = Math.pow(10, Math.floor(Math.log10(raw)));
+  const step = [1, 2, 5, 10].map((m) => m * decade).find((s) => s >= raw);
   const ticks = [];
   for (let t = Math.ceil(lo / step) * step; t <= hi + 1e-9; t += step) ticks.push(t);
   return { map, ticks, label: (v) => +v.toFixed(6) + '' };
@@ -275,17 +276,21 @@ function racePlot() {
   const canvas = $('r-plot'), ctx = canvas.getContext('2d');
   ctx.clearRect(0, 0, canvas.width, canvas.height);
   const box = { x: 60, y: 12, w: canvas.width - 80, h: canvas.height - 56 };
-  let xmax = 100;
+  let xmax = 1000;
   for (const r of race.runs) xmax = Math.max(xmax, r.evaluations);
-  xmax = Math.pow(10, Math.ceil(Math.log10(xmax) * 4) / 4);
-  const xs = linear(0, xmax, box.x, box.x + box.w);
+  const decades = Math.ceil(Math.log10(xmax));
+  const xs = {
+    map: (v) => box.x + Math.log10(Math.max(v, 1)) / decades * box.w,
+    ticks: Array.from({ length: decades + 1 }, (_, k) => 10 ** k),
+    label: (v) => v.toLocaleString('en'),
+  };
   const lo = -3, hi = 1;
   const ys = {
     map: (v) => box.y + box.h - (Math.log10(Math.max(v, 1e-3)) - lo) / (hi - lo) * box.h,
     ticks: [1e-3, 1e-2, 1e-1, 1, 10],
     label: (v) => v >= 1 ? String(v) : v.toExponential(0),
   };
-  axes(ctx, box, xs, ys, 'evaluations', 'parameter error');
+  axes(ctx, box, xs, ys, 'evaluations (log scale)', 'parameter error');
   if (race.initialError > 0) {
     const goal = 0.01 * race.initialError;
     ctx.strokeStyle = '#1d2330'; ctx.setLineDash([5, 4]); ctx.beginPath();
@@ -421,6 +426,8 @@ function imgFit() {
       img.fitCanvas = new OffscreenCanvas(w, h);
       img.fitCanvas.getContext('2d').putImageData(new ImageData(new Uint8ClampedArray(data.rgba), w, h), 0, 0);
       $('i-cap').textContent = `shapes: ${data.count} of ${count}, RMSE ${data.rmse.toFixed(4)}`;
+      status.fit = { evaluations: data.evaluations, ms: performance.now() - img.started };
+      updateStatus();
     } else if (data.type === 'done') {
       status.fit = { evaluations: data.evaluations, ms: performance.now() - img.started };
       $('i-cap').textContent = `${data.count} shapes, RMSE ${data.rmse.toFixed(4)}, ${data.evaluations.toLocaleString('en')} evaluations`;
@@ -467,8 +474,8 @@ function imgSetup() {
 
 // ---------------------------------------------------------------- scenes
 let scene = 'tri1d';
-function show(name) {
-  if (name === scene) return;
+function show(name, again = false) {
+  if (name === scene && !again) return;
   scene = name;
   document.querySelectorAll('nav button').forEach((b) => b.classList.toggle('active', b.dataset.scene === name));
   document.querySelectorAll('.scene').forEach((s) => s.classList.toggle('active', s.id === name));
@@ -510,7 +517,8 @@ async function main() {
 // Hooks for the browser test (web/test/browser_test.py) and for the curious.
 window.hodr = {
   ready: main(),
-  show: guard(show),
+  /** Shows a scene and starts it afresh. */
+  show: guard((name) => show(name, true)),
   /** One run to the end without pacing: the numbers the native reference prints. */
   run: (task, method, seed) => runMethod(task, method, seed, undefined, undefined, undefined, undefined, () => true),
   /** Stops the scene's runs and the fit, leaving the page idle (before timing). */

@@ -12,7 +12,7 @@ self.onmessage = async ({ data }) => {
     const out = fitImage(
       bytes ?? undefined, kind, count, seed,
       (rgba, width, height) => self.postMessage({ type: 'target', rgba, width, height }),
-      (rgba, shapes, rmse) => self.postMessage({ type: 'shape', rgba, count: shapes, rmse }),
+      (rgba, [shapes, rmse, evaluations]) => self.postMessage({ type: 'shape', rgba, count: shapes, rmse, evaluations }),
     );
     self.postMessage({ type: 'done', ...out });
   } catch (e) {

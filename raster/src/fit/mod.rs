@@ -191,13 +191,14 @@ pub fn fit_observed(
     stop: &AtomicBool,
     placed: &mut dyn FnMut(usize, f64),
 ) -> Result<Fit, Error> {
-    fit_watched(target, options, stop, &mut |scene, rmse| {
+    fit_watched(target, options, stop, &mut |scene, rmse, _| {
         placed(scene.shapes().len(), rmse)
     })
 }
 
-/// [`fit_until`], calling `placed(scene, rmse)` with the scene so far after each shape
-/// is placed (to draw the fit as it grows, as the web demo does).
+/// [`fit_until`], calling `placed(scene, rmse, evaluations)` with the scene so far and
+/// the objective evaluations used after each shape is placed (to draw the fit as it
+/// grows, as the web demo does).
 ///
 /// # Errors
 /// As [`fit`].
@@ -205,7 +206,7 @@ pub fn fit_watched(
     target: &Target,
     options: &FitOptions,
     stop: &AtomicBool,
-    placed: &mut dyn FnMut(&Scene, f64),
+    placed: &mut dyn FnMut(&Scene, f64, u64),
 ) -> Result<Fit, Error> {
     let dim = options.check()?;
     let (width, height) = (target.width(), target.height());
@@ -287,7 +288,7 @@ pub fn fit_watched(
                 scene.push(shape)?;
                 std::mem::swap(&mut canvas, &mut next);
                 rmse.push(error);
-                placed(&scene, error);
+                placed(&scene, error, evaluations);
                 continue 'shapes;
             }
         }
