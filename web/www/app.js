@@ -275,7 +275,7 @@ function racePanel(run) {
 function racePlot() {
   const canvas = $('r-plot'), ctx = canvas.getContext('2d');
   ctx.clearRect(0, 0, canvas.width, canvas.height);
-  const box = { x: 60, y: 12, w: canvas.width - 80, h: canvas.height - 56 };
+  const box = { x: 60, y: 12, w: canvas.width - 100, h: canvas.height - 56 };
   let xmax = 1000;
   for (const r of race.runs) xmax = Math.max(xmax, r.evaluations);
   const decades = Math.ceil(Math.log10(xmax));
@@ -342,6 +342,8 @@ function raceReset(keepStart = false) {
   race.runs = methods.map((m) => new Run(race.task, m, settings, (p, run) => {
     if (run.hit === undefined && p && p.error <= 0.01 * race.initialError) run.hit = p.evaluations;
   }, (p, run) => (speed() < 200 && run.sinceYield >= speed() ? 1 : 0)));
+  // Every line starts at the start's error (drawn at one evaluation on the log axis).
+  race.runs.forEach((r) => r.history.unshift([1, race.initialError]));
   status.runs = race.runs; status.fit = null;
   raceSetupDraw(); raceDraw();
 }
