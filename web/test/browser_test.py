@@ -4,7 +4,8 @@ W3C WebDriver protocol (plain HTTP, so the standard library suffices).
 
 It loads web/dist, runs BOX2 with a fixed seed in the page and checks the numbers
 against the native reference (same Rust code, `reference run box2 Auto SEED`): the
-evaluations, the evaluations to the 99 % reduction and the final θ must be equal.
+evaluations, the evaluations to the 99 % reduction and the final θ must be equal; so
+must those of the race scene's Auto run, paced frame by frame, against seed 1.
 It times BOX2 renders in the page against the native build, takes a screenshot of
 each scene, and feeds the image scene bad input (a text file, a 10 000² PNG, zero
 shapes), which must show a message and leave the page working.
@@ -204,6 +205,14 @@ def main():
         state = browser.js("return window.hodr.state();")
         assert state["message"] == "", state
         results["race"] = state
+        # The race's Auto run, paced frame by frame, reports what the native run does
+        # (the race's defaults: seed 1, the task's σ₀, pairs and start).
+        race_auto = next(r["outcome"] for r in state["runs"] if r["method"] == "Auto")
+        race_native = native("run", "box2", "Auto", 1)
+        for key in ["evaluations", "evaluationsToTarget", "theta", "error"]:
+            assert race_auto[key] == race_native[key], f"race {key}: {race_auto[key]} != {race_native[key]}"
+        print(f"  the race's Auto run equals the native run: {race_native['evaluations']} evaluations, "
+              f"99 % after {race_native['evaluationsToTarget']}")
         browser.screenshot("race-box2.png")
         browser.js("const t = document.getElementById('r-task'); t.value = 'box10';"
                    "t.dispatchEvent(new Event('change'));")

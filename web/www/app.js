@@ -544,7 +544,11 @@ window.hodr = {
     message: $('message').textContent,
     evaluations: $('evals').textContent,
     rate: $('rate').textContent,
-    runs: status.runs.map((r) => ({ method: r.method, evaluations: r.evaluations, outcome: r.outcome })),
+    runs: status.runs.map((r) => ({
+      method: r.method,
+      evaluations: r.evaluations,
+      outcome: r.outcome && { ...r.outcome, theta: Array.from(r.outcome.theta) },
+    })),
     fit: img.done ? { count: img.done.count, rmse: img.done.rmse } : null,
     fitCaption: $('i-cap').textContent,
   }),
