@@ -223,6 +223,14 @@ def main():
         state = browser.js("return window.hodr.state();")
         assert state["message"] == "" and state["fit"]["count"] > 0, state
         results["image"] = state
+        browser.wait("!document.getElementById('i-png').classList.contains('disabled')", 30,
+                     "the PNG download")
+        downloads = browser.js(
+            "const png = await (await fetch(document.getElementById('i-png').href)).blob();"
+            "const bitmap = await createImageBitmap(png);"
+            "const svg = await (await fetch(document.getElementById('i-svg').href)).text();"
+            "return {png: [png.type, bitmap.width, bitmap.height], svg: svg.slice(0, 4)};")
+        assert downloads == {"png": ["image/png", 512, 512], "svg": "<svg"}, downloads
         browser.screenshot("image.png")
 
         print("bad input: a text file, a 10 000² PNG, zero shapes")

@@ -401,11 +401,20 @@ function imgLinks(svg) {
   if (!svg) return;
   img.svgUrl = URL.createObjectURL(new Blob([svg], { type: 'image/svg+xml' }));
   $('i-svg').href = img.svgUrl; $('i-svg').classList.remove('disabled');
-  img.fitCanvas.convertToBlob({ type: 'image/png' }).then((blob) => {
-    img.pngUrl = URL.createObjectURL(blob);
-    $('i-png').href = img.pngUrl; $('i-png').classList.remove('disabled');
-  });
+  // The PNG is the vector result drawn at PNG_SCALE× the fit's resolution.
+  const vector = new Image();
+  vector.onload = () => {
+    const [w, h] = img.size, png = new OffscreenCanvas(w * PNG_SCALE, h * PNG_SCALE);
+    png.getContext('2d').drawImage(vector, 0, 0, png.width, png.height);
+    png.convertToBlob({ type: 'image/png' }).then((blob) => {
+      img.pngUrl = URL.createObjectURL(blob);
+      $('i-png').href = img.pngUrl; $('i-png').classList.remove('disabled');
+    });
+  };
+  vector.onerror = () => say('could not draw the SVG for the PNG download');
+  vector.src = img.svgUrl;
 }
+const PNG_SCALE = 4;
 
 function imgFit() {
   imgStop(); imgLinks(null); say('');
@@ -425,8 +434,6 @@ function imgFit() {
     } else if (data.type === 'shape') {
       const [w, h] = img.size;
       drawRgba($('i-fit'), data.rgba, w, h, { smooth: true });
-      img.fitCanvas = new OffscreenCanvas(w, h);
-      img.fitCanvas.getContext('2d').putImageData(new ImageData(new Uint8ClampedArray(data.rgba), w, h), 0, 0);
       $('i-cap').textContent = `shapes: ${data.count} of ${count}, RMSE ${data.rmse.toFixed(4)}`;
       status.fit = { evaluations: data.evaluations, ms: performance.now() - img.started };
       updateStatus();
