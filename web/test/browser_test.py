@@ -89,6 +89,19 @@ class Browser:
     def upload(self, css, path):
         request("POST", f"{self.url}/element/{self.element(css)}/value", {"text": path})
 
+    def drag(self, css, at, by):
+        """Presses the mouse at `at` (pixels from the element's centre), moves it by `by`
+        in steps, and releases it."""
+        origin = {ELEMENT: self.element(css)}
+        steps = [{"type": "pointerMove", "duration": 0, "origin": origin, "x": int(at[0]), "y": int(at[1])},
+                 {"type": "pointerDown", "button": 0}]
+        for k in range(1, 6):
+            steps.append({"type": "pointerMove", "duration": 50, "origin": origin,
+                          "x": int(at[0] + by[0] * k / 5), "y": int(at[1] + by[1] * k / 5)})
+        steps.append({"type": "pointerUp", "button": 0})
+        request("POST", f"{self.url}/actions", {"actions": [
+            {"type": "pointer", "id": "mouse", "parameters": {"pointerType": "mouse"}, "actions": steps}]})
+
     def screenshot(self, name):
         png = base64.b64decode(request("GET", f"{self.url}/screenshot"))
         path = os.path.join(OUT, name)
@@ -214,6 +227,16 @@ def main():
         print(f"  the race's Auto run equals the native run: {race_native['evaluations']} evaluations, "
               f"99 % after {race_native['evaluationsToTarget']}")
         browser.screenshot("race-box2.png")
+        # Drag the start square 40 px left and 20 px down: the race starts again from there.
+        before = state["raceStart"]
+        browser.drag("#r-setup", (28 * before[0] - 112, 28 * before[1] - 112), (-40, 20))
+        browser.wait("window.hodr.state().runs.every(r => r.outcome)", 90, "the race after a drag")
+        after = browser.js("return window.hodr.state();")
+        moved = [round(a - b, 2) for a, b in zip(after["raceStart"], before)]
+        assert after["message"] == "" and abs(moved[0] + 40 / 28) < 0.1 and abs(moved[1] - 20 / 28) < 0.1, \
+            (before, after)
+        print(f"  dragged the start by {moved}: the race ran again "
+              f"({[r['evaluations'] for r in after['runs']]} evaluations)")
         browser.js("const t = document.getElementById('r-task'); t.value = 'box10';"
                    "t.dispatchEvent(new Event('change'));")
         time.sleep(6)

@@ -515,6 +515,8 @@ async function main() {
   $('r-reset').addEventListener('click', guard(() => raceReset(false)));
   $('r-task').addEventListener('change', guard(() => raceReset(false)));
   $('r-seed').addEventListener('change', guard(() => raceReset(false)));
+  for (const id of ['r-sigma', 'r-pairs']) $(id).addEventListener('change', guard(() => raceReset(true)));
+  for (const id of ['t-sigma', 't-pairs', 't-seed']) $(id).addEventListener('change', guard(triReset));
   document.querySelectorAll('.methods input').forEach((i) => i.addEventListener('change', guard(() => raceReset(true))));
   raceDrag();
   imgSetup();
@@ -558,5 +560,6 @@ window.hodr = {
     })),
     fit: img.done ? { count: img.done.count, rmse: img.done.rmse } : null,
     fitCaption: $('i-cap').textContent,
+    raceStart: race.start,
   }),
 };
