@@ -209,7 +209,6 @@ impl CmaEs {
                     }
                     let theta = (a[q * n + q] - a[p * n + p]) / (2.0 * apq);
                     let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
-                    let t = if theta == 0.0 { 1.0 } else { t };
                     let c = 1.0 / (t * t + 1.0).sqrt();
                     let s = t * c;
                     for k in 0..n {

@@ -255,17 +255,17 @@ pub async fn run(settings: &RunSettings, pace: &mut impl Pace) -> Result<Outcome
         iteration: 0,
     };
     let rng = Xoshiro256PlusPlus::seed_from_u64(settings.seed ^ name_hash(settings.method.name()));
+    let plan = Plan {
+        theta: start,
+        sigma0,
+        pairs,
+        budget,
+    };
     let (theta, stopped) = match settings.method {
-        Method::Auto => run.auto(start, sigma0, budget, rng, pace).await?,
-        Method::Fr22 => {
-            run.preset(Preset::Fr22, start, sigma0, pairs, budget, rng, pace)
-                .await?
-        }
-        Method::OurH => {
-            run.preset(Preset::OurH, start, sigma0, pairs, budget, rng, pace)
-                .await?
-        }
-        Method::CmaEs => run.cma_es(start, sigma0, budget, rng, pace).await,
+        Method::Auto => run.auto(plan, rng, pace).await?,
+        Method::Fr22 => run.preset(Preset::Fr22, plan, rng, pace).await?,
+        Method::OurH => run.preset(Preset::OurH, plan, rng, pace).await?,
+        Method::CmaEs => run.cma_es(plan, rng, pace).await,
     };
     Ok(Outcome {
         method: settings.method,
@@ -277,6 +277,14 @@ pub async fn run(settings: &RunSettings, pace: &mut impl Pace) -> Result<Outcome
         evaluations_to_target: run.target_hit,
         stopped,
     })
+}
+
+/// A method's checked settings: θ₀ (in the bounds), σ₀, pairs and the budget.
+struct Plan {
+    theta: Vec<f64>,
+    sigma0: f64,
+    pairs: usize,
+    budget: usize,
 }
 
 /// A run in progress: the task, its counting objective and the bookkeeping shared by
@@ -318,12 +326,16 @@ impl Run {
 
     async fn auto(
         &mut self,
-        mut theta: Vec<f64>,
-        sigma0: f64,
-        budget: usize,
+        plan: Plan,
         rng: Xoshiro256PlusPlus,
         pace: &mut impl Pace,
     ) -> Result<(Vec<f64>, &'static str), Error> {
+        let Plan {
+            mut theta,
+            sigma0,
+            budget,
+            ..
+        } = plan;
         let n = theta.len();
         let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)];
         let (lower, upper) = self.bounds.clone();
@@ -350,17 +362,19 @@ impl Run {
         Ok((theta, stopped))
     }
 
-    #[allow(clippy::too_many_arguments)]
     async fn preset(
         &mut self,
         preset: Preset,
-        mut theta: Vec<f64>,
-        sigma0: f64,
-        pairs: usize,
-        budget: usize,
+        plan: Plan,
         rng: Xoshiro256PlusPlus,
         pace: &mut impl Pace,
     ) -> Result<(Vec<f64>, &'static str), Error> {
+        let Plan {
+            mut theta,
+            sigma0,
+            pairs,
+            budget,
+        } = plan;
         let n = theta.len();
         let task = self.task.settings();
         let mut h = task.hyper();
@@ -402,12 +416,16 @@ impl Run {
 
     async fn cma_es(
         &mut self,
-        theta: Vec<f64>,
-        sigma0: f64,
-        budget: usize,
+        plan: Plan,
         mut rng: Xoshiro256PlusPlus,
         pace: &mut impl Pace,
     ) -> (Vec<f64>, &'static str) {
+        let Plan {
+            theta,
+            sigma0,
+            budget,
+            ..
+        } = plan;
         let n = theta.len();
         let mut cma = CmaEs::new(&theta, sigma0);
         let mut values = vec![0.0; cma.lambda()];
