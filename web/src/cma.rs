@@ -5,9 +5,13 @@
 //! Why not the `cmaes` crate the host uses: `CMAESOptions::build` calls
 //! `std::time::Instant::now()`, which panics on wasm32-unknown-unknown, so the crate
 //! cannot run in the page. This one has no clock and no threads; the covariance is
-//! decomposed by cyclic Jacobi rotations, ample for the demo's n ≤ 18.
+//! decomposed by cyclic Jacobi rotations, ample for the demo's n ≤ 18. Logarithms,
+//! exponentials and powers come from `libm`, as in hodr-core, so the wasm build and the
+//! native one compute the same numbers bit for bit (the platform's `f64::exp` need not
+//! round like Rust's wasm fallback; square roots are exact everywhere).
 
 use hodr_core::sample::normal;
+use libm::{exp, log, pow};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::Rng;
 
@@ -50,10 +54,10 @@ impl CmaEs {
     pub fn new(x0: &[f64], sigma0: f64) -> Self {
         let n = x0.len();
         let nf = n as f64;
-        let lambda = 4 + (3.0 * nf.ln()).floor() as usize;
+        let lambda = 4 + (3.0 * log(nf)).floor() as usize;
         let mu = lambda / 2;
         let raw: Vec<f64> = (1..=mu)
-            .map(|i| (mu as f64 + 0.5).ln() - (i as f64).ln())
+            .map(|i| log(mu as f64 + 0.5) - log(i as f64))
             .collect();
         let total: f64 = raw.iter().sum();
         let weights: Vec<f64> = raw.iter().map(|w| w / total).collect();
@@ -61,9 +65,9 @@ impl CmaEs {
         let c_sigma = (mu_eff + 2.0) / (nf + mu_eff + 5.0);
         let d_sigma = 1.0 + 2.0 * (((mu_eff - 1.0) / (nf + 1.0)).sqrt() - 1.0).max(0.0) + c_sigma;
         let c_c = (4.0 + mu_eff / nf) / (nf + 4.0 + 2.0 * mu_eff / nf);
-        let c_1 = 2.0 / ((nf + 1.3).powi(2) + mu_eff);
-        let c_mu =
-            (1.0 - c_1).min(2.0 * (mu_eff - 2.0 + 1.0 / mu_eff) / ((nf + 2.0).powi(2) + mu_eff));
+        let c_1 = 2.0 / ((nf + 1.3) * (nf + 1.3) + mu_eff);
+        let c_mu = (1.0 - c_1)
+            .min(2.0 * (mu_eff - 2.0 + 1.0 / mu_eff) / ((nf + 2.0) * (nf + 2.0) + mu_eff));
         let chi_n = nf.sqrt() * (1.0 - 1.0 / (4.0 * nf) + 1.0 / (21.0 * nf * nf));
         let mut identity = vec![0.0; n * n];
         for i in 0..n {
@@ -155,7 +159,7 @@ impl CmaEs {
         }
         self.generation += 1;
         let norm = self.p_sigma.iter().map(|v| v * v).sum::<f64>().sqrt();
-        let decay = 1.0 - (1.0 - self.c_sigma).powi(2 * self.generation as i32);
+        let decay = 1.0 - pow(1.0 - self.c_sigma, 2.0 * self.generation as f64);
         let h_sigma = norm / decay.sqrt() < (1.4 + 2.0 / (n as f64 + 1.0)) * self.chi_n;
         let a_c = (self.c_c * (2.0 - self.c_c) * self.mu_eff).sqrt();
         for (p, y) in self.p_c.iter_mut().zip(&y_w) {
@@ -180,7 +184,7 @@ impl CmaEs {
                     + self.c_mu * rank_mu;
             }
         }
-        self.sigma *= ((self.c_sigma / self.d_sigma) * (norm / self.chi_n - 1.0)).exp();
+        self.sigma *= exp((self.c_sigma / self.d_sigma) * (norm / self.chi_n - 1.0));
         self.decompose();
     }
 
@@ -248,7 +252,7 @@ mod tests {
         let f = |x: &[f64]| {
             x.iter()
                 .enumerate()
-                .map(|(i, v)| 100f64.powf(i as f64) * v * v)
+                .map(|(i, v)| pow(100.0, i as f64) * v * v)
                 .sum::<f64>()
         };
         let mut cma = CmaEs::new(&[1.0, -1.0, 0.5], 0.5);

@@ -5,7 +5,8 @@ W3C WebDriver protocol (plain HTTP, so the standard library suffices).
 It loads web/dist, runs BOX2 with a fixed seed in the page and checks the numbers
 against the native reference (same Rust code, `reference run box2 Auto SEED`): the
 evaluations, the evaluations to the 99 % reduction and the final θ must be equal; so
-must those of the race scene's Auto run, paced frame by frame, against seed 1.
+must those of every method (Auto, FR22, OurH, CMA-ES) on BOX2 and BOX10, and those of
+the race scene's Auto run, paced frame by frame, against seed 1.
 It times BOX2 renders in the page against the native build, takes a screenshot of
 each scene, and feeds the image scene bad input (a text file, a 10 000² PNG, zero
 shapes), which must show a message and leave the page working.
@@ -188,6 +189,19 @@ def main():
         assert page["evaluationsToTarget"] is not None
         assert page["error"] <= 0.01 * page["initialError"], "no 99 % parameter-error reduction"
         results["box2"] = {"page": page, "native": reference}
+
+        print("every method on BOX2 (seed 7) and BOX10 (seed 1): the page equals native")
+        results["methods"] = {}
+        for task, seed in [("box2", SEED), ("box10", 1)]:
+            for method in ["Auto", "FR22", "OurH", "CMA-ES"]:
+                mine = browser.js(f"const o = await window.hodr.run('{task}', '{method}', {seed});"
+                                  "return {...o, theta: Array.from(o.theta)};")
+                theirs = native("run", task, method, seed)
+                for key in ["evaluations", "iterations", "evaluationsToTarget", "theta", "error"]:
+                    assert mine[key] == theirs[key], f"{task} {method} {key}: page {mine[key]} != native {theirs[key]}"
+                results["methods"][f"{task} {method}"] = mine
+                print(f"  {task} {method}: {mine['evaluations']} evaluations, error {mine['error']:.3g}, "
+                      f"99 % after {mine['evaluationsToTarget']}")
 
         print(f"BOX2 render speed: {RENDERS} renders, page against native, best of 3 alternating")
         wasm_runs, native_runs = [], [native_bench]
