@@ -1,7 +1,5 @@
 //! A (scene, parameter map, target) triple as a hodr-core [`Objective`].
 
-use std::time::Instant;
-
 use hodr_core::{Batch, NoiseSeed, Objective, Real};
 use rayon::prelude::*;
 use tiny_skia::Pixmap;
@@ -236,7 +234,7 @@ impl<T: Real> Objective<T> for RasterObjective {
             && self
                 .cost
                 .is_some_and(|c| c * out.len() as f64 >= PARALLEL_WORK);
-        let clock = Instant::now();
+        let clock = Clock::start();
         if parallel {
             out.par_chunks_mut(chunk)
                 .zip(renderers.par_iter_mut())
@@ -253,8 +251,35 @@ impl<T: Real> Objective<T> for RasterObjective {
         }
         // Per-evaluation cost: each of the chunks ran one after another on its thread.
         let sequential = if parallel { chunk } else { out.len() };
-        let measured = clock.elapsed().as_secs_f64() / sequential.max(1) as f64;
-        self.cost = Some(self.cost.map_or(measured, |c| 0.5 * (c + measured)));
+        if let Some(elapsed) = clock.seconds() {
+            let measured = elapsed / sequential.max(1) as f64;
+            self.cost = Some(self.cost.map_or(measured, |c| 0.5 * (c + measured)));
+        }
         self.renderers = renderers;
+    }
+}
+
+/// The wall clock behind [`RasterObjective`]'s cost estimate. On wasm32-unknown-unknown
+/// `Instant::now` panics and rayon runs on the calling thread alone (one renderer, so
+/// batches never split): there the clock reads nothing and the cost stays unknown.
+struct Clock(#[cfg(not(all(target_arch = "wasm32", target_os = "unknown")))] std::time::Instant);
+
+impl Clock {
+    fn start() -> Self {
+        Clock(
+            #[cfg(not(all(target_arch = "wasm32", target_os = "unknown")))]
+            std::time::Instant::now(),
+        )
+    }
+
+    /// Seconds since [`Clock::start`], where the platform has a clock.
+    #[cfg(not(all(target_arch = "wasm32", target_os = "unknown")))]
+    fn seconds(&self) -> Option<f64> {
+        Some(self.0.elapsed().as_secs_f64())
+    }
+
+    #[cfg(all(target_arch = "wasm32", target_os = "unknown"))]
+    fn seconds(&self) -> Option<f64> {
+        None
     }
 }

@@ -191,6 +191,23 @@ pub fn fit_observed(
     stop: &AtomicBool,
     placed: &mut dyn FnMut(usize, f64),
 ) -> Result<Fit, Error> {
+    fit_watched(target, options, stop, &mut |scene, rmse, _| {
+        placed(scene.shapes().len(), rmse)
+    })
+}
+
+/// [`fit_until`], calling `placed(scene, rmse, evaluations)` with the scene so far and
+/// the objective evaluations used after each shape is placed (to draw the fit as it
+/// grows, as the web demo does).
+///
+/// # Errors
+/// As [`fit`].
+pub fn fit_watched(
+    target: &Target,
+    options: &FitOptions,
+    stop: &AtomicBool,
+    placed: &mut dyn FnMut(&Scene, f64, u64),
+) -> Result<Fit, Error> {
     let dim = options.check()?;
     let (width, height) = (target.width(), target.height());
     let unit = f64::from(width.max(height)) / 8.0;
@@ -271,7 +288,7 @@ pub fn fit_observed(
                 scene.push(shape)?;
                 std::mem::swap(&mut canvas, &mut next);
                 rmse.push(error);
-                placed(scene.shapes().len(), error);
+                placed(&scene, error, evaluations);
                 continue 'shapes;
             }
         }
