@@ -153,7 +153,17 @@ def test_exceptions_in_fun_propagate_unchanged():
         hodr.gradient(f, [2.4, 0.0, 0.0], 1.0, pairs=1000)
 
 
-def test_keyboard_interrupt_stops_within_a_batch():
+@pytest.fixture
+def sigint_raises():
+    """Python's own SIGINT handler for the test, as in an interactive session: a process
+    started in the background (nohup, `&` in a script) inherits SIGINT ignored, and
+    Python then leaves it ignored."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
+
+
+def test_keyboard_interrupt_stops_within_a_batch(sigint_raises):
     calls = []
 
     def f(x):
@@ -167,7 +177,7 @@ def test_keyboard_interrupt_stops_within_a_batch():
     assert len(calls) < 50 + 64
 
 
-def test_keyboard_interrupt_keeps_the_run_so_far():
+def test_keyboard_interrupt_keeps_the_run_so_far(sigint_raises):
     calls = []
 
     def f(x):
