@@ -1266,7 +1266,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             return (0, 0);
         };
         (0..self.st.count)
-            .filter(|&k| (T::ZERO..=z).contains(&self.reach_of(k)) && self.reach_of(k) > T::ZERO)
+            .filter(|&k| {
+                let reach = self.reach_of(k);
+                reach > T::ZERO && reach <= z
+            })
             .fold((0, 0), |(near, ties), k| {
                 (near + 1, ties + usize::from(ties_with(self.mem.fs[k], v)))
             })
