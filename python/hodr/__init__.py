@@ -175,9 +175,9 @@ def minimize(
         ``fun`` is stochastic (a Monte Carlo renderer): it is called as
         ``fun(x, seed)`` (with ``batch=True``, ``fun(X, seeds)``, one uint64 seed per
         row) and must draw all of its randomness from the seed, equal seeds giving equal
-        noise. Both halves of an antithetic pair, and the points a step compares, get
-        one seed, so the renderer's noise cancels in their difference. Auto then
-        re-evaluates rather than trusting remembered values.
+        noise. Both halves of an antithetic pair get one seed; Auto evaluates each
+        iteration's points, θ among them, on one seed, so the renderer's noise cancels
+        in their differences, and compares values only within a seed.
     callback : callable, optional
         ``callback(x, f)`` after every iteration with the best point so far and its
         value; returning True stops the run.

@@ -31,7 +31,7 @@ const SMALL_BOX_HALF: f32 = 0.3;
 ///   bleeding, the box's indirect shadow) matters.
 ///
 /// * θ = (x, y) of the small box, θ* = (0.35, −0.3).
-/// * Start: U[−0.6, 0.6] × U[−0.6, 0.0].
+/// * Start: U[−0.6, 0.6] × U[−0.6, 0.0]; bounds [−0.65, 0.65]².
 /// * Objective: 64×64, 4 spp; target 256 spp; images 128×128.
 /// * Hyper-parameters: the paper has none for CBOX; it borrows [`Shadow`]'s (the other
 ///   task that moves an object over a floor), σ₀ = 0.5. Budget: 1500 evaluations
@@ -86,6 +86,12 @@ impl Task3d for Cbox {
             1.2 * (start_uniform(seed, 0) - 0.5),
             -0.6 * start_uniform(seed, 1),
         ]
+    }
+
+    /// The small box's floor position, [−0.65, 0.65]² (see `LIMIT`): beyond it the scene
+    /// clamps θ, so the image no longer changes.
+    fn bounds(&self) -> Option<(Vec<f64>, Vec<f64>)> {
+        Some((vec![-LIMIT; 2], vec![LIMIT; 2]))
     }
 
     fn settings(&self) -> TaskSettings {

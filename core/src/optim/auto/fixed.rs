@@ -85,7 +85,7 @@ mod tests {
             let full = n <= super::super::FULL_MODEL_MAX_DIM;
             let h = if full { n * n } else { n };
             let f = if full { n * n } else { 0 };
-            let formula = m * (2 * n + 3)
+            let formula = m * (2 * n + 5)
                 + m * m
                 + m * (n + 1)
                 + (n + 1) * (n + 1)

@@ -18,13 +18,19 @@
 //!   iteration evaluates antithetic pairs θ ± σ√n·b along the columns b of a random
 //!   orthonormal frame (2n points, with θ, on the first iteration), mirrored into the
 //!   bounds at the faces they cross. The two halves of a pair share a noise seed.
+//! * **Noise.** A stochastic objective ([`Objective::deterministic`] false) — a Monte
+//!   Carlo render — is evaluated on common random numbers: an iteration's samples, θ
+//!   beside them and its trial point share one seed (where it draws no samples, θ and
+//!   the trial point share a fresh one). The points of one seed form a *noise group*:
+//!   the model gives each group a free offset, because a render's level moves from
+//!   seed to seed by far more than the differences between nearby θ on one seed, so
+//!   only differences within a group inform g and H, and values are compared (θ's
+//!   replacement, ties, the values' spread) only within a group.
 //! * **Step.** The model's minimiser within ‖s‖ ≤ σ√n (the `trust` module: exact for
 //!   indefinite H, so a non-PSD model steps along its negative curvature), over the
 //!   coordinates no bound holds and projected into the bounds, is evaluated. It
-//!   replaces θ when f is no higher there (a tie moves to the smoothed model's minimum
-//!   of a flat piece of f); a stochastic objective ([`Objective::deterministic`] false)
-//!   is evaluated at θ and at the trial point with one noise seed, so that the
-//!   comparison is on common random numbers. A deterministic objective's lowest sample
+//!   replaces θ when f is no higher there on common noise (a tie moves to the smoothed
+//!   model's minimum of a flat piece of f). A sample lower than f(θ) on its seed
 //!   replaces θ too.
 //! * **σ is the trust radius** and follows the ratio ρ̂ of actual to predicted decrease:
 //!   ρ̂ ≥ 0.7 with a step to the boundary doubles σ; a step shorter than half the radius
@@ -265,9 +271,12 @@ struct Memory<'b, T> {
     /// Remembered points (rows of n) and their values.
     xs: &'b mut [T],
     fs: &'b mut [T],
-    /// The fit's rows u, √w, residuals, and its m×m system.
+    /// The noise group of each remembered point (see [`State::groups`]).
+    gs: &'b mut [T],
+    /// The fit's rows u, √w, noise groups, residuals, and its m×m system.
     u: &'b mut [T],
     sw: &'b mut [T],
+    gid: &'b mut [T],
     r: &'b mut [T],
     gram: &'b mut [T],
     kp: &'b mut [T],
@@ -306,7 +315,7 @@ struct Memory<'b, T> {
 }
 
 /// Region lengths for dimension n, in [`Memory`]'s order.
-const fn regions(n: usize) -> [usize; 33] {
+const fn regions(n: usize) -> [usize; 35] {
     let shape = Shape::for_dim(n);
     let m = history_len(n);
     let hl = shape.hessian_len(n);
@@ -322,7 +331,9 @@ const fn regions(n: usize) -> [usize; 33] {
         n,
         m * n,
         m,
+        m,
         m * n,
+        m,
         m,
         m,
         gram,
@@ -357,7 +368,7 @@ const fn regions(n: usize) -> [usize; 33] {
 /// Floats of buffer an [`Auto`] run needs in dimension n, for m = [`Auto::history_len`]
 /// points remembered and the Hessian's h = n² floats (n ≤ [`FULL_MODEL_MAX_DIM`]) or n
 /// (above):
-/// m(2n + 3) + m² + m(n + 1) + (n + 1)² + 13n + 1 + 4h + (2n + 2)(n + 1) + n² + 5f,
+/// m(2n + 5) + m² + m(n + 1) + (n + 1)² + 13n + 1 + 4h + (2n + 2)(n + 1) + n² + 5f,
 /// with f = n² for the full model and 0 for the diagonal one. A `const fn`, so that
 /// storage can be sized at compile time ([`FixedAuto`]).
 pub const fn buffer_len(n: usize) -> usize {
@@ -397,8 +408,10 @@ fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         upper: take(),
         xs: take(),
         fs: take(),
+        gs: take(),
         u: take(),
         sw: take(),
+        gid: take(),
         r: take(),
         gram: take(),
         kp: take(),
@@ -464,6 +477,18 @@ struct State<T> {
     /// Some remembered point within reach other than θ ties with f(θ): f is piecewise
     /// constant at this scale, so a failed step is no reason to shrink σ.
     lattice: bool,
+    /// The objective is noisy ([`Objective::deterministic`] is false): values are
+    /// compared, and fitted, only within a noise group — the points evaluated on one
+    /// seed.
+    noisy: bool,
+    /// Noise groups handed out so far; a point's group is stored as this count modulo
+    /// 2²⁰ (exact in `f32`; the memory never holds points that far apart in time).
+    groups: u32,
+    /// This iteration's seed and noise group when f(θ) (`value`) was measured on it
+    /// (noisy objectives), so that the samples and the trial step compare with it.
+    shared: Option<(NoiseSeed, T)>,
+    /// θ moved this iteration to a point of lower value on a common seed.
+    gained: bool,
     finished: Option<AutoTermination>,
 }
 
@@ -579,6 +604,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 widenings: 0,
                 cycle: 0,
                 lattice: false,
+                noisy: false,
+                groups: 0,
+                shared: None,
+                gained: false,
                 finished: None,
             },
         })
@@ -689,7 +718,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         let n = self.theta.len();
         let sigma = self.st.sigma;
-        let start_value = self.st.value;
+        self.st.noisy = !objective.deterministic();
+        self.st.shared = None;
+        self.st.gained = false;
         self.mem.tmp.copy_from_slice(self.theta);
         let mut spent = 0;
         let mut kind = self.sample(objective, &mut spent)?;
@@ -703,12 +734,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let kind = kind.unwrap_or(AutoStep::OutOfBudget);
         self.st.iteration += 1;
         self.st.resample |= kind == AutoStep::Plateau;
-        let improved = match (self.st.value, start_value) {
-            (Some(v), Some(s)) => v < s,
-            (Some(_), None) => true,
-            _ => false,
-        };
-        if improved {
+        if self.st.gained {
             self.st.stale = 0;
             self.st.may_restart = true;
         } else {
@@ -775,11 +801,6 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let n = self.theta.len();
         let sigma = self.st.sigma;
         let first = !self.st.centre_known;
-        let mut rows = 0;
-        if first {
-            self.mem.stage[..n].copy_from_slice(self.theta);
-            rows = 1;
-        }
         let near = self.count_within(T::from_f64(REACH));
         let survey = first || self.st.survey;
         self.st.survey = false;
@@ -790,6 +811,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             (n + 1).saturating_sub(near).div_ceil(2)
         };
+        // θ is evaluated first, and again beside the samples of a noisy objective: they
+        // share its seed, so that they compare with f(θ) on common noise.
+        let centre = first || (self.st.noisy && pairs > 0);
+        let mut rows = 0;
+        if centre {
+            self.mem.stage[..n].copy_from_slice(self.theta);
+            rows = 1;
+        }
         let root_n = T::from_usize(n).sqrt();
         let exploring = !survey && self.st.resample;
         for _ in 0..pairs {
@@ -823,17 +852,29 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if rows > 0 && allowed == 0 {
             return Ok(Some(AutoStep::OutOfBudget));
         }
+        let group = self.next_group();
         if allowed > 0 {
-            // Both halves of a pair share a seed; θ has its own.
+            // Both halves of a pair share a seed; θ has its own. A noisy objective's
+            // points all share one.
             let seed_base = self.rng.next_u64();
-            let centre_rows = usize::from(first);
+            let centre_rows = usize::from(centre);
+            let noisy = self.st.noisy;
             self.evaluate(objective, allowed, spent, |row| {
-                if row < centre_rows {
+                if row < centre_rows || noisy {
                     seed_base
                 } else {
                     seed_base.wrapping_add(1 + ((row - centre_rows) / 2) as u64)
                 }
             })?;
+            if centre {
+                self.st.centre_known = true;
+                let f = self.mem.stage_f[0];
+                self.st.value = f.is_finite().then_some(f);
+                self.st.gained |= first && f.is_finite();
+                if self.st.noisy && f.is_finite() {
+                    self.st.shared = Some((seed_base, group));
+                }
+            }
         }
         // Remember the points and move θ to the lowest when it beats f(θ).
         let mut lowest: Option<(usize, T)> = None;
@@ -842,22 +883,18 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             if !f.is_finite() {
                 continue;
             }
-            self.remember(row, f);
+            self.remember(row, f, group);
             if lowest.is_none_or(|(_, b)| f < b) {
                 lowest = Some((row, f));
             }
         }
-        if first {
-            self.st.centre_known = true;
-            let f = self.mem.stage_f[0];
-            self.st.value = f.is_finite().then_some(f);
-        }
-        let trust_samples = objective.deterministic() || self.st.value.is_none();
+        let trust_samples = !self.st.noisy || self.st.shared.is_some() || self.st.value.is_none();
         if let Some((row, f)) = lowest {
             if trust_samples && self.st.value.is_none_or(|v| f < v) {
                 let (theta, stage) = (&mut *self.theta, &self.mem.stage);
                 theta.copy_from_slice(&stage[row * n..(row + 1) * n]);
                 self.st.value = Some(f);
+                self.st.gained = true;
             }
         }
         if allowed < rows {
@@ -866,8 +903,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // A plateau: most of this iteration's samples tie with f(θ) or, where it drew
         // none, every value within reach does. A smooth f never ties, so even one tie
         // says that f is piecewise constant at this scale.
-        let fresh = usize::from(first)..allowed;
-        let (near, ties) = if fresh.is_empty() {
+        let fresh = usize::from(centre)..allowed;
+        let (near, ties) = if fresh.is_empty() && self.st.noisy {
+            // Values on other seeds do not compare: nothing new to read.
+            (2, usize::from(self.st.lattice))
+        } else if fresh.is_empty() {
             self.ties_within(T::from_f64(REACH))
         } else {
             let v = self.st.value.unwrap_or(T::MAX);
@@ -944,7 +984,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             }
             return Ok((AutoStep::AtModelMinimum, None));
         }
-        let compare = !objective.deterministic();
+        // A noisy objective's trial is compared with f(θ) on common noise: the seed on
+        // which this iteration measured f(θ), or a fresh one on which θ is evaluated too.
+        let compare = self.st.noisy && self.st.shared.is_none();
         let rows = if compare { 2 } else { 1 };
         if self.remaining() < rows {
             return Ok((AutoStep::OutOfBudget, None));
@@ -952,15 +994,19 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if compare {
             self.mem.stage[n..2 * n].copy_from_slice(self.theta);
         }
-        let seed = self.rng.next_u64();
+        let fresh = (self.rng.next_u64(), self.next_group());
+        let (seed, group) = self.st.shared.unwrap_or(fresh);
         self.evaluate(objective, rows, spent, |_| seed)?;
         let trial = self.mem.stage_f[0];
         let reference = if compare { self.mem.stage_f[1] } else { value };
         for row in 0..rows {
             let f = self.mem.stage_f[row];
             if f.is_finite() {
-                self.remember(row, f);
+                self.remember(row, f, group);
             }
+        }
+        if compare && reference.is_finite() {
+            self.st.value = Some(reference);
         }
         let ratio = if trial.is_finite() && reference.is_finite() {
             (reference - trial) / (scale * predicted)
@@ -1003,6 +1049,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             }
             self.theta.copy_from_slice(&self.mem.stage[..n]);
             self.st.value = Some(trial);
+            self.st.gained |= trial < reference;
             Ok((AutoStep::Accepted, Some(ratio)))
         } else {
             Ok((AutoStep::Rejected, Some(ratio)))
@@ -1213,9 +1260,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         Ok(())
     }
 
-    /// Remembers staged point `row` with value f, replacing the point farthest from θ
-    /// once the memory is full.
-    fn remember(&mut self, row: usize, f: T) {
+    /// A fresh noise group's id.
+    fn next_group(&mut self) -> T {
+        self.st.groups = self.st.groups.wrapping_add(1);
+        T::from_usize((self.st.groups % (1 << 20)) as usize)
+    }
+
+    /// Remembers staged point `row` with value f from noise group `group`, replacing the
+    /// point farthest from θ once the memory is full.
+    fn remember(&mut self, row: usize, f: T, group: T) {
         let n = self.theta.len();
         let cap = history_len(n);
         let slot = if self.st.count < cap {
@@ -1234,6 +1287,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.mem.xs[slot * n..(slot + 1) * n]
             .copy_from_slice(&self.mem.stage[row * n..(row + 1) * n]);
         self.mem.fs[slot] = f;
+        self.mem.gs[slot] = group;
     }
 
     /// z = ‖L⁻¹(x − θ)‖/(σ√n) of remembered point k.
@@ -1260,7 +1314,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Remembered points within z other than θ, and how many of them tie with f(θ);
-    /// (0, 0) when f(θ) is unknown.
+    /// (0, 0) when f(θ) is unknown. Deterministic objectives only: a noisy one's values
+    /// compare only within their noise group.
     fn ties_within(&self, z: T) -> (usize, usize) {
         let Some(v) = self.st.value else {
             return (0, 0);
@@ -1275,13 +1330,27 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             })
     }
 
-    /// max |f − f(θ)| over remembered points within z (0 when f(θ) is unknown).
+    /// max |f − f(θ)| over remembered points within z (0 when f(θ) is unknown); for a
+    /// noisy objective the largest difference within a noise group, where values
+    /// compare (max |f − f(θ)| where no group holds two such points).
     fn spread(&self, z: T) -> T {
         let Some(v) = self.st.value else {
             return T::ZERO;
         };
+        let near = |k: &usize| self.reach_of(*k) <= z;
+        if self.st.noisy {
+            let within = (0..self.st.count).filter(near).fold(T::ZERO, |s, k| {
+                (0..k)
+                    .filter(|&j| self.mem.gs[j] == self.mem.gs[k])
+                    .filter(near)
+                    .fold(s, |s, j| s.max((self.mem.fs[k] - self.mem.fs[j]).abs()))
+            });
+            if within > T::ZERO {
+                return within;
+            }
+        }
         (0..self.st.count)
-            .filter(|&k| self.reach_of(k) <= z)
+            .filter(near)
             .fold(T::ZERO, |s, k| s.max((self.mem.fs[k] - v).abs()))
     }
 
@@ -1345,6 +1414,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             let sw = (-(z / reach).sq() / T::from_f64(4.0)).exp();
             let prior = dot(self.mem.g, row) + shape.half_quadratic(self.mem.h, row);
             self.mem.sw[m] = sw;
+            self.mem.gid[m] = self.mem.gs[k];
             self.mem.r[m] = sw * ((self.mem.fs[k] - value) / scale - prior);
             m += 1;
         }
@@ -1354,6 +1424,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             m,
             self.mem.u,
             self.mem.sw,
+            self.st.noisy.then_some(&self.mem.gid[..m]),
             self.mem.r,
             model::Scratch {
                 gram: self.mem.gram,

@@ -136,10 +136,18 @@ pub(super) const fn scratch_lens(m: usize, n: usize) -> [usize; 4] {
 /// diagonal where the points do not determine the linear part). On success `g` and `h`
 /// hold the fitted coefficients; the scratch and `r` are overwritten.
 ///
+/// With `groups` (one id per row), rows with equal ids share an unknown offset: the
+/// values of a noisy objective evaluated on one noise seed, whose level moves from seed to
+/// seed (a Monte Carlo render's mean brightness) while their differences are exact. Each
+/// group's offset o is a further coefficient, as free as the curvature (penalty λ_H o²):
+/// K gains √wᵢ√wₖ/λ_H wherever rows i and k share a group, so that only differences
+/// within a group inform g and H, and a group of one row informs nothing.
+///
 /// Returns the fit's noise level η — the root-mean-square weighted residual
-/// √(Σᵢ (√wᵢ·resᵢ)² / Σᵢ wᵢ · m/(m − p)) for m points and p coefficients, 0 when m ≤ p
-/// (the points are interpolated, their roughness unseen) — or `None`, leaving `g` and `h`
-/// at the prior, when the system cannot be factored (non-finite inputs).
+/// √(Σᵢ (√wᵢ·resᵢ)² / Σᵢ wᵢ · m/(m − p)) for m points and p coefficients (G − 1 more for
+/// G groups), 0 when m ≤ p (the points are interpolated, their roughness unseen) — or
+/// `None`, leaving `g` and `h` at the prior, when the system cannot be factored
+/// (non-finite inputs).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn fit<T: Real>(
     shape: Shape,
@@ -147,6 +155,7 @@ pub(super) fn fit<T: Real>(
     m: usize,
     u: &[T],
     sw: &[T],
+    groups: Option<&[T]>,
     r: &mut [T],
     scratch: Scratch<'_, T>,
     g: &mut [T],
@@ -179,7 +188,9 @@ pub(super) fn fit<T: Real>(
                     .zip(uk)
                     .fold(T::ZERO, |s, (&a, &b)| s + (a * b).sq()),
             };
-            let mut kik = sw[i] * sw[k] * q * quarter_lh;
+            let shared = groups.is_some_and(|id| id[i] == id[k]);
+            let offset = if shared { T::from_f64(4.0) } else { T::ZERO };
+            let mut kik = sw[i] * sw[k] * (q + offset) * quarter_lh;
             if i == k {
                 kik += T::ONE;
             }
@@ -234,7 +245,13 @@ pub(super) fn fit<T: Real>(
     {
         return None;
     }
-    let p = shape.coefficients(n);
+    let offsets = groups.map_or(0, |id| {
+        (0..m)
+            .filter(|&i| (0..i).all(|k| id[k] != id[i]))
+            .count()
+            .saturating_sub(1)
+    });
+    let p = shape.coefficients(n) + offsets;
     let noise = if m > p {
         let weight = sw[..m].iter().fold(T::ZERO, |s, &x| s + x.sq());
         let sum = alpha.iter().fold(T::ZERO, |s, &a| s + a.sq());
@@ -337,6 +354,7 @@ mod tests {
                 m,
                 &u,
                 &sw,
+                None,
                 &mut r,
                 Buffers::new().as_mut(m, n),
                 &mut g,
@@ -349,6 +367,58 @@ mod tests {
         }
         for k in 0..n * n {
             assert!((h[k] - h_true[k]).abs() < 1e-5, "H = {h:?}");
+        }
+    }
+
+    /// Offsets shared within groups of rows (a noisy objective's level per seed) are
+    /// absorbed: the quadratic comes back from the differences within the groups.
+    #[test]
+    fn recovers_a_quadratic_under_group_offsets() {
+        let n = 2;
+        let g_true = [0.5, -1.0];
+        let h_true = [3.0, 0.5, 0.5, 1.0];
+        let f = |u: &[f64]| {
+            let lin: f64 = u.iter().zip(&g_true).map(|(a, b)| a * b).sum();
+            lin + Shape::Full.half_quadratic(&h_true, u)
+        };
+        // Four groups of five points: the centre and two antithetic pairs, each group
+        // shifted by its own large offset.
+        let m = 20;
+        let mut u = [0.0; 40];
+        let mut ids = [0.0; 20];
+        let mut r = [0.0; 20];
+        let offsets = [7.0, -3.0, 40.0, 0.25];
+        for (k, offset) in offsets.iter().enumerate() {
+            let a = 0.4 * k as f64;
+            let (c, s) = (libm::cos(a), libm::sin(a));
+            let rows = [[0.0, 0.0], [c, s], [-c, -s], [-s, c], [s, -c]];
+            for (j, x) in rows.iter().enumerate() {
+                let i = 5 * k + j;
+                u[2 * i..2 * i + 2].copy_from_slice(x);
+                ids[i] = k as f64;
+                r[i] = f(x) + offset;
+            }
+        }
+        let sw = [1.0; 20];
+        let (mut g, mut h) = ([0.0; 2], [0.0; 4]);
+        let noise = fit(
+            Shape::Full,
+            n,
+            m,
+            &u,
+            &sw,
+            Some(&ids),
+            &mut r,
+            Buffers::new().as_mut(m, n),
+            &mut g,
+            &mut h,
+        );
+        assert!(noise.is_some_and(|e| e < 1e-4), "noise {noise:?}");
+        for j in 0..n {
+            assert!((g[j] - g_true[j]).abs() < 1e-4, "g = {g:?}");
+        }
+        for k in 0..n * n {
+            assert!((h[k] - h_true[k]).abs() < 1e-4, "H = {h:?}");
         }
     }
 
@@ -369,6 +439,7 @@ mod tests {
                 2,
                 &u,
                 &sw,
+                None,
                 &mut r,
                 Buffers::new().as_mut(2, n),
                 &mut g,
