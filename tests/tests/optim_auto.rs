@@ -163,7 +163,7 @@ fn bad_input_is_a_typed_error() {
 #[test]
 fn option_defaults() {
     let o = AutoOptions::<f64>::default();
-    assert_eq!(o.tolerance, 1e-9);
+    assert_eq!(o.tolerance, None);
     assert_eq!(o.patience, None);
     assert_eq!(o.restarts, 8);
     assert_eq!(o.max_evaluations, None);

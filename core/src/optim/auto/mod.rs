@@ -98,6 +98,15 @@ pub const ROUGH: f64 = 0.25;
 /// meet a distant basin ever more rarely. σ₀ states where the parameters matter.
 pub const PLATEAU_WIDTH: f64 = 16.0;
 
+/// σ/σ₀ at which a run on a deterministic objective converges by default.
+pub const TOLERANCE: f64 = 1e-9;
+
+/// σ/σ₀ at which a run on a noisy objective converges by default. Far below its scale a
+/// Monte Carlo render's differences on one seed are its own grain — the noise that a
+/// common seed does not cancel, a mesh's facets — which a model at that width descends
+/// step by step, each a spurious gain that keeps the run from restarting wider.
+pub const NOISY_TOLERANCE: f64 = 1e-4;
+
 /// Scales in the restarts' cycle σ₀, 2σ₀, …, [`PLATEAU_WIDTH`]·σ₀.
 const RESTART_SCALES: u32 = 5;
 
@@ -122,8 +131,10 @@ pub enum NonFinite {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct AutoOptions<T> {
-    /// The run ends converged once σ < `tolerance`·σ₀. Default: 1e-9.
-    pub tolerance: T,
+    /// The run converges (and restarts, see [`AutoOptions::restarts`]) once
+    /// σ < `tolerance`·σ₀. Default: `None`, meaning [`TOLERANCE`] for a deterministic
+    /// objective and [`NOISY_TOLERANCE`] for a noisy one.
+    pub tolerance: Option<T>,
     /// Iterations without a lower f(θ) after which the run restarts from the best point
     /// (see [`AutoOptions::restarts`]) or ends stagnated. Default: `None`, meaning
     /// 20 + 10n.
@@ -142,7 +153,7 @@ pub struct AutoOptions<T> {
 impl<T: Real> Default for AutoOptions<T> {
     fn default() -> Self {
         AutoOptions {
-            tolerance: T::from_f64(1e-9),
+            tolerance: None,
             patience: None,
             restarts: 8,
             max_evaluations: None,
@@ -160,7 +171,7 @@ impl<T: Real> AutoOptions<T> {
         if !(tolerance > T::ZERO && tolerance < T::ONE) {
             return Err(Error::InvalidSetting { name: "tolerance" });
         }
-        self.tolerance = tolerance;
+        self.tolerance = Some(tolerance);
         Ok(self)
     }
 
@@ -745,7 +756,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let scale = self.theta.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
         let resolvable = T::from_f64(8.0) * T::EPSILON * scale;
         let converged =
-            self.st.sigma < self.options.tolerance * self.st.sigma0 || self.st.sigma <= resolvable;
+            self.st.sigma < self.tolerance() * self.st.sigma0 || self.st.sigma <= resolvable;
         let stagnated = self.st.stale >= patience;
         let termination = if kind == AutoStep::OutOfBudget || self.remaining() == 0 {
             Some(AutoTermination::MaxEvaluations)
@@ -782,6 +793,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             kind,
             termination,
         }))
+    }
+
+    /// σ/σ₀ below which the run has converged ([`AutoOptions::tolerance`]).
+    fn tolerance(&self) -> T {
+        let default = if self.st.noisy {
+            NOISY_TOLERANCE
+        } else {
+            TOLERANCE
+        };
+        self.options.tolerance.unwrap_or(T::from_f64(default))
     }
 
     /// Evaluations left in the budget (`usize::MAX` without one).
