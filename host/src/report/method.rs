@@ -28,7 +28,8 @@ pub enum Method {
     Auto,
     /// A hodr-core preset.
     Preset(Preset),
-    /// CMA-ES (Hansen), initial step σ₀ of the task, default population.
+    /// CMA-ES (Hansen), initial step σ₀ of the task, default population; points (and the
+    /// mean it reports) mirrored into the task's bounds, as in the suite.
     CmaEs,
 }
 
@@ -338,10 +339,21 @@ pub fn run_observed(
         }
         Method::CmaEs => {
             let sigma = task.scale();
+            // The task's bounds as the suite gives them: points mirrored into the box.
+            let bounds = task
+                .bounds()
+                .map(|(lower, upper)| crate::suite::problem::Bounds { lower, upper });
+            let inside = move |x: &[f64]| {
+                let mut x = x.to_vec();
+                if let Some(b) = &bounds {
+                    b.reflect(&mut x);
+                }
+                x
+            };
             let mut noise = 0u64;
-            let mut f = move |x: &cmaes::DVector<f64>| {
+            let mut f = |x: &cmaes::DVector<f64>| {
                 noise = noise.wrapping_add(1);
-                objective.inner.evaluate(x.as_slice(), noise)
+                objective.inner.evaluate(&inside(x.as_slice()), noise)
             };
             let mut cma = cmaes::CMAESOptions::new(start.clone(), sigma)
                 .seed(seed)
@@ -357,7 +369,7 @@ pub fn run_observed(
                 let clock = Instant::now();
                 let done = cma.next();
                 elapsed += clock.elapsed();
-                let mean = cma.mean().as_slice().to_vec();
+                let mean = inside(cma.mean().as_slice());
                 record(
                     elapsed,
                     cma.function_evals(),
@@ -369,7 +381,7 @@ pub fn run_observed(
                     break;
                 }
             }
-            cma.mean().as_slice().to_vec()
+            inside(cma.mean().as_slice())
         }
     };
     let (best, best_theta) = best;
