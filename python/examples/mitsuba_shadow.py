@@ -3,8 +3,9 @@
 ground, starts where its shadow shares no pixel with the target's.
 
 hodr's Auto gets only the problem statement (x0, sigma0 = 0.5, the ground's bounds and
-a budget) and renders through `mi.render` with the noise seed it hands out, so both
-halves of an antithetic pair see the same Monte Carlo noise. Beside it, Mitsuba's own
+a budget) and renders through `mi.render` with the noise seed it hands out: the renders
+it compares (an iteration's samples, θ and its trial step) share one seed, so they see
+the same Monte Carlo noise. Beside it, Mitsuba's own
 answer: Adam on its automatic-differentiation gradients with a projective integrator,
 which differentiates the shadow's edge.
 
