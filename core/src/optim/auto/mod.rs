@@ -1015,8 +1015,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if compare {
             self.mem.stage[n..2 * n].copy_from_slice(self.theta);
         }
-        let fresh = (self.rng.next_u64(), self.next_group());
-        let (seed, group) = self.st.shared.unwrap_or(fresh);
+        let seed = self.rng.next_u64();
+        let (seed, group) = match self.st.shared {
+            Some(shared) => shared,
+            None => (seed, self.next_group()),
+        };
         self.evaluate(objective, rows, spent, |_| seed)?;
         let trial = self.mem.stage_f[0];
         let reference = if compare { self.mem.stage_f[1] } else { value };
