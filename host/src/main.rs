@@ -149,7 +149,7 @@ enum Command {
         /// Families (comma-separated; default all): bbob, plateau, integer, flat, tasks.
         #[arg(long, value_delimiter = ',')]
         families: Vec<String>,
-        /// Dimensions to keep (comma-separated; default every family's own).
+        /// Dimensions to run (comma-separated; default every family's own: BBOB 2, 5, 10, 20, plateau 2, 4, 8, integer 2, 5, 10, flat 6, tasks 2). BBOB runs at any n ≥ 2, e.g. 40,100; the other families only at their own.
         #[arg(long, value_delimiter = ',')]
         dims: Vec<usize>,
         /// Methods (comma-separated; default all): Auto, CMA-ES, BOBYQA, FR22.

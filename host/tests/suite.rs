@@ -275,12 +275,33 @@ fn parallel_runs_give_the_same_results() {
     assert_eq!(evaluations("1"), evaluations("2"));
 }
 
+/// BBOB runs at any chosen dimension ≥ 2, the other families only at their own.
+#[test]
+fn chosen_dimensions_select_bbob_anywhere_and_the_rest_at_their_own() {
+    let dims = [40, 2];
+    let config = Config::from_args(&[], &dims, &[], None, None, true, "unused".into()).unwrap();
+    let problems = suite::catalogue(&config).unwrap();
+    let bbob_40 = problems
+        .iter()
+        .filter(|p| p.family == suite::problem::Family::Bbob && p.n == 40)
+        .count();
+    assert_eq!(bbob_40, suite::bbob::IDS.len() * config.instances);
+    assert!(problems.iter().all(|p| p.n == 40 || p.n == 2));
+    assert!(
+        problems
+            .iter()
+            .filter(|p| p.n == 40)
+            .all(|p| p.family == suite::problem::Family::Bbob)
+    );
+}
+
 #[test]
 fn bad_suite_arguments_fail_with_one_line() {
     for (args, culprit) in [
         (&["suite", "--methods", "Nelder"][..], "Nelder"),
         (&["suite", "--families", "bbob,cec"][..], "cec"),
-        (&["suite", "--dims", "3"][..], "3"),
+        (&["suite", "--families", "plateau", "--dims", "3"][..], "3"),
+        (&["suite", "--dims", "1"][..], "dimension 1"),
         (&["suite", "--methods", "FR22,fr22"][..], "fr22"),
         (&["suite", "--seeds", "0"][..], "seeds"),
         (&["suite", "--seeds", "many"][..], "many"),

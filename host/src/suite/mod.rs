@@ -64,8 +64,9 @@ pub const QUICK_MAX_DIM: usize = 5;
 pub struct Config {
     /// Families, in [`Family::ALL`] order.
     pub families: Vec<Family>,
-    /// Dimensions to keep; `None`: every dimension of each family (with `quick`, those
-    /// up to [`QUICK_MAX_DIM`], and the flat problem).
+    /// Dimensions to run, each in the families defined there ([`Family::defined_at`]);
+    /// `None`: every family's own (with `quick`, those up to [`QUICK_MAX_DIM`], and the
+    /// flat problem).
     pub dims: Option<Vec<usize>>,
     /// Methods, in [`Method::ALL`] order.
     pub methods: Vec<Method>,
@@ -120,7 +121,7 @@ impl Config {
             None
         } else {
             for &d in dims {
-                if !families.iter().any(|f| f.dims().contains(&d)) {
+                if !families.iter().any(|f| f.defined_at(d)) {
                     let have: Vec<String> = families
                         .iter()
                         .map(|f| format!("{f} {:?}", f.dims()))
@@ -158,11 +159,21 @@ impl Config {
         })
     }
 
-    /// Whether problems of dimension n of `family` run.
-    fn keeps(&self, family: Family, n: usize) -> bool {
+    /// The dimensions `family` runs at: those chosen that it is defined at, or by default
+    /// its own (at most [`QUICK_MAX_DIM`] with `quick`, except the flat problem's).
+    fn dims_of(&self, family: Family) -> Vec<usize> {
         match &self.dims {
-            Some(d) => d.contains(&n),
-            None => !self.quick || n <= QUICK_MAX_DIM || family == Family::Flat,
+            Some(chosen) => chosen
+                .iter()
+                .copied()
+                .filter(|&n| family.defined_at(n))
+                .collect(),
+            None => family
+                .dims()
+                .iter()
+                .copied()
+                .filter(|&n| !self.quick || n <= QUICK_MAX_DIM || family == Family::Flat)
+                .collect(),
         }
     }
 }
@@ -201,12 +212,7 @@ pub fn catalogue(config: &Config) -> Result<Vec<Problem>> {
     let instances = 1..=config.instances as u64;
     let mut out = Vec::new();
     for &family in &config.families {
-        let dims: Vec<usize> = family
-            .dims()
-            .iter()
-            .copied()
-            .filter(|&n| config.keeps(family, n))
-            .collect();
+        let dims = config.dims_of(family);
         match family {
             Family::Bbob => {
                 for id in bbob::IDS {

@@ -55,7 +55,17 @@ impl Family {
             .find(|f| f.name().eq_ignore_ascii_case(name.trim()))
     }
 
-    /// The dimensions the family is defined at.
+    /// Whether the family has problems of dimension n: any n ≥ 2 for BBOB, whose
+    /// functions are defined in every dimension; the family's own [`Family::dims`] for
+    /// the others.
+    pub fn defined_at(self, n: usize) -> bool {
+        match self {
+            Family::Bbob => n >= 2,
+            _ => self.dims().contains(&n),
+        }
+    }
+
+    /// The dimensions the family runs at by default.
     pub fn dims(self) -> &'static [usize] {
         match self {
             Family::Bbob => &[2, 5, 10, 20],

@@ -41,8 +41,9 @@ const FIELD: HeightField = HeightField {
 ///   + 0.08·exp(−‖p − (0.35, −0.25)‖²/(2·0.18²)), each focusing a bright spot.
 /// * Start: a flat slab with iid U[−0.01, 0.01] heights.
 /// * Objective: 64×64, 16 spp; target 1024 spp; images 128×128.
-/// * Hyper-parameters: the paper has none for CAUSTIC; it borrows [`TextureTask`]'s (the
-///   other task with hundreds of parameters), σ₀ = 0.5. Budget: 4000 evaluations
+/// * Bounds: the heights the slab renders, [−0.075, 0.3]; σ₀ = 0.05.
+/// * Hyper-parameters: the paper has none for CAUSTIC; the paper's methods borrow
+///   [`TextureTask`]'s (the other task with hundreds of parameters). Budget: 4000 evaluations
 ///   (quick: 60, the most expensive evaluations of the path-traced tasks:
 ///   BSDF-sampled caustic paths).
 #[derive(Clone, Copy, Debug, Default)]
@@ -108,6 +109,18 @@ impl Task3d for Caustic {
         (0..(CONTROLS * CONTROLS) as u64)
             .map(|k| 0.02 * (start_uniform(seed, k) - 0.5))
             .collect()
+    }
+
+    /// The heights the slab renders: [−(top − bottom)/2, max_height] (it clamps there).
+    fn bounds(&self) -> Option<(Vec<f64>, Vec<f64>)> {
+        let lo = -0.5 * f64::from(FIELD.top - FIELD.bottom);
+        let hi = f64::from(FIELD.max_height);
+        Some((vec![lo; CONTROLS * CONTROLS], vec![hi; CONTROLS * CONTROLS]))
+    }
+
+    /// 0.05: the domes of θ* are 0.08 and 0.12 high, the box 0.375 tall.
+    fn scale(&self) -> f64 {
+        0.05
     }
 
     fn settings(&self) -> TaskSettings {

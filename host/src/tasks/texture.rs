@@ -31,8 +31,8 @@ pub const TEXELS: usize = 32;
 /// * Start: every texel iid U[0, 1].
 /// * Objective: 64×64, 4 spp; target 256 spp; images 128×128.
 /// * The paper's hyper-parameters: 4 pairs, σ 0.5 → 0.1, Δ = 10, 5 line-search steps,
-///   recompute 30, Adam η = 0.05; σ₀ = 0.5. Budget: 4000 evaluations (quick: 200, the
-///   cheapest evaluations of the path-traced tasks).
+///   recompute 30, Adam η = 0.05; σ₀ = 0.5. Budget: 10 000 evaluations (about ten per
+///   parameter; quick: 200, the cheapest evaluations of the path-traced tasks).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct TextureTask;
 
@@ -120,7 +120,7 @@ impl Task3d for TextureTask {
     }
 
     fn budget(&self, quick: bool) -> usize {
-        if quick { 200 } else { 4000 }
+        if quick { 200 } else { 10_000 }
     }
 
     fn scene(&self) -> Result<Box<dyn ParametricScene>, RenderError> {

@@ -80,19 +80,23 @@ mod tests {
     /// The closed form in [`buffer_len`]'s docs is what the regions add up to.
     #[test]
     fn the_documented_formula_is_the_buffer_length() {
-        for n in 1..60 {
+        for n in 1..300 {
             let m = super::super::history_len(n);
             let full = n <= super::super::FULL_MODEL_MAX_DIM;
-            let h = if full { n * n } else { n };
-            let f = if full { n * n } else { 0 };
+            let (h, f, p) = if full {
+                (n * n, n * n, n + 1)
+            } else {
+                (n, 0, 1)
+            };
+            let r = 2 * n.min(m / 2) + 2;
             let formula = m * (2 * n + 5)
                 + m * m
-                + m * (n + 1)
-                + (n + 1) * (n + 1)
-                + 13 * n
-                + 1
+                + m * p
+                + p * p
+                + p
+                + 12 * n
                 + 4 * h
-                + (2 * n + 2) * (n + 1)
+                + r * (n + 1)
                 + n * n
                 + 5 * f;
             assert_eq!(buffer_len(n), formula, "n = {n}");

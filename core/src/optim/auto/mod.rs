@@ -13,11 +13,13 @@
 //!   points over a Gaussian of width ~σ, as hodr's estimators average samples, so the
 //!   model is that of the *smoothed* objective; an underdetermined one changes the
 //!   curvature least, as Powell's NEWUOA does, so curvature learnt earlier is kept.
-//!   A full Hessian is modelled for n ≤ [`FULL_MODEL_MAX_DIM`], a diagonal one above.
-//! * **Samples.** Where fewer than n + 1 remembered points lie within z ≤ ρ, the
-//!   iteration evaluates antithetic pairs θ ± σ√n·b along the columns b of a random
-//!   orthonormal frame (2n points, with θ, on the first iteration), mirrored into the
-//!   bounds at the faces they cross. The two halves of a pair share a noise seed.
+//!   A full Hessian is modelled for n ≤ [`FULL_MODEL_MAX_DIM`], a diagonal one above,
+//!   with a memory of at most [`DIAGONAL_MEMORY`] points, so that an iteration's cost
+//!   stays linear in n (the `model` module says how such a fit learns).
+//! * **Samples.** Where fewer than n + 1 remembered points (or half the memory, if
+//!   smaller) lie within z ≤ ρ, the iteration evaluates antithetic pairs θ ± σ√n·b along
+//!   the columns b of a random orthonormal frame (n pairs, or half the memory's worth, and
+//!   θ on the first iteration), mirrored into the bounds at the faces they cross. The two halves of a pair share a noise seed.
 //! * **Noise.** A stochastic objective ([`Objective::deterministic`] false) — a Monte
 //!   Carlo render — is evaluated on common random numbers: an iteration's samples, θ
 //!   beside them and its trial point share one seed (where it draws no samples, θ and
@@ -36,9 +38,10 @@
 //!   ρ̂ ≥ 0.7 with a step to the boundary doubles σ; a step shorter than half the radius
 //!   shrinks σ towards twice its length (at most halving it); ρ̂ < 0.1 halves σ — unless
 //!   the model rested on its prior (fewer points than it has coefficients, and at most
-//!   2n within reach: then a pair is drawn at the same σ first), or the fit finds f rough at this scale (residual scatter
-//!   above [`ROUGH`] of the values' spread) and the trial lies within twice that scatter
-//!   (then σ doubles, as on a plateau).
+//!   2n — or all but two of a full memory — within reach: then a pair is drawn at the
+//!   same σ first), or the fit finds f rough at this scale (residual scatter above
+//!   [`ROUGH`] of the values' spread) and the trial lies within twice that scatter (then
+//!   σ doubles, as on a plateau).
 //! * **Plateaus.** Where most of an iteration's samples tie with f(θ) (or, where it
 //!   drew none, every remembered value within reach does), σ doubles (up to
 //!   [`PLATEAU_WIDTH`]·σ₀) and an exploring pair is drawn at a Gaussian distance σ‖t‖,
@@ -51,15 +54,16 @@
 //!   exceeded, even inside an iteration). When σ falls below
 //!   [`AutoOptions::tolerance`]·σ₀ (or below what T resolves at θ), or after
 //!   [`AutoOptions::patience`] iterations without a lower f(θ), the run restarts from
-//!   the best point with a survey of n pairs, at the next scale of the cycle σ₀, 2σ₀,
+//!   the best point with a survey of pairs, as the first iteration's, at the next scale of the cycle σ₀, 2σ₀,
 //!   …, [`PLATEAU_WIDTH`]·σ₀, σ₀, … (wider scales average over more of the basin that
 //!   held it; a gain does not send the next restart back to σ₀, since on a lattice of
 //!   small steps some gain is always found there); after [`AutoOptions::restarts`]
 //!   restarts in a row without a gain it ends, converged or stagnated.
 //!
 //! Memory: one caller buffer of [`Auto::buffer_len`] floats, O(n² + m²) for m =
-//! [`Auto::history_len`] remembered points. Cost per iteration: O(m²n + m³) for the fit,
-//! O(n³) for the full model's eigen-decomposition.
+//! [`Auto::history_len`] remembered points. Cost per iteration: O(m²n + m³) for the fit
+//! (and O(mn² + n³) for the full model's linear part and eigen-decomposition); O(n³) per
+//! n pairs for the diagonal model's sampling frames.
 
 mod fixed;
 mod metric;
@@ -82,6 +86,12 @@ use model::Shape;
 /// Largest n for which the model has a full Hessian; above it, a diagonal one (2n + 1
 /// coefficients instead of (n+1)(n+2)/2, so memory and fitting stay affordable).
 pub const FULL_MODEL_MAX_DIM: usize = 20;
+
+/// Most points a diagonal model (n > [`FULL_MODEL_MAX_DIM`]) remembers. Its fit costs
+/// O(m²n + m³) per iteration for m remembered points, so a bounded memory keeps the cost
+/// linear in n; with fewer points than the model's 2n + 1 coefficients the fit corrects the
+/// model carried from earlier iterations along the directions of the recent points.
+pub const DIAGONAL_MEMORY: usize = 128;
 
 /// ρ: the kernel's reach in units of σ√n (the distance of a fresh sample). Points with
 /// z ≤ ρ count as nearby; points with z ≤ 2ρ are fitted, with weight exp(−½(z/ρ)²) ≥ e⁻².
@@ -142,7 +152,7 @@ pub struct AutoOptions<T> {
     /// Restarts in a row without a lower f(θ) before the run ends. The k-th restart of
     /// a run is at σ₀·2^(k mod 5): σ₀, 2σ₀, …, [`PLATEAU_WIDTH`]·σ₀ (and, with bounds, at
     /// most half the box's widest side), then σ₀ again. Each looks around its scale
-    /// with n antithetic pairs. Default: 8.
+    /// with n antithetic pairs (at most half the memory's worth). Default: 8.
     pub restarts: usize,
     /// Objective evaluations after which the run stops; never exceeded. Default: none.
     pub max_evaluations: Option<usize>,
@@ -336,7 +346,7 @@ const fn regions(n: usize) -> [usize; 35] {
         0
     };
     let rows = stage_rows(n);
-    let [gram, kp, schur, beta] = model::scratch_lens(m, n);
+    let [gram, kp, schur, beta] = model::scratch_lens(shape, m, n);
     [
         n,
         n,
@@ -377,10 +387,10 @@ const fn regions(n: usize) -> [usize; 35] {
 }
 
 /// Floats of buffer an [`Auto`] run needs in dimension n, for m = [`Auto::history_len`]
-/// points remembered and the Hessian's h = n² floats (n ≤ [`FULL_MODEL_MAX_DIM`]) or n
-/// (above):
-/// m(2n + 5) + m² + m(n + 1) + (n + 1)² + 13n + 1 + 4h + (2n + 2)(n + 1) + n² + 5f,
-/// with f = n² for the full model and 0 for the diagonal one. A `const fn`, so that
+/// points remembered:
+/// m(2n + 5) + m² + mp + p² + p + 12n + 4h + r(n + 1) + n² + 5f,
+/// with, for the full model (n ≤ [`FULL_MODEL_MAX_DIM`]), h = f = n² and p = n + 1, and
+/// for the diagonal one h = n, f = 0 and p = 1; r = 2·min(n, ⌊m/2⌋) + 2 staged points. A `const fn`, so that
 /// storage can be sized at compile time ([`FixedAuto`]).
 pub const fn buffer_len(n: usize) -> usize {
     let lens = regions(n);
@@ -393,14 +403,32 @@ pub const fn buffer_len(n: usize) -> usize {
     sum
 }
 
-const fn history_len(n: usize) -> usize {
-    Shape::for_dim(n).coefficients(n) + n + 1
+pub(super) const fn history_len(n: usize) -> usize {
+    let m = Shape::for_dim(n).coefficients(n) + n + 1;
+    match Shape::for_dim(n) {
+        Shape::Full => m,
+        Shape::Diagonal if m > DIAGONAL_MEMORY => DIAGONAL_MEMORY,
+        Shape::Diagonal => m,
+    }
 }
 
-/// Points one batch can hold: the first iteration's 2n samples and θ, or a trial point
-/// and θ.
+/// Remembered points within reach that a model needs before it steps without sampling:
+/// n + 1, or half the memory where that holds fewer than 2n + 2 points.
+const fn nearby_needed(n: usize) -> usize {
+    let half = history_len(n) / 2;
+    if n + 1 < half { n + 1 } else { half }
+}
+
+/// Pairs a survey (the first iteration, a restart) draws: n, or as many as half the
+/// memory holds.
+const fn survey_pairs(n: usize) -> usize {
+    let half = history_len(n) / 2;
+    if n < half { n } else { half }
+}
+
+/// Points one batch can hold: a survey's samples and θ, or a trial point and θ.
 const fn stage_rows(n: usize) -> usize {
-    2 * n + 2
+    2 * survey_pairs(n) + 2
 }
 
 fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
@@ -478,7 +506,7 @@ struct State<T> {
     /// instead of ending the run.
     may_restart: bool,
     bounded: bool,
-    /// Draw n pairs along a fresh frame this iteration, as the first does: a restart
+    /// Draw a survey's pairs this iteration, as the first does: a restart
     /// looks around at its new scale before the model decides anything.
     survey: bool,
     /// Restarts in a row since the last gain.
@@ -552,7 +580,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Points remembered in dimension n: the model's coefficient count
-    /// ((n+1)(n+2)/2 for a full Hessian, 2n + 1 for a diagonal one) plus n + 1.
+    /// ((n+1)(n+2)/2 for a full Hessian, 2n + 1 for a diagonal one) plus n + 1, for the
+    /// diagonal model at most [`DIAGONAL_MEMORY`].
     pub const fn history_len(n: usize) -> usize {
         history_len(n)
     }
@@ -826,11 +855,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let survey = first || self.st.survey;
         self.st.survey = false;
         let pairs = if survey {
-            n
+            survey_pairs(n)
         } else if self.st.resample {
             1
         } else {
-            (n + 1).saturating_sub(near).div_ceil(2)
+            nearby_needed(n).saturating_sub(near).div_ceil(2)
         };
         // θ is evaluated first, and again beside the samples of a noisy objective: they
         // share its seed, so that they compare with f(θ) on common noise.
@@ -996,7 +1025,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let length = norm(self.mem.s);
         // A model that claims a minimum near θ must have seen θ's surroundings in
         // enough directions before σ shrinks on its word.
-        let validated = self.count_within(T::from_f64(REACH)) > 2 * n;
+        let validated = self.count_within(T::from_f64(REACH)) > 2 * nearby_needed(n) - 2;
         if predicted <= T::ZERO || !predicted.is_finite() || length <= T::from_f64(1e-3) * radius {
             if validated {
                 self.st.sigma = sigma * T::HALF;

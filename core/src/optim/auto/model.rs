@@ -5,26 +5,41 @@
 //!
 //! m(u) = c + gᵀu + ½uᵀHu,
 //!
-//! fitted by weighted least squares with its curvature drawn towards a prior model m₀
+//! fitted by weighted least squares with its coefficients drawn towards a prior model m₀
 //! (the previous iteration's, moved to the current θ and σ):
 //!
-//! minimise Σᵢ wᵢ (m(uᵢ) − vᵢ)² + λ_H ‖H − H₀‖_F², with c and g free.
+//! minimise Σᵢ wᵢ (m(uᵢ) − vᵢ)² + λ_H ‖H − H₀‖_F², with c and g free
+//!
+//! (for a diagonal H, a penalty on g's change and a split of H's, below).
 //!
 //! Where the points determine the model, the data decide; where they do not (fewer
-//! points than the (n+1)(n+2)/2 coefficients of a full quadratic), the curvature changes
-//! least from the prior: the least-change principle of Powell's NEWUOA, so curvature
-//! learnt on earlier iterations is kept. With the weights wᵢ, a Gaussian of the distance
-//! to θ at the scale of σ, an overdetermined fit is a local polynomial regression whose
-//! linear and quadratic coefficients estimate the smoothed function's gradient and
-//! Hessian: points averaged over the kernel, as hodr's estimators average samples.
+//! points than the model's coefficients), the model changes least from the prior: the
+//! least-change principle of Powell's NEWUOA, so curvature learnt on earlier iterations is
+//! kept. With the weights wᵢ, a Gaussian of the distance to θ at the scale of σ, an
+//! overdetermined fit is a local polynomial regression whose linear and quadratic
+//! coefficients estimate the smoothed function's gradient and Hessian: points averaged
+//! over the kernel, as hodr's estimators average samples.
 //!
 //! The fit is solved in its dual (kernel) form, an m×m system for m points, so that its
-//! cost does not depend on the number of coefficients: with ψᵢ the weighted quadratic
-//! features, K = ΨΨᵀ/λ_H + I and P the weighted linear features √wᵢ(1, uᵢ), the saddle
-//! system K α + P β = r, Pᵀα = 0 ([`fit`]). The features' inner product is (a·b)² for the
-//! full Hessian with the Frobenius penalty and Σⱼ aⱼ²bⱼ² for a diagonal Hessian (large
-//! n); the Hessian then moves by (1/(2λ_H)) Σᵢ √wᵢ αᵢ uᵢuᵢᵀ (its diagonal only, for the
-//! diagonal model).
+//! cost does not depend on the number of coefficients: with ψᵢ the weighted penalised
+//! features, K = ΨΨᵀ/λ_H + I and P the weighted free features, the saddle system
+//! K α + P β = r, Pᵀα = 0 ([`fit`]).
+//!
+//! * **Full Hessian** (n ≤ [`super::FULL_MODEL_MAX_DIM`]): ψ holds the quadratic features,
+//!   whose inner product under the Frobenius penalty is (a·b)²/4, and P = √wᵢ(1, uᵢ). The
+//!   Hessian moves by (1/(2λ_H)) Σᵢ √wᵢ αᵢ uᵢuᵢᵀ.
+//! * **Diagonal Hessian** (large n): H = h̄I + diag(d), a common curvature h̄ (feature
+//!   ½‖u‖²) and per-coordinate deviations d (features ½uⱼ², weighted by ω), and the
+//!   gradient is penalised too (features u), so that P = √wᵢ is one column and the cost
+//!   is O(m²n + m³) whatever n. ψ's inner product is (‖a‖²‖b‖² + ωΣⱼ aⱼ²bⱼ²)/4 + a·b.
+//!   The memory holds at most [`super::DIAGONAL_MEMORY`] points, fewer than the model's
+//!   2n + 1 coefficients for large n: a fit then corrects g only along the directions
+//!   the points were drawn in, as a subspace method does, and the curvature mostly
+//!   through h̄, which every point informs. The deviations d, each seen only through
+//!   sums over random directions, are learnt in proportion to how far the memory
+//!   determines them, ω = min(1, m/(2n + 1))²: without that damping their errors
+//!   accumulate from fit to fit and the carried model diverges. H moves by
+//!   (1/(2λ_H)) Σᵢ √wᵢ αᵢ (‖uᵢ‖² + ω uᵢ²) (elementwise square), g by (1/λ_H) Σᵢ √wᵢ αᵢ uᵢ.
 
 use crate::cholesky;
 use crate::real::Real;
@@ -34,7 +49,8 @@ use crate::real::Real;
 pub(super) enum Shape {
     /// A full symmetric n×n Hessian (n ≤ [`super::FULL_MODEL_MAX_DIM`]).
     Full,
-    /// A diagonal Hessian: 2n + 1 coefficients, for large n.
+    /// A diagonal Hessian: 2n + 1 coefficients, for large n; the gradient is penalised
+    /// as the curvature is.
     Diagonal,
 }
 
@@ -45,6 +61,14 @@ impl Shape {
             Shape::Full
         } else {
             Shape::Diagonal
+        }
+    }
+
+    /// Columns of the fit's free features: (1, u) for a full Hessian, 1 for a diagonal.
+    pub(super) const fn free_columns(self, n: usize) -> usize {
+        match self {
+            Shape::Full => n + 1,
+            Shape::Diagonal => 1,
         }
     }
 
@@ -112,7 +136,15 @@ fn curvature_penalty<T: Real>() -> T {
     T::from_f64(16.0) * T::EPSILON.sqrt()
 }
 
-/// Scratch of [`fit`]: `gram` m² floats, `kp` m(n + 1), `schur` (n + 1)², `beta` n + 1.
+/// ω, the weight of a diagonal Hessian's per-coordinate deviations from its common
+/// curvature: ω = min(1, m/(2n + 1))² for a memory of m points (see the module's header).
+fn deviation_share(n: usize) -> f64 {
+    let determined = super::history_len(n) as f64 / (2 * n + 1) as f64;
+    determined.min(1.0).powi(2)
+}
+
+/// Scratch of [`fit`] for p = [`Shape::free_columns`]: `gram` m² floats, `kp` mp,
+/// `schur` p², `beta` p.
 pub(super) struct Scratch<'a, T> {
     pub gram: &'a mut [T],
     pub kp: &'a mut [T],
@@ -121,17 +153,18 @@ pub(super) struct Scratch<'a, T> {
 }
 
 /// Floats of [`Scratch`] for m points in dimension n: (gram, kp, schur, beta).
-pub(super) const fn scratch_lens(m: usize, n: usize) -> [usize; 4] {
-    [m * m, m * (n + 1), (n + 1) * (n + 1), n + 1]
+pub(super) const fn scratch_lens(shape: Shape, m: usize, n: usize) -> [usize; 4] {
+    let p = shape.free_columns(n);
+    [m * m, m * p, p * p, p]
 }
 
 /// Fits the model's change from its prior. On entry `u` holds m rows of n standardised
 /// offsets, `sw` the m square-root weights √wᵢ, `r` the m weighted residuals of the prior
 /// √wᵢ(vᵢ − m₀(uᵢ)); `g` and `h` hold the prior's g₀ and H₀ (H in `shape`'s layout).
 ///
-/// The linear part (c, g) is free and the curvature pays λ_H‖H − H₀‖²_F, as in Powell's
-/// NEWUOA: with K = ΨΨᵀ/λ_H + I over the quadratic features ψᵢ and P the weighted linear
-/// features √wᵢ(1, uᵢ), the saddle system K α + P β = r, Pᵀα = 0 is solved through K's
+/// The free part (c and, for a full Hessian, g) is unpenalised and the rest pays λ_H per
+/// squared change, as in Powell's NEWUOA: with K = ΨΨᵀ/λ_H + I over the penalised
+/// features ψᵢ and P the weighted free features (see the module's header), the saddle system K α + P β = r, Pᵀα = 0 is solved through K's
 /// Cholesky factor and the Schur complement PᵀK⁻¹P (given a ridge of √ε times its mean
 /// diagonal where the points do not determine the linear part). On success `g` and `h`
 /// hold the fitted coefficients; the scratch and `r` are overwritten.
@@ -171,6 +204,7 @@ pub(super) fn fit<T: Real>(
         beta,
     } = scratch;
     let lh = curvature_penalty::<T>();
+    let share = T::from_f64(deviation_share(n));
     let quarter_lh = T::ONE / (T::from_f64(4.0) * lh);
     let gram = &mut gram[..m * m];
     for i in 0..m {
@@ -183,10 +217,16 @@ pub(super) fn fit<T: Real>(
                     .zip(uk)
                     .fold(T::ZERO, |s, (&a, &b)| s + a * b)
                     .sq(),
-                Shape::Diagonal => ui
-                    .iter()
-                    .zip(uk)
-                    .fold(T::ZERO, |s, (&a, &b)| s + (a * b).sq()),
+                Shape::Diagonal => {
+                    let (quad, lin, na, nb) = ui.iter().zip(uk).fold(
+                        (T::ZERO, T::ZERO, T::ZERO, T::ZERO),
+                        |(q, l, na, nb), (&a, &b)| {
+                            let p = a * b;
+                            (q + p * p, l + p, na + a * a, nb + b * b)
+                        },
+                    );
+                    quad * share + na * nb + T::from_f64(4.0) * lin
+                }
             };
             let shared = groups.is_some_and(|id| id[i] == id[k]);
             let offset = if shared { T::from_f64(4.0) } else { T::ZERO };
@@ -201,7 +241,7 @@ pub(super) fn fit<T: Real>(
         return None;
     }
     // Z = K⁻¹P, column j of P being √wᵢ·(1, uᵢ)ⱼ; stored column by column.
-    let cols = n + 1;
+    let cols = shape.free_columns(n);
     let feature = |i: usize, j: usize| {
         if j == 0 {
             sw[i]
@@ -259,8 +299,8 @@ pub(super) fn fit<T: Real>(
     } else {
         T::ZERO
     };
-    for j in 0..n {
-        g[j] += beta[j + 1];
+    for j in 1..cols {
+        g[j - 1] += beta[j];
     }
     let half_lh = T::ONE / (T::TWO * lh);
     for i in 0..m {
@@ -276,8 +316,10 @@ pub(super) fn fit<T: Real>(
                 }
             }
             Shape::Diagonal => {
+                let common = c * ui.iter().fold(T::ZERO, |s, &x| s + x * x) * half_lh;
                 for j in 0..n {
-                    h[j] += c * ui[j].sq() * half_lh;
+                    h[j] += share * c * ui[j].sq() * half_lh + common;
+                    g[j] += T::TWO * c * ui[j] * half_lh;
                 }
             }
         }
@@ -311,7 +353,7 @@ mod tests {
         }
 
         fn as_mut(&mut self, m: usize, n: usize) -> Scratch<'_, f64> {
-            let [gram, kp, schur, beta] = scratch_lens(m, n);
+            let [gram, kp, schur, beta] = scratch_lens(Shape::Full, m, n);
             Scratch {
                 gram: &mut self.gram[..gram],
                 kp: &mut self.kp[..kp],
@@ -367,6 +409,59 @@ mod tests {
         }
         for k in 0..n * n {
             assert!((h[k] - h_true[k]).abs() < 1e-5, "H = {h:?}");
+        }
+    }
+
+    /// The diagonal model (common curvature, deviations, penalised gradient) recovers a
+    /// separable quadratic from more points than its 2n + 1 coefficients.
+    #[test]
+    fn the_diagonal_model_recovers_a_separable_quadratic() {
+        let n = 3;
+        let g_true = [0.5, -1.0, 2.0];
+        let h_true = [1.0, 4.0, 0.25];
+        let f = |u: &[f64]| {
+            let lin: f64 = u.iter().zip(&g_true).map(|(a, b)| a * b).sum();
+            lin + Shape::Diagonal.half_quadratic(&h_true, u)
+        };
+        let m = 20;
+        let mut state = 987654321u64;
+        let mut u = [0.0; 60];
+        for x in u.iter_mut() {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            *x = (state >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0;
+        }
+        let sw = [1.0; 20];
+        let mut r = [0.0; 20];
+        for (i, ri) in r.iter_mut().enumerate() {
+            *ri = f(&u[i * n..(i + 1) * n]);
+        }
+        let (mut g, mut h) = ([0.0; 3], [0.0; 3]);
+        let mut buffers = Buffers::new();
+        let [gram, kp, schur, beta] = scratch_lens(Shape::Diagonal, m, n);
+        let scratch = Scratch {
+            gram: &mut buffers.gram[..gram],
+            kp: &mut buffers.kp[..kp],
+            schur: &mut buffers.schur[..schur],
+            beta: &mut buffers.beta[..beta],
+        };
+        let noise = fit(
+            Shape::Diagonal,
+            n,
+            m,
+            &u,
+            &sw,
+            None,
+            &mut r,
+            scratch,
+            &mut g,
+            &mut h,
+        );
+        assert!(noise.is_some_and(|e| e < 1e-4), "noise {noise:?}");
+        for j in 0..n {
+            assert!((g[j] - g_true[j]).abs() < 1e-4, "g = {g:?}");
+            assert!((h[j] - h_true[j]).abs() < 1e-4, "H = {h:?}");
         }
     }
 
