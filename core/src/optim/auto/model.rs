@@ -140,7 +140,33 @@ fn curvature_penalty<T: Real>() -> T {
 /// curvature: ω = min(1, m/(2n + 1))² for a memory of m points (see the module's header).
 fn deviation_share(n: usize) -> f64 {
     let determined = super::history_len(n) as f64 / (2 * n + 1) as f64;
-    determined.min(1.0).powi(2)
+    let share = determined.min(1.0);
+    share * share
+}
+
+/// (Σⱼ (aⱼbⱼ)², Σⱼ aⱼbⱼ), summed in four interleaved partial sums so that the compiler
+/// can vectorise the loop (a single running sum fixes the order of every addition).
+fn products<T: Real>(a: &[T], b: &[T]) -> (T, T) {
+    let mut quad = [T::ZERO; 4];
+    let mut lin = [T::ZERO; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for lane in 0..4 {
+            let p = x[lane] * y[lane];
+            quad[lane] += p * p;
+            lin[lane] += p;
+        }
+    }
+    for (lane, (&x, &y)) in ra.iter().zip(rb).enumerate() {
+        let p = x * y;
+        quad[lane] += p * p;
+        lin[lane] += p;
+    }
+    (
+        (quad[0] + quad[1]) + (quad[2] + quad[3]),
+        (lin[0] + lin[1]) + (lin[2] + lin[3]),
+    )
 }
 
 /// Scratch of [`fit`] for p = [`Shape::free_columns`]: `gram` m² floats, `kp` mp,
@@ -207,6 +233,12 @@ pub(super) fn fit<T: Real>(
     let share = T::from_f64(deviation_share(n));
     let quarter_lh = T::ONE / (T::from_f64(4.0) * lh);
     let gram = &mut gram[..m * m];
+    if shape == Shape::Diagonal {
+        // ‖uᵢ‖², kept in `kp` until the Gram matrix is built.
+        for (i, norm) in kp[..m].iter_mut().enumerate() {
+            *norm = products(&u[i * n..(i + 1) * n], &u[i * n..(i + 1) * n]).1;
+        }
+    }
     for i in 0..m {
         let ui = &u[i * n..(i + 1) * n];
         for k in 0..=i {
@@ -218,14 +250,8 @@ pub(super) fn fit<T: Real>(
                     .fold(T::ZERO, |s, (&a, &b)| s + a * b)
                     .sq(),
                 Shape::Diagonal => {
-                    let (quad, lin, na, nb) = ui.iter().zip(uk).fold(
-                        (T::ZERO, T::ZERO, T::ZERO, T::ZERO),
-                        |(q, l, na, nb), (&a, &b)| {
-                            let p = a * b;
-                            (q + p * p, l + p, na + a * a, nb + b * b)
-                        },
-                    );
-                    quad * share + na * nb + T::from_f64(4.0) * lin
+                    let (quad, lin) = products(ui, uk);
+                    quad * share + kp[i] * kp[k] + T::from_f64(4.0) * lin
                 }
             };
             let shared = groups.is_some_and(|id| id[i] == id[k]);
