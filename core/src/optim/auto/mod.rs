@@ -403,7 +403,7 @@ pub const fn buffer_len(n: usize) -> usize {
     sum
 }
 
-pub(super) const fn history_len(n: usize) -> usize {
+const fn history_len(n: usize) -> usize {
     let m = Shape::for_dim(n).coefficients(n) + n + 1;
     match Shape::for_dim(n) {
         Shape::Full => m,

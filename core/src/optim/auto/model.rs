@@ -378,8 +378,8 @@ mod tests {
             }
         }
 
-        fn as_mut(&mut self, m: usize, n: usize) -> Scratch<'_, f64> {
-            let [gram, kp, schur, beta] = scratch_lens(Shape::Full, m, n);
+        fn as_mut(&mut self, shape: Shape, m: usize, n: usize) -> Scratch<'_, f64> {
+            let [gram, kp, schur, beta] = scratch_lens(shape, m, n);
             Scratch {
                 gram: &mut self.gram[..gram],
                 kp: &mut self.kp[..kp],
@@ -387,6 +387,18 @@ mod tests {
                 beta: &mut self.beta[..beta],
             }
         }
+    }
+
+    /// 20 pseudo-random points in [−2, 2)³ (a linear congruential stream from `seed`).
+    fn points(mut state: u64) -> [f64; 60] {
+        let mut u = [0.0; 60];
+        for x in u.iter_mut() {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            *x = (state >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0;
+        }
+        u
     }
 
     /// A quadratic is recovered from enough points, whatever the prior.
@@ -401,14 +413,7 @@ mod tests {
         };
         // 20 pseudo-random points (more than the 10 coefficients).
         let m = 20;
-        let mut state = 12345u64;
-        let mut u = [0.0; 60];
-        for x in u.iter_mut() {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            *x = (state >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0;
-        }
+        let u = points(12345);
         let sw = [1.0; 20];
         let mut r = [0.0; 20];
         for (i, ri) in r.iter_mut().enumerate() {
@@ -424,7 +429,7 @@ mod tests {
                 &sw,
                 None,
                 &mut r,
-                Buffers::new().as_mut(m, n),
+                Buffers::new().as_mut(Shape::Full, m, n),
                 &mut g,
                 &mut h
             )
@@ -450,28 +455,13 @@ mod tests {
             lin + Shape::Diagonal.half_quadratic(&h_true, u)
         };
         let m = 20;
-        let mut state = 987654321u64;
-        let mut u = [0.0; 60];
-        for x in u.iter_mut() {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            *x = (state >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0;
-        }
+        let u = points(987654321);
         let sw = [1.0; 20];
         let mut r = [0.0; 20];
         for (i, ri) in r.iter_mut().enumerate() {
             *ri = f(&u[i * n..(i + 1) * n]);
         }
         let (mut g, mut h) = ([0.0; 3], [0.0; 3]);
-        let mut buffers = Buffers::new();
-        let [gram, kp, schur, beta] = scratch_lens(Shape::Diagonal, m, n);
-        let scratch = Scratch {
-            gram: &mut buffers.gram[..gram],
-            kp: &mut buffers.kp[..kp],
-            schur: &mut buffers.schur[..schur],
-            beta: &mut buffers.beta[..beta],
-        };
         let noise = fit(
             Shape::Diagonal,
             n,
@@ -480,7 +470,7 @@ mod tests {
             &sw,
             None,
             &mut r,
-            scratch,
+            Buffers::new().as_mut(Shape::Diagonal, m, n),
             &mut g,
             &mut h,
         );
@@ -530,7 +520,7 @@ mod tests {
             &sw,
             Some(&ids),
             &mut r,
-            Buffers::new().as_mut(m, n),
+            Buffers::new().as_mut(Shape::Full, m, n),
             &mut g,
             &mut h,
         );
@@ -562,7 +552,7 @@ mod tests {
                 &sw,
                 None,
                 &mut r,
-                Buffers::new().as_mut(2, n),
+                Buffers::new().as_mut(Shape::Full, 2, n),
                 &mut g,
                 &mut h
             )
