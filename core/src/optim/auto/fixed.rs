@@ -95,10 +95,10 @@ mod tests {
                 + p * p
                 + p
                 + 12 * n
-                + 4 * h
+                + 7 * h
                 + r * (n + 1)
                 + n * n
-                + 5 * f;
+                + 2 * f;
             assert_eq!(buffer_len(n), formula, "n = {n}");
         }
     }

@@ -8,16 +8,23 @@
 //! region stretches along it, and the isotropic σ that fits the valley's width no
 //! longer limits the steps along it.
 //!
-//! C moves towards its target by a fraction [`rate`]`(n)` per update and is renormalised to
-//! det C = 1, so σ alone carries the scale. Matrices are n×n row-major.
+//! C has the model's [`Shape`]: a full model learns a full C (n×n row-major, L = Q√E
+//! from C = QEQᵀ), a diagonal model a diagonal one (n floats, L = √C), which whitens
+//! scales that differ per coordinate but not rotated valleys. C moves towards its target
+//! by a fraction [`rate`] per update and is renormalised to det C = 1, so σ alone
+//! carries the scale.
 
+use super::model::Shape;
 use super::trust::jacobi;
 use crate::real::Real;
 
 /// Fraction of the way C moves towards the target of one update in dimension n:
-/// 1/(2n), at most 0.3. C has n(n+1)/2 entries and each model's curvature is a noisy
-/// view of them (a rough f's local curvature changes along the path), so like
-/// CMA-ES's covariance it averages over more updates as n grows.
+/// 1/(2n), at most 0.3. A full C has n(n+1)/2 entries and each model's curvature is a
+/// noisy view of them (a rough f's local curvature changes along the path), so like
+/// CMA-ES's covariance it averages over more updates as n grows. A diagonal C has only
+/// n entries, but a diagonal model's curvatures are noisier still — on a rotated f they
+/// absorb the off-diagonal curvature along whatever directions were sampled — so it
+/// averages at the same rate.
 pub fn rate(n: usize) -> f64 {
     (0.5 / n as f64).min(0.3)
 }
@@ -28,67 +35,102 @@ pub fn floor<T: Real>() -> T {
     T::EPSILON.sqrt() * T::EPSILON.sqrt().sqrt()
 }
 
-/// Sets C, L and L⁻¹ (each n×n) to the identity: no shape learnt.
-pub fn reset<T: Real>(c: &mut [T], l: &mut [T], li: &mut [T], n: usize) {
+/// Sets C, L and L⁻¹ (each of [`Shape::hessian_len`] floats) to the identity: no shape
+/// learnt.
+pub fn reset<T: Real>(shape: Shape, c: &mut [T], l: &mut [T], li: &mut [T], n: usize) {
     for m in [c, l, li] {
-        for (k, x) in m.iter_mut().enumerate() {
-            *x = if k % (n + 1) == 0 { T::ONE } else { T::ZERO };
+        match shape {
+            Shape::Full => {
+                for (k, x) in m.iter_mut().enumerate() {
+                    *x = if k % (n + 1) == 0 { T::ONE } else { T::ZERO };
+                }
+            }
+            Shape::Diagonal => m.fill(T::ONE),
         }
     }
 }
 
-/// out = L⁻¹d for the whitening `li` (= L⁻¹).
-pub fn whiten<T: Real>(li: &[T], d: &[T], out: &mut [T]) {
+/// out = Md for M = L or L⁻¹ (`m`).
+pub fn apply<T: Real>(shape: Shape, m: &[T], d: &[T], out: &mut [T]) {
     let n = d.len();
-    for (i, o) in out.iter_mut().enumerate().take(n) {
-        *o = (0..n).fold(T::ZERO, |s, j| s + li[i * n + j] * d[j]);
+    match shape {
+        Shape::Full => {
+            for (i, o) in out.iter_mut().enumerate().take(n) {
+                *o = (0..n).fold(T::ZERO, |s, j| s + m[i * n + j] * d[j]);
+            }
+        }
+        Shape::Diagonal => {
+            for ((o, &a), &b) in out.iter_mut().zip(m).zip(d) {
+                *o = a * b;
+            }
+        }
+    }
+}
+
+/// out = Mᵀd for M = L or L⁻¹ (`m`).
+pub fn apply_transposed<T: Real>(shape: Shape, m: &[T], d: &[T], out: &mut [T]) {
+    let n = d.len();
+    match shape {
+        Shape::Full => {
+            for (i, o) in out.iter_mut().enumerate().take(n) {
+                *o = (0..n).fold(T::ZERO, |s, k| s + m[k * n + i] * d[k]);
+            }
+        }
+        Shape::Diagonal => apply(shape, m, d, out),
     }
 }
 
 /// ‖L⁻¹(x − y)‖ without scratch.
-pub fn whitened_distance<T: Real>(li: &[T], x: &[T], y: &[T]) -> T {
+pub fn whitened_distance<T: Real>(shape: Shape, li: &[T], x: &[T], y: &[T]) -> T {
     let n = x.len();
-    (0..n)
-        .fold(T::ZERO, |s, i| {
+    match shape {
+        Shape::Full => (0..n).fold(T::ZERO, |s, i| {
             let row = (0..n).fold(T::ZERO, |r, j| r + li[i * n + j] * (x[j] - y[j]));
             s + row.sq()
-        })
-        .sqrt()
+        }),
+        Shape::Diagonal => (0..n).fold(T::ZERO, |s, i| s + (li[i] * (x[i] - y[i])).sq()),
+    }
+    .sqrt()
 }
 
-/// The j-th column of L (the image of the j-th whitened axis).
-pub fn column<T: Real>(l: &[T], n: usize, j: usize) -> impl Iterator<Item = T> + '_ {
-    (0..n).map(move |i| l[i * n + j])
-}
-
-/// y = Lᵀ M L (or L⁻ᵀ M L⁻¹ with `li`): the matrix `m` seen through `l`, written to
-/// `out`, with `tmp` (n²) as scratch.
-pub fn congruence<T: Real>(l: &[T], m: &[T], n: usize, tmp: &mut [T], out: &mut [T]) {
-    // tmp = M L
-    for i in 0..n {
-        for j in 0..n {
-            tmp[i * n + j] = (0..n).fold(T::ZERO, |s, k| s + m[i * n + k] * l[k * n + j]);
+/// out = Lᵀ H L (or L⁻ᵀ H L⁻¹ with `li`): the Hessian `h` of the same shape seen
+/// through `l`, with `tmp` (n², full only) as scratch.
+pub fn congruence<T: Real>(shape: Shape, l: &[T], h: &[T], n: usize, tmp: &mut [T], out: &mut [T]) {
+    match shape {
+        Shape::Full => {
+            // tmp = H L
+            for i in 0..n {
+                for j in 0..n {
+                    tmp[i * n + j] = (0..n).fold(T::ZERO, |s, k| s + h[i * n + k] * l[k * n + j]);
+                }
+            }
+            // out = Lᵀ tmp
+            for i in 0..n {
+                for j in 0..n {
+                    out[i * n + j] = (0..n).fold(T::ZERO, |s, k| s + l[k * n + i] * tmp[k * n + j]);
+                }
+            }
+        }
+        Shape::Diagonal => {
+            for i in 0..n {
+                out[i] = l[i] * h[i] * l[i];
+            }
         }
     }
-    // out = Lᵀ tmp
-    for i in 0..n {
-        for j in 0..n {
-            out[i * n + j] = (0..n).fold(T::ZERO, |s, k| s + l[k * n + i] * tmp[k * n + j]);
-        }
-    }
 }
 
-/// Scratch of [`update`]: three n×n matrices.
+/// Scratch of [`update`]: three n×n matrices (full metrics only; empty for diagonal).
 pub struct Scratch<'a, T> {
     pub a: &'a mut [T],
     pub v: &'a mut [T],
     pub w: &'a mut [T],
 }
 
-/// Moves C towards the shape of the curvature `h` (the model's Hessian in parameter
-/// units, any scale) and refreshes L and L⁻¹. Leaves everything unchanged when `h` has
-/// no finite, non-zero curvature.
+/// Moves C towards the shape of the curvature `h` (the model's Hessian of the same
+/// shape, in parameter units, any scale) and refreshes L and L⁻¹. Leaves everything
+/// unchanged when `h` has no finite, non-zero curvature.
 pub fn update<T: Real>(
+    shape: Shape,
     c: &mut [T],
     l: &mut [T],
     li: &mut [T],
@@ -96,26 +138,33 @@ pub fn update<T: Real>(
     n: usize,
     scratch: Scratch<'_, T>,
 ) {
-    let Scratch { a, v, w } = scratch;
-    if h[..n * n].iter().any(|x| !x.is_finite()) {
+    let len = shape.hessian_len(n);
+    if h[..len].iter().any(|x| !x.is_finite()) {
         return;
     }
+    let rate = T::from_f64(rate(n));
+    if shape == Shape::Diagonal {
+        let Some(mean) = target_mean(n, |i| h[i]) else {
+            return;
+        };
+        let (top, low) = mean.1;
+        for i in 0..n {
+            let target = top / h[i].abs().max(low);
+            c[i] = (T::ONE - rate) * c[i] + rate * target / mean.0;
+        }
+        refresh_diagonal(c, l, li, n);
+        return;
+    }
+    let Scratch { a, v, w } = scratch;
     a[..n * n].copy_from_slice(&h[..n * n]);
     jacobi(a, v, n);
-    let top = (0..n).fold(T::ZERO, |m, i| m.max(a[i * n + i].abs()));
-    if top <= T::ZERO || !top.is_finite() {
+    let Some((mean, (top, low))) = target_mean(n, |i| a[i * n + i]) else {
         return;
-    }
-    let low = floor::<T>() * top;
+    };
     // Target C ∝ V diag(1/|λ|) Vᵀ with det 1: divide by the geometric mean.
-    let mut log_mean = T::ZERO;
     for i in 0..n {
-        let e = T::ONE / a[i * n + i].abs().max(low) * top;
-        w[i] = e;
-        log_mean += e.ln();
+        w[i] = T::ONE / a[i * n + i].abs().max(low) * top;
     }
-    let mean = (log_mean / T::from_usize(n)).exp();
-    let rate = T::from_f64(rate(n));
     for i in 0..n {
         for j in 0..n {
             let target = (0..n).fold(T::ZERO, |s, k| s + v[i * n + k] * w[k] * v[j * n + k]);
@@ -125,6 +174,20 @@ pub fn update<T: Real>(
     refresh(c, l, li, n, a, v);
 }
 
+/// For curvatures λᵢ = `lambda(i)`: the geometric mean of the target axes
+/// top/max(|λᵢ|, low), with top = maxᵢ |λᵢ| and low = [`floor`]·top, and (top, low);
+/// `None` when top is zero or not finite.
+fn target_mean<T: Real>(n: usize, lambda: impl Fn(usize) -> T) -> Option<(T, (T, T))> {
+    let top = (0..n).fold(T::ZERO, |m, i| m.max(lambda(i).abs()));
+    if top <= T::ZERO || !top.is_finite() {
+        return None;
+    }
+    let low = floor::<T>() * top;
+    let log_mean = (0..n).fold(T::ZERO, |s, i| {
+        s + (T::ONE / lambda(i).abs().max(low) * top).ln()
+    });
+    Some(((log_mean / T::from_usize(n)).exp(), (top, low)))
+}
 /// Renormalises C to det 1 and sets L = Q diag(√e), L⁻¹ = diag(1/√e) Qᵀ from C = Q
 /// diag(e) Qᵀ.
 fn refresh<T: Real>(c: &mut [T], l: &mut [T], li: &mut [T], n: usize, a: &mut [T], v: &mut [T]) {
@@ -154,11 +217,28 @@ fn refresh<T: Real>(c: &mut [T], l: &mut [T], li: &mut [T], n: usize, a: &mut [T
     }
 }
 
+/// The diagonal [`refresh`]: C's entries floored at [`floor`] of the largest and
+/// divided by their geometric mean; L = √C, L⁻¹ = 1/√C.
+fn refresh_diagonal<T: Real>(c: &mut [T], l: &mut [T], li: &mut [T], n: usize) {
+    let top = c[..n].iter().fold(T::ZERO, |m, &x| m.max(x));
+    let low = floor::<T>() * top;
+    let log_mean = c[..n].iter().fold(T::ZERO, |s, &x| s + x.max(low).ln());
+    let mean = (log_mean / T::from_usize(n)).exp();
+    for i in 0..n {
+        c[i] = c[i].max(low) / mean;
+        l[i] = c[i].sqrt();
+        li[i] = T::ONE / l[i];
+    }
+}
+
 /// The length of L's longest axis, √(largest eigenvalue of C) (≥ 1 since det C = 1).
-pub fn longest_axis<T: Real>(l: &[T], n: usize) -> T {
-    (0..n)
-        .map(|j| column(l, n, j).fold(T::ZERO, |s, x| s + x.sq()).sqrt())
-        .fold(T::ONE, |m, x| m.max(x))
+pub fn longest_axis<T: Real>(shape: Shape, l: &[T], n: usize) -> T {
+    match shape {
+        Shape::Full => (0..n)
+            .map(|j| (0..n).fold(T::ZERO, |s, i| s + l[i * n + j].sq()).sqrt())
+            .fold(T::ONE, |m, x| m.max(x)),
+        Shape::Diagonal => l[..n].iter().fold(T::ONE, |m, &x| m.max(x)),
+    }
 }
 
 #[cfg(test)]
@@ -186,12 +266,12 @@ mod tests {
                 v: &mut v,
                 w: &mut w,
             };
-            update(&mut c, &mut l, &mut li, &h, n, s);
+            update(Shape::Full, &mut c, &mut l, &mut li, &h, n, s);
         }
         // LᵀHL ∝ I once C ∝ H⁻¹.
         let mut tmp = [0.0; 4];
         let mut out = [0.0; 4];
-        congruence(&l, &h, n, &mut tmp, &mut out);
+        congruence(Shape::Full, &l, &h, n, &mut tmp, &mut out);
         assert!((out[0] - out[3]).abs() < 1e-6 * out[0], "{out:?}");
         assert!(out[1].abs() < 1e-6 * out[0], "{out:?}");
         // det C = 1 and L⁻¹L = I.
@@ -202,5 +282,33 @@ mod tests {
                 assert!((p - f64::from(u8::from(i == j))).abs() < 1e-12);
             }
         }
+    }
+
+    #[test]
+    fn a_diagonal_metric_whitens_separable_scales() {
+        let n = 4;
+        let h = [1e4, 1.0, -100.0, 0.01];
+        let (mut c, mut l, mut li) = ([0.0; 4], [0.0; 4], [0.0; 4]);
+        reset(Shape::Diagonal, &mut c, &mut l, &mut li, n);
+        for _ in 0..400 {
+            let s = Scratch {
+                a: &mut [],
+                v: &mut [],
+                w: &mut [],
+            };
+            update(Shape::Diagonal, &mut c, &mut l, &mut li, &h, n, s);
+        }
+        // LᵀHL ∝ I by magnitude once C ∝ |H|⁻¹.
+        let mut out = [0.0; 4];
+        congruence(Shape::Diagonal, &l, &h, n, &mut [], &mut out);
+        for x in out {
+            assert!((x.abs() - out[0]).abs() < 1e-6 * out[0], "{out:?}");
+        }
+        // det C = 1, L⁻¹L = I, and the longest axis is the flattest coordinate's.
+        assert!((c.iter().product::<f64>() - 1.0).abs() < 1e-9);
+        for i in 0..n {
+            assert!((l[i] * li[i] - 1.0).abs() < 1e-12);
+        }
+        assert_eq!(longest_axis(Shape::Diagonal, &l, n), l[3]);
     }
 }

@@ -8,7 +8,7 @@
 //! * **Memory.** Every evaluation is kept (up to [`Auto::history_len`] points; when full,
 //!   the point farthest from θ gives way). Each iteration fits the model
 //!   m(θ + σu) = c + gᵀu + ½uᵀHu to the remembered points within reach, weighted by
-//!   w = exp(−½(z/ρ)²), z = ‖x − θ‖/(σ√n), ρ = [`REACH`], by ridge regression towards the
+//!   w = exp(−½(z/ρ)²), z = ‖L⁻¹(x − θ)‖/(σ√n), ρ = [`REACH`], by ridge regression towards the
 //!   previous iteration's model (the `model` module): an overdetermined fit averages the
 //!   points over a Gaussian of width ~σ, as hodr's estimators average samples, so the
 //!   model is that of the *smoothed* objective; an underdetermined one changes the
@@ -18,8 +18,14 @@
 //!   stays linear in n (the `model` module says how such a fit learns).
 //! * **Samples.** Where fewer than n + 1 remembered points (or half the memory, if
 //!   smaller) lie within z ≤ ρ, the iteration evaluates antithetic pairs θ ± σ√n·b along
-//!   the columns b of a random orthonormal frame (n pairs, or half the memory's worth, and
-//!   θ on the first iteration), mirrored into the bounds at the faces they cross. The two halves of a pair share a noise seed.
+//!   Lb, b the columns of a random orthonormal frame (n pairs, or half the memory's
+//!   worth, and θ on the first iteration), mirrored into the bounds at the faces they
+//!   cross. The two halves of a pair share a noise seed.
+//! * **Metric.** Samples, reach and the trust region live in whitened coordinates
+//!   u = L⁻¹(x − θ)/σ, C = LLᵀ a shape (det C = 1) that moves towards |H|⁻¹ after each
+//!   step the model predicted (the `metric` module), as CMA-ES's covariance follows its
+//!   population: ill-conditioned valleys look round. C has the model's shape: full for
+//!   n ≤ [`FULL_MODEL_MAX_DIM`], diagonal above (per-coordinate scales).
 //! * **Noise.** A stochastic objective ([`Objective::deterministic`] false) — a Monte
 //!   Carlo render — is evaluated on common random numbers: an iteration's samples, θ
 //!   beside them and its trial point share one seed (where it draws no samples, θ and
@@ -329,7 +335,7 @@ struct Memory<'b, T> {
     /// The model's gradient and Hessian in parameter directions (bounded steps).
     gx: &'b mut [T],
     hx: &'b mut [T],
-    /// The sampling metric C = LLᵀ, L and L⁻¹ (full models only; see `metric`).
+    /// The sampling metric C = LLᵀ, L and L⁻¹, of the model's shape (see `metric`).
     c: &'b mut [T],
     l: &'b mut [T],
     li: &'b mut [T],
@@ -380,18 +386,18 @@ const fn regions(n: usize) -> [usize; 35] {
         n,
         n,
         hl,
-        full,
-        full,
-        full,
+        hl,
+        hl,
+        hl,
     ]
 }
 
 /// Floats of buffer an [`Auto`] run needs in dimension n, for m = [`Auto::history_len`]
 /// points remembered:
-/// m(2n + 5) + m² + mp + p² + p + 12n + 4h + r(n + 1) + n² + 5f,
+/// m(2n + 5) + m² + mp + p² + p + 12n + 7h + r(n + 1) + n² + 2f,
 /// with, for the full model (n ≤ [`FULL_MODEL_MAX_DIM`]), h = f = n² and p = n + 1, and
-/// for the diagonal one h = n, f = 0 and p = 1; r = 2·min(n, ⌊m/2⌋) + 2 staged points. A `const fn`, so that
-/// storage can be sized at compile time ([`FixedAuto`]).
+/// for the diagonal one h = n, f = 0 and p = 1; r = 2·min(n, ⌊m/2⌋) + 2 staged points.
+/// A `const fn`, so that storage can be sized at compile time ([`FixedAuto`]).
 pub const fn buffer_len(n: usize) -> usize {
     let lens = regions(n);
     let mut sum = 0;
@@ -619,7 +625,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let mem = carve(buffer, n);
         mem.lower.fill(-T::MAX);
         mem.upper.fill(T::MAX);
-        metric::reset(mem.c, mem.l, mem.li, n);
+        metric::reset(Shape::for_dim(n), mem.c, mem.l, mem.li, n);
         Ok(Auto {
             theta,
             mem,
@@ -882,14 +888,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 sigma * root_n
             };
             // The direction Lb, in the batch's next row for now.
-            for i in 0..n {
-                let b = &self.mem.frame[k * n..(k + 1) * n];
-                self.mem.rs[i] = if self.shaped() {
-                    (0..n).fold(T::ZERO, |s, j| s + self.mem.l[i * n + j] * b[j])
-                } else {
-                    b[i]
-                };
-            }
+            metric::apply(
+                self.shape,
+                self.mem.l,
+                &self.mem.frame[k * n..(k + 1) * n],
+                self.mem.rs,
+            );
             for sign in [T::ONE, -T::ONE] {
                 for i in 0..n {
                     let x = self.theta[i] + sign * radius * self.mem.rs[i];
@@ -998,25 +1002,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let radius = root_n;
         let ok = self.trust_step(radius);
         // Project the trial point θ + σLs into the box; the step is what remains of s.
+        metric::apply(self.shape, self.mem.l, self.mem.s, self.mem.tmp);
         for i in 0..n {
-            let along = if self.shaped() {
-                (0..n).fold(T::ZERO, |acc, j| {
-                    acc + self.mem.l[i * n + j] * self.mem.s[j]
-                })
-            } else {
-                self.mem.s[i]
-            };
-            let x = (self.theta[i] + sigma * along)
+            let x = (self.theta[i] + sigma * self.mem.tmp[i])
                 .max(self.mem.lower[i])
                 .min(self.mem.upper[i]);
             self.mem.stage[i] = x;
             self.mem.rs[i] = (x - self.theta[i]) / sigma;
         }
-        if self.shaped() {
-            metric::whiten(self.mem.li, self.mem.rs, self.mem.s);
-        } else {
-            self.mem.s.copy_from_slice(self.mem.rs);
-        }
+        metric::apply(self.shape, self.mem.li, self.mem.rs, self.mem.s);
         let predicted = if ok {
             self.predicted_decrease()
         } else {
@@ -1116,18 +1110,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     fn trust_step(&mut self, radius: T) -> bool {
         let n = self.theta.len();
         let shape = self.shape;
-        let shaped = self.shaped();
         let m = &mut self.mem;
         // The model in parameter directions v = (x − θ)/σ: g_v = L⁻ᵀg, H_v = L⁻ᵀHL⁻¹.
-        if shaped {
-            for i in 0..n {
-                m.gx[i] = metric::column(m.li, n, i)
-                    .zip(m.g.iter())
-                    .fold(T::ZERO, |acc, (a, &b)| acc + a * b);
-            }
-        } else {
-            m.gx.copy_from_slice(m.g);
-        }
+        metric::apply_transposed(shape, m.li, m.g, m.gx);
         let theta = &*self.theta;
         let held = |i: usize, gx: &[T]| {
             (theta[i] <= m.lower[i] && gx[i] > T::ZERO)
@@ -1155,13 +1140,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         // Some coordinates sit on a bound they are pushed against: step in parameter
         // directions over the others, within the metric's longest axis.
-        let reach = if shaped {
-            metric::congruence(m.li, m.h, n, m.a, m.hx);
-            radius * metric::longest_axis(m.l, n)
-        } else {
-            m.hx[..shape.hessian_len(n)].copy_from_slice(m.h);
-            radius
-        };
+        metric::congruence(shape, m.li, m.h, n, m.a, m.hx);
+        let reach = radius * metric::longest_axis(shape, m.l, n);
         let gx: &[T] = m.gx;
         for (a, i) in (0..n).filter(|&i| !held(i, gx)).enumerate() {
             m.rg[a] = gx[i];
@@ -1192,11 +1172,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         for (a, i) in (0..n).filter(|&i| !held(i, gx)).enumerate() {
             m.hx[i] = m.rs[a];
         }
-        if shaped {
-            metric::whiten(m.li, &m.hx[..n], m.s);
-        } else {
-            m.s.copy_from_slice(&m.hx[..n]);
-        }
+        metric::apply(shape, m.li, &m.hx[..n], m.s);
         ok
     }
 
@@ -1347,17 +1323,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     fn reach_of(&self, k: usize) -> T {
         let n = self.theta.len();
         let x = &self.mem.xs[k * n..(k + 1) * n];
-        let d = if self.shaped() {
-            metric::whitened_distance(self.mem.li, x, self.theta)
-        } else {
-            distance(x, self.theta)
-        };
-        d / (self.st.sigma * T::from_usize(n).sqrt())
-    }
-
-    /// True when the model learns a sampling metric (full Hessian models).
-    fn shaped(&self) -> bool {
-        self.shape == Shape::Full
+        metric::whitened_distance(self.shape, self.mem.li, x, self.theta)
+            / (self.st.sigma * T::from_usize(n).sqrt())
     }
 
     fn count_within(&self, z: T) -> usize {
@@ -1424,24 +1391,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             for i in 0..n {
                 self.mem.rs[i] += self.mem.g0[i];
             }
-            if self.shaped() {
-                for i in 0..n {
-                    let lg = metric::column(self.mem.l, n, i)
-                        .zip(self.mem.rs.iter())
-                        .fold(T::ZERO, |acc, (a, &b)| acc + a * b);
-                    self.mem.g[i] = sigma * lg / scale;
-                }
-                metric::congruence(self.mem.l, self.mem.h0, n, self.mem.a, self.mem.h);
-                for k in 0..hl {
-                    self.mem.h[k] = sigma * sigma * self.mem.h[k] / scale;
-                }
-            } else {
-                for i in 0..n {
-                    self.mem.g[i] = sigma * self.mem.rs[i] / scale;
-                }
-                for k in 0..hl {
-                    self.mem.h[k] = sigma * sigma * self.mem.h0[k] / scale;
-                }
+            metric::apply_transposed(shape, self.mem.l, self.mem.rs, self.mem.g);
+            for gi in self.mem.g.iter_mut() {
+                *gi = sigma * *gi / scale;
+            }
+            metric::congruence(shape, self.mem.l, self.mem.h0, n, self.mem.a, self.mem.h);
+            for k in 0..hl {
+                self.mem.h[k] = sigma * sigma * self.mem.h[k] / scale;
             }
         } else {
             self.mem.g.fill(T::ZERO);
@@ -1460,10 +1416,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             for ((ui, &xi), &ti) in row.iter_mut().zip(x).zip(self.theta.iter()) {
                 *ui = (xi - ti) / sigma;
             }
-            if self.shape == Shape::Full {
-                self.mem.rs.copy_from_slice(row);
-                metric::whiten(self.mem.li, self.mem.rs, row);
-            }
+            self.mem.rs.copy_from_slice(row);
+            metric::apply(shape, self.mem.li, self.mem.rs, row);
             let sw = (-(z / reach).sq() / T::from_f64(4.0)).exp();
             let prior = dot(self.mem.g, row) + shape.half_quadratic(self.mem.h, row);
             self.mem.sw[m] = sw;
@@ -1500,26 +1454,21 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     fn save_prior(&mut self, scale: T, sigma: T) {
         let n = self.theta.len();
         self.mem.c0.copy_from_slice(self.theta);
-        if self.shaped() {
-            // g₀ = F L⁻ᵀg/σ, H₀ = F L⁻ᵀHL⁻¹/σ².
-            for i in 0..n {
-                self.mem.g0[i] = scale
-                    * metric::column(self.mem.li, n, i)
-                        .zip(self.mem.g.iter())
-                        .fold(T::ZERO, |acc, (a, &b)| acc + a * b)
-                    / sigma;
-            }
-            metric::congruence(self.mem.li, self.mem.h, n, self.mem.a, self.mem.h0);
-            for k in 0..n * n {
-                self.mem.h0[k] = scale * self.mem.h0[k] / (sigma * sigma);
-            }
-        } else {
-            for i in 0..n {
-                self.mem.g0[i] = scale * self.mem.g[i] / sigma;
-            }
-            for k in 0..self.shape.hessian_len(n) {
-                self.mem.h0[k] = scale * self.mem.h[k] / (sigma * sigma);
-            }
+        // g₀ = F L⁻ᵀg/σ, H₀ = F L⁻ᵀHL⁻¹/σ².
+        metric::apply_transposed(self.shape, self.mem.li, self.mem.g, self.mem.g0);
+        for g0 in self.mem.g0.iter_mut() {
+            *g0 = scale * *g0 / sigma;
+        }
+        metric::congruence(
+            self.shape,
+            self.mem.li,
+            self.mem.h,
+            n,
+            self.mem.a,
+            self.mem.h0,
+        );
+        for k in 0..self.shape.hessian_len(n) {
+            self.mem.h0[k] = scale * self.mem.h0[k] / (sigma * sigma);
         }
         self.st.has_prior = true;
     }
@@ -1538,11 +1487,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
 
     /// Moves the sampling metric towards the shape of the prior's curvature H₀.
     fn learn_metric(&mut self) {
-        if !self.shaped() {
-            return;
-        }
         let n = self.theta.len();
         metric::update(
+            self.shape,
             self.mem.c,
             self.mem.l,
             self.mem.li,
