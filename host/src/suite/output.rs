@@ -97,10 +97,11 @@ fn cell(c: &Cell) -> String {
     }
 }
 
-fn ratio(r: &FamilyRow) -> String {
-    match r.ratio {
-        Some(x) => format!("{x:.2} ({}/{})", r.ratio_problems, r.problems),
-        None => format!("— (0/{})", r.problems),
+/// A geometric-mean ratio and the problems that entered it, of `problems`.
+fn ratio(ratio: Option<f64>, entered: usize, problems: usize) -> String {
+    match ratio {
+        Some(x) => format!("{x:.2} ({entered}/{problems})"),
+        None => format!("— (0/{problems})"),
     }
 }
 
@@ -137,19 +138,20 @@ pub fn pairwise_table(method: Method, pairs: &[super::summary::PairRow]) -> Stri
 /// The per-family table (Markdown), as printed to stdout and at the top of suite.md.
 pub fn family_table(families: &[FamilyRow], reference: Method) -> String {
     let mut s = format!(
-        "| family | method | problems | runs at 1e-8 | targets reached | evals ÷ {reference} (problems) | median time |\n|---|---|---|---|---|---|---|\n"
+        "| family | method | problems | runs at 1e-8 | targets reached | evals ÷ {reference} (problems) | aRT ÷ {reference} (problems) | median time |\n|---|---|---|---|---|---|---|---|\n"
     );
     for r in families {
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {}/{} | {:.0} % | {} | {} |",
+            "| {} | {} | {} | {}/{} | {:.0} % | {} | {} | {} |",
             r.family,
             r.method,
             r.problems,
             r.final_successes,
             r.runs,
             100.0 * r.targets_reached as f64 / r.targets.max(1) as f64,
-            ratio(r),
+            ratio(r.ratio, r.ratio_problems, r.problems),
+            ratio(r.art_ratio, r.art_problems, r.problems),
             seconds(r.median_time),
         );
     }
@@ -209,7 +211,11 @@ pub fn write_markdown(
          (\"—\": half or more never did); (s/N) is runs reaching it. The ratio column is the \
          geometric mean over problems of a method's median evaluations over the reference's, \
          each problem at the hardest f-target both reach (so read it with the success counts); \
-         (k/m): problems with such a target. `paramNN`: NN % parameter-error reduction.\n\n",
+         (k/m): problems with such a target. The aRT column is the same mean of aRT ratios \
+         (average running time, as COCO reports it: the evaluations of all runs, a failed \
+         run's whole run, per run that reached the target), each problem at the hardest \
+         f-target both reach in at least one run: it counts the runs that failed. \
+         `paramNN`: NN % parameter-error reduction.\n\n",
     );
     md.push_str("## By family\n\n");
     md.push_str(&family_table(families, reference));

@@ -12,7 +12,15 @@
 //!   the reference method's), each problem taken at the hardest f-target both medians
 //!   reach (problems where they share none are left out and counted separately); the
 //!   runs reaching the final target 10⁻⁸; the fraction of (problem, seed, f-target)
-//!   triples reached; the median wall time of a run.
+//!   triples reached; the median wall time of a run. Beside the median ratio, the same
+//!   geometric mean of aRT ratios, each problem at the hardest f-target both methods
+//!   reach in at least one run: a median says nothing about a problem where one method
+//!   succeeds in 2 runs of 5 and the other in 4, and its hardest common target may be one
+//!   the start already meets; aRT counts the failures.
+//! * aRT (average running time, as the COCO platform reports it): the evaluations all
+//!   runs spent — a successful run's evaluations to the target, a failed run's whole
+//!   run — divided by the successful runs: the expected cost of reaching the target by
+//!   restarting the method from fresh seeds until it does.
 
 use super::methods::Method;
 use super::problem::{Family, Problem};
@@ -65,6 +73,9 @@ pub struct Cell {
     pub median: Option<f64>,
     /// Runs that reached the target.
     pub successes: usize,
+    /// aRT: evaluations of all runs (to the target, or all of a failed run's) per
+    /// success; `None` without a success.
+    pub art: Option<f64>,
     /// Runs.
     pub runs: usize,
 }
@@ -99,10 +110,17 @@ pub fn rows(problems: &[Problem], methods: &[Method], runs: &[Run]) -> Vec<Row> 
                 .map(|t| {
                     let v: Vec<Option<f64>> =
                         reached.iter().map(|r| r[t].map(|e| e as f64)).collect();
+                    let successes = v.iter().filter(|x| x.is_some()).count();
+                    let spent: f64 = v
+                        .iter()
+                        .zip(&mine)
+                        .map(|(x, r)| x.unwrap_or(r.trace.evaluations as f64))
+                        .sum();
                     Cell {
                         median: median(&v),
-                        successes: v.iter().filter(|x| x.is_some()).count(),
+                        successes,
                         runs: v.len(),
+                        art: (successes > 0).then(|| spent / successes as f64),
                     }
                 })
                 .collect();
@@ -131,6 +149,11 @@ pub struct FamilyRow {
     pub ratio: Option<f64>,
     /// Problems that entered the ratio.
     pub ratio_problems: usize,
+    /// Geometric mean of the aRT ratio to the reference, if any problem had a target
+    /// both reached in some run.
+    pub art_ratio: Option<f64>,
+    /// Problems that entered the aRT ratio.
+    pub art_problems: usize,
     /// Runs reaching the final target 10⁻⁸.
     pub final_successes: usize,
     /// Runs.
@@ -143,10 +166,27 @@ pub struct FamilyRow {
     pub median_time: f64,
 }
 
-/// ln(median evaluations of each row ÷ those of `reference` on the same problem), each
-/// at the hardest f-target both medians reach; problems without such a target are left
-/// out.
-fn log_ratios(mine: &[&Row], rows: &[Row], reference: Method) -> Vec<f64> {
+/// What a ratio compares: median evaluations or aRT.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Statistic {
+    /// [`Cell::median`].
+    Median,
+    /// [`Cell::art`].
+    Art,
+}
+
+impl Statistic {
+    fn of(self, cell: &Cell) -> Option<f64> {
+        match self {
+            Statistic::Median => cell.median,
+            Statistic::Art => cell.art,
+        }
+    }
+}
+
+/// ln(`statistic` of each row ÷ that of `reference` on the same problem), each at the
+/// hardest f-target where both have it; problems without such a target are left out.
+fn log_ratios(mine: &[&Row], rows: &[Row], reference: Method, statistic: Statistic) -> Vec<f64> {
     let mut logs = Vec::new();
     for r in mine {
         let Some(base) = rows
@@ -157,7 +197,7 @@ fn log_ratios(mine: &[&Row], rows: &[Row], reference: Method) -> Vec<f64> {
         };
         let common = (0..F_TARGETS.len())
             .rev()
-            .find_map(|t| Some((r.cells[t].median?, base.cells[t].median?)));
+            .find_map(|t| Some((statistic.of(&r.cells[t])?, statistic.of(&base.cells[t])?)));
         if let Some((a, b)) = common {
             logs.push((a / b).ln());
         }
@@ -208,10 +248,8 @@ pub fn pairwise(
             .iter()
             .filter(|&&m| m != method)
             .map(|&m| {
-                let logs = log_ratios(&mine, rows, m);
-                let mean = (!logs.is_empty())
-                    .then(|| (logs.iter().sum::<f64>() / logs.len() as f64).exp());
-                (m, mean, logs.len())
+                let logs = log_ratios(&mine, rows, m, Statistic::Median);
+                (m, geometric_mean(&logs), logs.len())
             })
             .collect();
         out.push(PairRow { group: g, ratios });
@@ -239,7 +277,8 @@ pub fn families(
             if mine.is_empty() {
                 continue;
             }
-            let logs = log_ratios(&mine, rows, reference);
+            let logs = log_ratios(&mine, rows, reference, Statistic::Median);
+            let art_logs = log_ratios(&mine, rows, reference, Statistic::Art);
             let my_runs: Vec<&Run> = runs
                 .iter()
                 .filter(|r| r.method == m && problems[r.problem].family == family)
@@ -250,9 +289,10 @@ pub fn families(
                 family,
                 method: m,
                 problems: mine.len(),
-                ratio: (!logs.is_empty())
-                    .then(|| (logs.iter().sum::<f64>() / logs.len() as f64).exp()),
+                ratio: geometric_mean(&logs),
                 ratio_problems: logs.len(),
+                art_ratio: geometric_mean(&art_logs),
+                art_problems: art_logs.len(),
                 final_successes: reached.iter().filter(|r| r[last].is_some()).count(),
                 runs: my_runs.len(),
                 targets_reached: reached
@@ -265,4 +305,61 @@ pub fn families(
         }
     }
     out
+}
+
+/// exp(mean of `logs`), `None` when empty.
+fn geometric_mean(logs: &[f64]) -> Option<f64> {
+    (!logs.is_empty()).then(|| (logs.iter().sum::<f64>() / logs.len() as f64).exp())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::bbob;
+    use super::super::trace::{Event, Trace};
+    use super::*;
+
+    fn run(seed: usize, evaluations: usize, best: &[(usize, f64)]) -> Run {
+        Run {
+            problem: 0,
+            method: Method::Auto,
+            seed,
+            trace: Trace {
+                events: best
+                    .iter()
+                    .map(|&(evaluation, f)| Event {
+                        evaluation,
+                        f,
+                        param_error: 1.0,
+                    })
+                    .collect(),
+                evaluations,
+                initial_error: 1.0,
+                time: 0.0,
+                stopped: None,
+            },
+        }
+    }
+
+    /// aRT counts a failed run's whole run; the median counts it as +∞.
+    #[test]
+    fn art_counts_failed_runs() {
+        let problems = [bbob::problem(1, 2, 1, 10)];
+        let runs = [
+            run(0, 10, &[(1, 50.0), (5, 5.0)]),
+            run(1, 12, &[(1, 50.0)]),
+            run(2, 8, &[(1, 50.0), (7, 0.5)]),
+        ];
+        let rows = rows(&problems, &[Method::Auto], &runs);
+        // Target 10¹: runs 0 and 2 at evaluations 5 and 7, run 1 never.
+        let cell = rows[0].cells[0];
+        assert_eq!((cell.successes, cell.runs), (2, 3));
+        assert_eq!(cell.median, Some(7.0));
+        assert_eq!(cell.art, Some((5.0 + 12.0 + 7.0) / 2.0));
+        // Target 10⁰: run 2 alone; the median does not exist, aRT does.
+        let cell = rows[0].cells[1];
+        assert_eq!(cell.median, None);
+        assert_eq!(cell.art, Some(10.0 + 12.0 + 7.0));
+        // Target 10⁻¹: no run; neither exists.
+        assert_eq!(rows[0].cells[2].art, None);
+    }
 }
