@@ -152,6 +152,9 @@ enum Command {
         /// Dimensions to run (comma-separated; default every family's own: BBOB 2, 5, 10, 20, plateau 2, 4, 8, integer 2, 5, 10, flat 6, tasks 2). BBOB runs at any n ≥ 2, e.g. 40,100; the other families only at their own.
         #[arg(long, value_delimiter = ',')]
         dims: Vec<usize>,
+        /// BBOB functions (comma-separated numbers; default all): 1, 2, 6, 7, 8, 10, 13, 15.
+        #[arg(long, value_delimiter = ',')]
+        functions: Vec<u32>,
         /// Methods (comma-separated; default all): Auto, CMA-ES, BOBYQA, FR22.
         #[arg(long, value_delimiter = ',')]
         methods: Vec<String>,
@@ -621,6 +624,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
         Command::Suite {
             families,
             dims,
+            functions,
             methods,
             seeds,
             budget_per_dim,
@@ -638,7 +642,8 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
                 quick,
                 out,
             )?
-            .with_jobs(jobs)?;
+            .with_jobs(jobs)?
+            .with_functions(&functions)?;
             let outcome = suite::run(&config, interrupt, true)?;
             if outcome.interrupted {
                 eprintln!("interrupted: wrote the finished runs");

@@ -295,6 +295,31 @@ fn chosen_dimensions_select_bbob_anywhere_and_the_rest_at_their_own() {
     );
 }
 
+/// `--functions` keeps the chosen BBOB functions, in the suite's order, and the other
+/// families whole.
+#[test]
+fn chosen_functions_select_bbob_problems() {
+    let config = Config::from_args(&[], &[], &[], None, None, true, "unused".into())
+        .unwrap()
+        .with_functions(&[10, 2])
+        .unwrap();
+    let problems = suite::catalogue(&config).unwrap();
+    let bbob: Vec<&str> = problems
+        .iter()
+        .filter(|p| p.family == suite::problem::Family::Bbob)
+        .map(|p| &p.name[..8])
+        .collect();
+    assert!(!bbob.is_empty());
+    let first_f10 = bbob.iter().position(|n| *n == "bbob-f10").unwrap();
+    assert!(bbob[..first_f10].iter().all(|n| *n == "bbob-f02"));
+    assert!(bbob[first_f10..].iter().all(|n| *n == "bbob-f10"));
+    assert!(
+        problems
+            .iter()
+            .any(|p| p.family == suite::problem::Family::Plateau)
+    );
+}
+
 #[test]
 fn bad_suite_arguments_fail_with_one_line() {
     for (args, culprit) in [
@@ -306,6 +331,15 @@ fn bad_suite_arguments_fail_with_one_line() {
         (&["suite", "--seeds", "0"][..], "seeds"),
         (&["suite", "--seeds", "many"][..], "many"),
         (&["suite", "--jobs", "0"][..], "jobs"),
+        (&["suite", "--functions", "3"][..], "function 3"),
+        (
+            &["suite", "--functions", "2,2"][..],
+            "function 2 listed twice",
+        ),
+        (
+            &["suite", "--families", "plateau", "--functions", "2"][..],
+            "bbob",
+        ),
     ] {
         let out = hodr(args);
         assert!(!out.status.success(), "{args:?}");

@@ -68,6 +68,8 @@ pub struct Config {
     /// `None`: every family's own (with `quick`, those up to [`QUICK_MAX_DIM`], and the
     /// flat problem).
     pub dims: Option<Vec<usize>>,
+    /// BBOB functions to run, in [`bbob::IDS`] order; `None`: all of them.
+    pub functions: Option<Vec<u32>>,
     /// Methods, in [`Method::ALL`] order.
     pub methods: Vec<Method>,
     /// Seeds per problem.
@@ -96,6 +98,31 @@ impl Config {
             bail!("--jobs must be at least 1");
         }
         self.jobs = jobs;
+        Ok(self)
+    }
+
+    /// Runs only the BBOB functions `ids` (e.g. 2 and 10); empty: all of them.
+    ///
+    /// # Errors
+    /// A one-line message naming the culprit: a function the suite does not define, one
+    /// listed twice, or functions chosen without the BBOB family.
+    pub fn with_functions(mut self, ids: &[u32]) -> Result<Config> {
+        if ids.is_empty() {
+            self.functions = None;
+            return Ok(self);
+        }
+        if !self.families.contains(&Family::Bbob) {
+            bail!("--functions selects BBOB functions, but the bbob family is not selected");
+        }
+        for (k, id) in ids.iter().enumerate() {
+            if !bbob::IDS.contains(id) {
+                bail!("unknown BBOB function {id} (the suite has {:?})", bbob::IDS);
+            }
+            if ids[..k].contains(id) {
+                bail!("BBOB function {id} listed twice");
+            }
+        }
+        self.functions = Some(bbob::IDS.into_iter().filter(|i| ids.contains(i)).collect());
         Ok(self)
     }
 
@@ -149,6 +176,7 @@ impl Config {
         Ok(Config {
             families,
             dims,
+            functions: None,
             methods,
             seeds,
             budget_per_dim,
@@ -215,7 +243,8 @@ pub fn catalogue(config: &Config) -> Result<Vec<Problem>> {
         let dims = config.dims_of(family);
         match family {
             Family::Bbob => {
-                for id in bbob::IDS {
+                let ids = config.functions.as_deref().unwrap_or(&bbob::IDS);
+                for &id in ids {
                     for &n in &dims {
                         for i in instances.clone() {
                             out.push(bbob::problem(id, n, i, b));
