@@ -8,12 +8,18 @@ time over its evaluations (the sphere itself costs well under a microsecond).
 """
 
 import argparse
+import os
 import time
 import warnings
 
-import numpy as np
+# Single-threaded linear algebra for pycma, as hodr's Auto is: a multi-threaded BLAS on a
+# shared machine measures the contention, not the method.
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
 
-import hodr
+import numpy as np  # noqa: E402
+
+import hodr  # noqa: E402
 
 warnings.filterwarnings("ignore")
 import cma  # noqa: E402
