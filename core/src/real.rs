@@ -84,9 +84,12 @@ pub trait Real:
     fn ln_1p(self) -> Self;
     /// Complementary error function erfc(x) = 1 − erf(x).
     fn erfc(self) -> Self;
-    /// The larger of two values; if one is NaN, the other.
+    /// The larger of two values; if one is NaN, the other; of equal values (±0), `self`.
+    /// libm's `fmax` without its canonicalising multiplication by 1, which changes no
+    /// non-NaN value but costs a software multiply where `f32` has no FPU.
     fn max(self, other: Self) -> Self;
-    /// The smaller of two values; if one is NaN, the other.
+    /// The smaller of two values; if one is NaN, the other; of equal values (±0), `other`.
+    /// libm's `fmin` without its canonicalising multiplication by 1 (see [`Real::max`]).
     fn min(self, other: Self) -> Self;
     /// True when neither infinite nor NaN.
     fn is_finite(self) -> bool;
@@ -169,11 +172,19 @@ impl Real for f64 {
     }
     #[inline]
     fn max(self, other: Self) -> Self {
-        libm::fmax(self, other)
+        if self.is_nan() || self < other {
+            other
+        } else {
+            self
+        }
     }
     #[inline]
     fn min(self, other: Self) -> Self {
-        libm::fmin(self, other)
+        if other.is_nan() || self < other {
+            self
+        } else {
+            other
+        }
     }
     #[inline]
     fn is_finite(self) -> bool {
@@ -239,11 +250,19 @@ impl Real for f32 {
     }
     #[inline]
     fn max(self, other: Self) -> Self {
-        libm::fmaxf(self, other)
+        if self.is_nan() || self < other {
+            other
+        } else {
+            self
+        }
     }
     #[inline]
     fn min(self, other: Self) -> Self {
-        libm::fminf(self, other)
+        if other.is_nan() || self < other {
+            self
+        } else {
+            other
+        }
     }
     #[inline]
     fn is_finite(self) -> bool {
@@ -276,6 +295,33 @@ mod tests {
             // 1 − ξ is on the same grid: (2⁵³ − 1 − k + ½)·2⁻⁵³.
             let b = f32::uniform_open(&mut rng);
             assert!(b > 0.0 && b < 1.0);
+        }
+    }
+
+    /// Bit for bit what libm's fmax/fmin return, NaN aside (both NaN: some NaN).
+    #[test]
+    fn max_and_min_are_libms() {
+        let values = [
+            0.0f32,
+            -0.0,
+            1.0,
+            -2.5,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ];
+        for &a in &values {
+            for &b in &values {
+                let (max, min) = (Real::max(a, b), Real::min(a, b));
+                let (fmax, fmin) = (libm::fmaxf(a, b), libm::fminf(a, b));
+                assert!(max.to_bits() == fmax.to_bits() || max.is_nan() && fmax.is_nan());
+                assert!(min.to_bits() == fmin.to_bits() || min.is_nan() && fmin.is_nan());
+                let (a, b) = (f64::from(a), f64::from(b));
+                let (max, min) = (Real::max(a, b), Real::min(a, b));
+                let (fmax, fmin) = (libm::fmax(a, b), libm::fmin(a, b));
+                assert!(max.to_bits() == fmax.to_bits() || max.is_nan() && fmax.is_nan());
+                assert!(min.to_bits() == fmin.to_bits() || min.is_nan() && fmin.is_nan());
+            }
         }
     }
 

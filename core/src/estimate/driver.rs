@@ -77,8 +77,15 @@ where
 {
     let rows_per_group = 2 * placement.centres.len();
     let rows = buffers.seeds.len();
-    let per_chunk = (rows / rows_per_group).min(buffers.offsets.len() / dim);
-    debug_assert!(per_chunk >= 1);
+    // Groups per batch. The workspace holds offsets for rows/2 groups, enough for one
+    // centre; two centres fit half as many. Divisions by constants: a Cortex-M0 has no
+    // divide instruction.
+    let per_chunk = if placement.centres.len() == 1 {
+        rows / 2
+    } else {
+        rows / 4
+    };
+    debug_assert!(per_chunk >= 1 && per_chunk * dim <= buffers.offsets.len());
     let base_seed = rng.next_u64();
     let total = scheme.groups();
     let mut done = 0;
