@@ -149,7 +149,7 @@ where
 
 /// Evaluates the control-variate baseline f(θ) through the batch buffers (so a failure
 /// leaves θ retrievable as the failed point).
-#[cfg(any(feature = "hessian", feature = "hvp"))]
+#[cfg(any(feature = "hessian", all(feature = "hvp", feature = "gaussian")))]
 pub(crate) fn evaluate_centre<T, O, R>(
     objective: &mut O,
     theta: &[T],

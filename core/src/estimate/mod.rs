@@ -19,14 +19,14 @@
 //! | [`HessianMethod::Gaussian`] | N(0, I) | 2P + 1 |
 //! | [`HvpMethod::CentralDifference`] | two gradient estimates at θ ± εv/‖v‖ | 2× gradient |
 //! | [`HvpMethod::ForwardDifference`] | gradient estimates at θ + εv/‖v‖ and θ | 2× gradient (1× given g(θ)) |
-//! | [`HvpMethod::Kernel`] | N(0, I), shared with the gradient | 2P + 1 |
+//! | [`HvpMethod::Kernel`] (`gaussian`) | N(0, I), shared with the gradient | 2P + 1 |
 //!
 //! P is [`Estimator::pairs`]. All randomness comes from the estimator's RNG, in a fixed
 //! order, so a seed fixes the estimate.
 
 mod driver;
 mod fr22;
-#[cfg(any(feature = "gaussian", feature = "hessian", feature = "hvp"))]
+#[cfg(any(feature = "gaussian", feature = "hessian"))]
 mod gaussian;
 #[cfg(any(feature = "per-element", feature = "hessian"))]
 mod per_element;
@@ -175,7 +175,8 @@ pub enum HvpMethod {
     },
     /// The Gaussian kernel (τ(τ·v)/σ⁴ − v/σ²) with τ ~ N(0, σ²I) and the f(θ) control
     /// variate (docs/design.md §1.4): unbiased, and the same samples give the gradient too
-    /// ([`Estimator::gradient_and_hvp`]).
+    /// ([`Estimator::gradient_and_hvp`]). With the `gaussian` feature.
+    #[cfg(feature = "gaussian")]
     Kernel,
 }
 
@@ -190,6 +191,7 @@ impl HvpMethod {
         match self {
             HvpMethod::CentralDifference { gradient, .. }
             | HvpMethod::ForwardDifference { gradient } => 2 * gradient.evaluations(n, pairs),
+            #[cfg(feature = "gaussian")]
             HvpMethod::Kernel => 2 * pairs + 1,
         }
     }
@@ -199,6 +201,7 @@ impl HvpMethod {
         match self {
             HvpMethod::CentralDifference { gradient, .. }
             | HvpMethod::ForwardDifference { gradient } => Some(gradient),
+            #[cfg(feature = "gaussian")]
             HvpMethod::Kernel => None,
         }
     }
@@ -531,6 +534,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
                 ws,
                 hv,
             ),
+            #[cfg(feature = "gaussian")]
             HvpMethod::Kernel => self.kernel_hvp(objective, theta, v, ws, None, hv),
         }
     }
@@ -540,7 +544,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
     ///
     /// # Errors
     /// As [`Estimator::hvp`].
-    #[cfg(feature = "hvp")]
+    #[cfg(all(feature = "hvp", feature = "gaussian"))]
     pub fn gradient_and_hvp<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,
@@ -553,7 +557,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
         self.kernel_hvp(objective, theta, v, ws, Some(grad), hv)
     }
 
-    #[cfg(feature = "hvp")]
+    #[cfg(all(feature = "hvp", feature = "gaussian"))]
     fn kernel_hvp<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,
