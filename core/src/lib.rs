@@ -76,7 +76,7 @@ pub use estimate::HessianMethod;
 #[cfg(feature = "hvp")]
 pub use estimate::{Draws, HvpMethod};
 pub use estimate::{Estimator, GradientMethod, Report};
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 pub use estimate::{Lowest, PairValues};
 pub use objective::{Batch, NoiseSeed, Objective, Seeded};
 pub use real::Real;

@@ -32,7 +32,8 @@ pub(crate) struct Pair<T> {
 pub(crate) trait Scheme<T: Real> {
     /// Number of groups (each one offset, two evaluations per centre).
     fn groups(&self) -> usize;
-    /// Draws the standardised offset of group `group` into `t` (length n).
+    /// Draws the standardised offset of group `group` into `t` (length n). The driver
+    /// calls it once per group, for groups 0, 1, … in order.
     fn draw<R: Rng + ?Sized>(&mut self, group: usize, rng: &mut R, t: &mut [T]);
     /// Adds group `group`'s contribution.
     fn accumulate(&mut self, group: usize, t: &[T], pair: Pair<T>);
@@ -124,7 +125,7 @@ where
                 sample: placement.first_sample + done * rows_per_group + row,
             });
         }
-        #[cfg(feature = "cg")]
+        #[cfg(feature = "newton-cg")]
         buffers.note_extremes(used, placement.first_sample + done * rows_per_group);
         buffers.value_sum += buffers.values[..used].iter().fold(T::ZERO, |s, &v| s + v);
         buffers.value_count += used;

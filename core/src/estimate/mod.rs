@@ -41,7 +41,7 @@ mod regression;
 use rand_core::Rng;
 
 use crate::error::Error;
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 use crate::objective::NoiseSeed;
 use crate::objective::Objective;
 use crate::real::Real;
@@ -229,23 +229,23 @@ pub struct Report<T> {
     /// The sample with the lowest value (the earliest among equals); its point is
     /// [`Workspace::lowest_point`] until the next estimate. `None` when the estimate
     /// drew no samples (an HVP along v = 0). This and the next two fields come with the
-    /// `cg` feature (the optimisers that compare samples): tracking them costs a
+    /// `newton-cg` feature (the optimiser that compares samples): tracking them costs a
     /// comparison per sample, and code the minimal build leaves out.
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub lowest: Option<Lowest<T>>,
     /// The highest value among the samples; `None` when there were none.
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub highest: Option<T>,
     /// The values of the one antithetic pair θ ∓ σt around θ itself, when that is all
     /// the estimate sampled (2 evaluations besides f(θ) in the table above: P = 1, and
     /// n = 1 for the per-element methods); its offset t is [`Workspace::pair_offset`]
     /// until the next estimate. `None` otherwise, and always for difference HVPs (their
     /// samples lie around θ ± εu).
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub pair: Option<PairValues<T>>,
 }
 
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 impl<T: Real> Report<T> {
     /// The spread of the sample values, highest − lowest (≥ 0, in the objective's
     /// units); `None` when there were no samples.
@@ -255,7 +255,7 @@ impl<T: Real> Report<T> {
 }
 
 /// The lowest-valued sample of an estimate ([`Report::lowest`]).
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Lowest<T> {
     /// Its objective value.
@@ -269,7 +269,7 @@ pub struct Lowest<T> {
 }
 
 /// The values of one antithetic pair θ ∓ σt ([`Report::pair`]).
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PairValues<T> {
     /// f(θ − σt).
@@ -289,17 +289,17 @@ fn report<T: Real>(
     centre_value: Option<T>,
     pair_around_theta: bool,
 ) -> Report<T> {
-    #[cfg(not(feature = "cg"))]
+    #[cfg(not(feature = "newton-cg"))]
     let _ = pair_around_theta;
     Report {
         evaluations,
         centre_value,
         mean_value: batch.mean_value(),
-        #[cfg(feature = "cg")]
+        #[cfg(feature = "newton-cg")]
         lowest: batch.lowest,
-        #[cfg(feature = "cg")]
+        #[cfg(feature = "newton-cg")]
         highest: batch.highest,
-        #[cfg(feature = "cg")]
+        #[cfg(feature = "newton-cg")]
         pair: {
             let sampled = evaluations - usize::from(centre_value.is_some());
             (pair_around_theta && sampled == 2).then(|| PairValues {
