@@ -230,6 +230,12 @@ impl Real for f32 {
     }
     #[inline]
     fn sqrt(self) -> Self {
+        // Bare metal has no hardware square root in libm's reach: its software one is a
+        // table and Goldschmidt iterations; the bit-by-bit root is a few dozen
+        // instructions and equal to it bit for bit.
+        #[cfg(target_os = "none")]
+        return sqrt_f32(self);
+        #[cfg(not(target_os = "none"))]
         libm::sqrtf(self)
     }
     #[inline]
@@ -280,6 +286,58 @@ impl Real for f32 {
     }
 }
 
+/// √x for `f32`, correctly rounded (to nearest), in integer arithmetic: bit for bit
+/// libm's `sqrtf`, whose result IEEE 754 prescribes (±0 → ±0, +∞ → +∞, and a NaN or
+/// negative x → [`f32::NAN`], as libm returns).
+#[cfg_attr(not(any(target_os = "none", test)), allow(dead_code))]
+#[inline(never)]
+fn sqrt_f32(x: f32) -> f32 {
+    let bits = x.to_bits();
+    if bits << 1 == 0 || bits == f32::INFINITY.to_bits() {
+        return x;
+    }
+    if bits > f32::INFINITY.to_bits() {
+        return f32::NAN;
+    }
+    // x = m·2^(e − 23) with m a 24-bit integer, subnormals normalised.
+    let (mut m, mut e) = if bits >> 23 == 0 {
+        let shift = bits.leading_zeros() - 8;
+        (bits << shift, -126 - shift as i32)
+    } else {
+        (
+            (bits & 0x007f_ffff) | 0x0080_0000,
+            (bits >> 23) as i32 - 127,
+        )
+    };
+    if e % 2 != 0 {
+        m <<= 1;
+        e -= 1;
+    }
+    // √x = √(m·2²⁵)·2^((e − 48)/2). Digit by digit, one bit a time from the top:
+    // `root` gathers the 25 bits of ⌊√(m·2²⁵)⌋ (the significand and one bit below it),
+    // `rest` the remainder, scaled to keep it in 32 bits.
+    let mut rest = m << 1;
+    let (mut root, mut twice_root) = (0u32, 0u32);
+    let mut bit = 1u32 << 24;
+    while bit != 0 {
+        let trial = twice_root + bit;
+        if trial <= rest {
+            rest -= trial;
+            twice_root = trial + bit;
+            root += bit;
+        }
+        rest <<= 1;
+        bit >>= 1;
+    }
+    // Round on the bit below the significand. Half-way cannot happen: that bit set with
+    // nothing left over would make m·2²⁵, an even number, an odd square.
+    let q = (root + 1) >> 1;
+    // q·2^k for q in [2²³, 2²⁴]: a carry out of the significand (q = 2²⁴) raises the
+    // exponent, as it should.
+    let k = (e - 46) / 2;
+    f32::from_bits((((k + 149) as u32) << 23) + q)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -322,6 +380,41 @@ mod tests {
                 assert!(max.to_bits() == fmax.to_bits() || max.is_nan() && fmax.is_nan());
                 assert!(min.to_bits() == fmin.to_bits() || min.is_nan() && fmin.is_nan());
             }
+        }
+    }
+
+    fn assert_sqrt_is_libms(bits: u32) {
+        let x = f32::from_bits(bits);
+        let (ours, libms) = (sqrt_f32(x), libm::sqrtf(x));
+        assert!(
+            ours.to_bits() == libms.to_bits() || ours.is_nan() && libms.is_nan(),
+            "√{x:e} ({bits:#x}): {ours:e}, libm {libms:e}"
+        );
+    }
+
+    /// Every 997th bit pattern, the subnormals and the first normals densely, and the
+    /// neighbours of every power of two.
+    #[test]
+    fn sqrt_is_libms() {
+        for bits in (0..=u32::MAX).step_by(997) {
+            assert_sqrt_is_libms(bits);
+        }
+        for bits in 0..0x0100_0000 {
+            assert_sqrt_is_libms(bits);
+        }
+        for e in 0..=255u32 {
+            for d in 0..4 {
+                assert_sqrt_is_libms((e << 23).wrapping_sub(2).wrapping_add(d));
+            }
+        }
+    }
+
+    /// All 2³² inputs: `cargo test -p hodr-core --release -- --ignored sqrt`.
+    #[test]
+    #[ignore = "exhaustive: 2³² inputs, run in release"]
+    fn sqrt_is_libms_everywhere() {
+        for bits in 0..=u32::MAX {
+            assert_sqrt_is_libms(bits);
         }
     }
 
