@@ -25,6 +25,15 @@ done
 rustup target add thumbv7em-none-eabihf thumbv6m-none-eabi riscv32imac-unknown-none-elf
 rustup component add llvm-tools
 llvm_bin="$(rustc --print sysroot)/lib/rustlib/$(rustc -vV | sed -n 's/^host: //p')/bin"
+# One instruction per translation block, for --count: QEMU 8.1 replaced -singlestep
+# (gone in 10.0) by the TCG option one-insn-per-tb.
+read -r qemu_major qemu_minor < <(qemu-system-arm --version |
+    sed -n 's/^QEMU emulator version \([0-9]*\)\.\([0-9]*\).*/\1 \2/p')
+if [ "$qemu_major" -gt 8 ] || { [ "$qemu_major" -eq 8 ] && [ "$qemu_minor" -ge 1 ]; }; then
+    one_insn_per_tb=(-accel tcg,one-insn-per-tb=on)
+else
+    one_insn_per_tb=(-singlestep)
+fi
 
 # The firmware is a workspace of its own: the host workspace's fmt and clippy skip it.
 (cd firmware && cargo fmt --check)
@@ -91,7 +100,7 @@ for target in "${targets[@]}"; do
         row="| $arch | $name | $methods | $(section .text) | $(section .rodata) | $(section .data) | $(section .bss) | $stack |"
         if $count; then
             # One translation block per instruction, each logged as one "Trace" line.
-            instructions=$(timeout 3600 "${qemu[@]}" -nographic -singlestep \
+            instructions=$(timeout 3600 "${qemu[@]}" -nographic "${one_insn_per_tb[@]}" \
                 -semihosting-config enable=on,target=native -d exec,nochain -D /dev/stderr \
                 -kernel "$elf" 2>&1 >/dev/null | grep -c '^Trace')
             evaluations=$(sed -n 's/^run .* evaluations=\([0-9]*\) .*/\1/p' "$log" |

@@ -49,8 +49,9 @@
 //! ## Features
 //! The minimal build (no default features) has the FR22 gradient with gradient descent
 //! and Adam. `per-element`, `gaussian`, `aggregate` and `regression` add the other
-//! gradient estimators; `hessian` (Hessians, Newton), `hvp` and `cg` (NCG, Newton-CG;
-//! implies `hvp`) the second-order methods; all are on by default. Each estimator is an
+//! gradient estimators; `hessian` (Hessians, Newton), `hvp`, `cg` (NCG; implies `hvp`)
+//! and `newton-cg` (Newton-CG; implies `cg`) the second-order methods; all are on by
+//! default. Each estimator is an
 //! enum variant chosen at run time, so a variant that is compiled in is linked whether a
 //! program uses it or not: leaving features out is how a firmware sheds the code.
 
@@ -75,7 +76,7 @@ pub use estimate::HessianMethod;
 #[cfg(feature = "hvp")]
 pub use estimate::{Draws, HvpMethod};
 pub use estimate::{Estimator, GradientMethod, Report};
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 pub use estimate::{Lowest, PairValues};
 pub use objective::{Batch, NoiseSeed, Objective, Seeded};
 pub use real::Real;

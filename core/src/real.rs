@@ -84,9 +84,12 @@ pub trait Real:
     fn ln_1p(self) -> Self;
     /// Complementary error function erfc(x) = 1 − erf(x).
     fn erfc(self) -> Self;
-    /// The larger of two values; if one is NaN, the other.
+    /// The larger of two values; if one is NaN, the other; of equal values (±0), `self`.
+    /// libm's `fmax` without its canonicalising multiplication by 1, which changes no
+    /// non-NaN value but costs a software multiply where `f32` has no FPU.
     fn max(self, other: Self) -> Self;
-    /// The smaller of two values; if one is NaN, the other.
+    /// The smaller of two values; if one is NaN, the other; of equal values (±0), `other`.
+    /// libm's `fmin` without its canonicalising multiplication by 1 (see [`Real::max`]).
     fn min(self, other: Self) -> Self;
     /// True when neither infinite nor NaN.
     fn is_finite(self) -> bool;
@@ -169,11 +172,19 @@ impl Real for f64 {
     }
     #[inline]
     fn max(self, other: Self) -> Self {
-        libm::fmax(self, other)
+        if self.is_nan() || self < other {
+            other
+        } else {
+            self
+        }
     }
     #[inline]
     fn min(self, other: Self) -> Self {
-        libm::fmin(self, other)
+        if other.is_nan() || self < other {
+            self
+        } else {
+            other
+        }
     }
     #[inline]
     fn is_finite(self) -> bool {
@@ -219,6 +230,12 @@ impl Real for f32 {
     }
     #[inline]
     fn sqrt(self) -> Self {
+        // Bare metal has no hardware square root in libm's reach: its software one is a
+        // table and Goldschmidt iterations; the bit-by-bit root is a few dozen
+        // instructions and equal to it bit for bit.
+        #[cfg(target_os = "none")]
+        return sqrt_f32(self);
+        #[cfg(not(target_os = "none"))]
         libm::sqrtf(self)
     }
     #[inline]
@@ -239,11 +256,19 @@ impl Real for f32 {
     }
     #[inline]
     fn max(self, other: Self) -> Self {
-        libm::fmaxf(self, other)
+        if self.is_nan() || self < other {
+            other
+        } else {
+            self
+        }
     }
     #[inline]
     fn min(self, other: Self) -> Self {
-        libm::fminf(self, other)
+        if other.is_nan() || self < other {
+            self
+        } else {
+            other
+        }
     }
     #[inline]
     fn is_finite(self) -> bool {
@@ -261,6 +286,58 @@ impl Real for f32 {
     }
 }
 
+/// √x for `f32`, correctly rounded (to nearest), in integer arithmetic: bit for bit
+/// libm's `sqrtf`, whose result IEEE 754 prescribes (±0 → ±0, +∞ → +∞, and a NaN or
+/// negative x → [`f32::NAN`], as libm returns).
+#[cfg_attr(not(any(target_os = "none", test)), allow(dead_code))]
+#[inline(never)]
+fn sqrt_f32(x: f32) -> f32 {
+    let bits = x.to_bits();
+    if bits << 1 == 0 || bits == f32::INFINITY.to_bits() {
+        return x;
+    }
+    if bits > f32::INFINITY.to_bits() {
+        return f32::NAN;
+    }
+    // x = m·2^(e − 23) with m a 24-bit integer, subnormals normalised.
+    let (mut m, mut e) = if bits >> 23 == 0 {
+        let shift = bits.leading_zeros() - 8;
+        (bits << shift, -126 - shift as i32)
+    } else {
+        (
+            (bits & 0x007f_ffff) | 0x0080_0000,
+            (bits >> 23) as i32 - 127,
+        )
+    };
+    if e % 2 != 0 {
+        m <<= 1;
+        e -= 1;
+    }
+    // √x = √(m·2²⁵)·2^((e − 48)/2). Digit by digit, one bit a time from the top:
+    // `root` gathers the 25 bits of ⌊√(m·2²⁵)⌋ (the significand and one bit below it),
+    // `rest` the remainder, scaled to keep it in 32 bits.
+    let mut rest = m << 1;
+    let (mut root, mut twice_root) = (0u32, 0u32);
+    let mut bit = 1u32 << 24;
+    while bit != 0 {
+        let trial = twice_root + bit;
+        if trial <= rest {
+            rest -= trial;
+            twice_root = trial + bit;
+            root += bit;
+        }
+        rest <<= 1;
+        bit >>= 1;
+    }
+    // Round on the bit below the significand. Half-way cannot happen: that bit set with
+    // nothing left over would make m·2²⁵, an even number, an odd square.
+    let q = (root + 1) >> 1;
+    // q·2^k for q in [2²³, 2²⁴]: a carry out of the significand (q = 2²⁴) raises the
+    // exponent, as it should.
+    let k = (e - 46) / 2;
+    f32::from_bits((((k + 149) as u32) << 23) + q)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -276,6 +353,68 @@ mod tests {
             // 1 − ξ is on the same grid: (2⁵³ − 1 − k + ½)·2⁻⁵³.
             let b = f32::uniform_open(&mut rng);
             assert!(b > 0.0 && b < 1.0);
+        }
+    }
+
+    /// Bit for bit what libm's fmax/fmin return, NaN aside (both NaN: some NaN).
+    #[test]
+    fn max_and_min_are_libms() {
+        let values = [
+            0.0f32,
+            -0.0,
+            1.0,
+            -2.5,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ];
+        for &a in &values {
+            for &b in &values {
+                let (max, min) = (Real::max(a, b), Real::min(a, b));
+                let (fmax, fmin) = (libm::fmaxf(a, b), libm::fminf(a, b));
+                assert!(max.to_bits() == fmax.to_bits() || max.is_nan() && fmax.is_nan());
+                assert!(min.to_bits() == fmin.to_bits() || min.is_nan() && fmin.is_nan());
+                let (a, b) = (f64::from(a), f64::from(b));
+                let (max, min) = (Real::max(a, b), Real::min(a, b));
+                let (fmax, fmin) = (libm::fmax(a, b), libm::fmin(a, b));
+                assert!(max.to_bits() == fmax.to_bits() || max.is_nan() && fmax.is_nan());
+                assert!(min.to_bits() == fmin.to_bits() || min.is_nan() && fmin.is_nan());
+            }
+        }
+    }
+
+    fn assert_sqrt_is_libms(bits: u32) {
+        let x = f32::from_bits(bits);
+        let (ours, libms) = (sqrt_f32(x), libm::sqrtf(x));
+        assert!(
+            ours.to_bits() == libms.to_bits() || ours.is_nan() && libms.is_nan(),
+            "√{x:e} ({bits:#x}): {ours:e}, libm {libms:e}"
+        );
+    }
+
+    /// Every 997th bit pattern, the subnormals and the first normals densely, and the
+    /// neighbours of every power of two.
+    #[test]
+    fn sqrt_is_libms() {
+        for bits in (0..=u32::MAX).step_by(997) {
+            assert_sqrt_is_libms(bits);
+        }
+        for bits in 0..0x0100_0000 {
+            assert_sqrt_is_libms(bits);
+        }
+        for e in 0..=255u32 {
+            for d in 0..4 {
+                assert_sqrt_is_libms((e << 23).wrapping_sub(2).wrapping_add(d));
+            }
+        }
+    }
+
+    /// All 2³² inputs: `cargo test -p hodr-core --release -- --ignored sqrt`.
+    #[test]
+    #[ignore = "exhaustive: 2³² inputs, run in release"]
+    fn sqrt_is_libms_everywhere() {
+        for bits in 0..=u32::MAX {
+            assert_sqrt_is_libms(bits);
         }
     }
 

@@ -13,7 +13,7 @@
 //! host evaluate more in parallel.
 
 use crate::error::Error;
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 use crate::estimate::Lowest;
 use crate::objective::NoiseSeed;
 use crate::real::Real;
@@ -59,14 +59,14 @@ pub(crate) struct BatchBuffers<'a, T> {
     pub(crate) value_count: usize,
     /// n floats: the point of the current estimate's lowest sample (meaningful only
     /// while `lowest` is set). Part of the memory layout whatever the features, so that
-    /// [`Workspace::buffer_len`] does not depend on them; written only with `cg`.
-    #[cfg_attr(not(feature = "cg"), allow(dead_code))]
+    /// [`Workspace::buffer_len`] does not depend on them; written only with `newton-cg`.
+    #[cfg_attr(not(feature = "newton-cg"), allow(dead_code))]
     pub(crate) lowest_point: &'a mut [T],
     /// The current estimate's lowest sample, its point in `lowest_point`.
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub(crate) lowest: Option<Lowest<T>>,
     /// The highest value among the current estimate's samples.
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub(crate) highest: Option<T>,
 }
 
@@ -77,7 +77,7 @@ impl<T: Real> BatchBuffers<'_, T> {
         self.failed = None;
         self.value_sum = T::ZERO;
         self.value_count = 0;
-        #[cfg(feature = "cg")]
+        #[cfg(feature = "newton-cg")]
         {
             self.lowest = None;
             self.highest = None;
@@ -87,7 +87,7 @@ impl<T: Real> BatchBuffers<'_, T> {
     /// Notes the first `used` rows of the batch (all finite), the first of them the
     /// estimate's evaluation number `first_sample`, as candidates for the lowest and
     /// highest sample. Ties keep the earlier sample.
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub(crate) fn note_extremes(&mut self, used: usize, first_sample: usize) {
         let dim = self.lowest_point.len();
         for row in 0..used {
@@ -178,9 +178,9 @@ impl<'a, T: Real> Workspace<'a, T> {
                 value_sum: T::ZERO,
                 value_count: 0,
                 lowest_point,
-                #[cfg(feature = "cg")]
+                #[cfg(feature = "newton-cg")]
                 lowest: None,
-                #[cfg(feature = "cg")]
+                #[cfg(feature = "newton-cg")]
                 highest: None,
             },
             scratch,
@@ -210,7 +210,7 @@ impl<'a, T: Real> Workspace<'a, T> {
 
     /// The point of the latest estimate's lowest sample, [`crate::Report::lowest`]
     /// (length n); unspecified when that is `None`. Kept until the next estimate.
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub fn lowest_point(&self) -> &[T] {
         self.batch.lowest_point
     }
@@ -218,7 +218,7 @@ impl<'a, T: Real> Workspace<'a, T> {
     /// The standardised offset t of the latest estimate's one antithetic pair θ ∓ σt,
     /// [`crate::Report::pair`] (length n); unspecified when that is `None`. Kept until
     /// the next estimate.
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub fn pair_offset(&self) -> &[T] {
         &self.batch.offsets[..self.dim]
     }
@@ -277,9 +277,9 @@ impl<T: Real, const N: usize, const R: usize> FixedWorkspace<T, N, R> {
                 value_sum: T::ZERO,
                 value_count: 0,
                 lowest_point: &mut self.lowest_point,
-                #[cfg(feature = "cg")]
+                #[cfg(feature = "newton-cg")]
                 lowest: None,
-                #[cfg(feature = "cg")]
+                #[cfg(feature = "newton-cg")]
                 highest: None,
             },
             scratch: self.scratch.as_flattened_mut(),

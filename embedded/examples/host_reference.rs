@@ -8,12 +8,13 @@
 //! Build it with the same features as the firmware (`--no-default-features`,
 //! `--features ncg`, or the default) so that both run the same list of algorithms.
 //! `--check` exits with status 1 when the firmware's report differs beyond
-//! `hodr_embedded::report::TOLERANCE`, 2 on a usage or I/O error.
+//! `hodr_embedded::report::TOLERANCE`, 2 on a usage or I/O error; when the reports
+//! agree it also prints each run's θ in decimal (the report itself has only bits).
 
 use std::io::Write;
 use std::process::ExitCode;
 
-use hodr_embedded::report::compare;
+use hodr_embedded::report::{compare, parse_run};
 use hodr_embedded::{Storage, run_all};
 
 fn main() -> ExitCode {
@@ -49,6 +50,14 @@ fn main() -> ExitCode {
                         format!("largest scaled difference {:e}", a.max_deviation)
                     };
                     println!("firmware agrees with the host: {} runs, {how}", a.runs);
+                    for run in report.lines().filter_map(parse_run) {
+                        let theta: Vec<String> = run.theta[..run.dim]
+                            .iter()
+                            .map(|x| format!("{x:e}"))
+                            .collect();
+                        let theta = theta.join(", ");
+                        println!("  {} {}: θ = ({theta})", run.problem, run.algorithm);
+                    }
                     ExitCode::SUCCESS
                 }
                 Err(mismatch) => {

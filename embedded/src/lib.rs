@@ -11,8 +11,8 @@
 //!   optimiser (feature `auto`);
 //! * [`run_all`]: every problem with every compiled-in algorithm, in static memory
 //!   ([`Storage`]), one report line per run to an [`Output`];
-//! * [`report`]: writing those lines without `core::fmt` (printing one `f32` with it adds
-//!   11 KiB of flash to the firmware), and parsing and comparing them (the
+//! * [`report`]: writing those lines without `core::fmt` (θ as the bit patterns of its
+//!   `f32`s, counts by repeated subtraction), and parsing and comparing them (the
 //!   firmware-against-host check).
 //!
 //! Features select the algorithms and, through them, the hodr-core features the firmware

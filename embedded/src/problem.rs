@@ -68,8 +68,11 @@ pub struct Problem {
     pub optimum: &'static [f32],
     /// Hyper-parameters and budget.
     pub settings: Settings,
-    /// Seed of the estimator's random stream.
-    pub seed: u64,
+    /// Seed of the estimator's random stream: the 128-bit seed of xoshiro128++
+    /// (`Xoshiro128PlusPlus::from_seed`). Each problem's is the one `seed_from_u64`
+    /// expands its small seed to (a test checks), written out so that the firmware does
+    /// not link the expansion, SplitMix64's 64-bit multiplications.
+    pub seed: [u8; 16],
 }
 
 /// f = 5x₀² + 5x₁² + 7.5x₀x₁ (= ½xᵀAx, A = [[10, 7.5], [7.5, 10]], condition number 7),
@@ -91,7 +94,7 @@ pub const QUAD: Problem = Problem {
         learning_rate: 0.5,
         evaluations: 3000,
     },
-    seed: 7,
+    seed: seed_bytes([0x5932_0dd7, 0x63cb_e1e4, 0xf43c_661c, 0x044c_3cd7]),
 };
 
 /// f(x) = 0 for 2.5 < x < 3.5 and 1 elsewhere, from x₀ = 0. σ anneals from 2 (the well's
@@ -115,8 +118,20 @@ pub const PLATEAU: Problem = Problem {
         learning_rate: 0.05,
         evaluations: 2000,
     },
-    seed: 11,
+    seed: seed_bytes([0x2380_309d, 0x50f5_647d, 0x7a6b_13a1, 0x432a_5cd2]),
 };
+
+/// The seed whose xoshiro128++ state words are `words` (little-endian, as
+/// `from_seed` reads them).
+const fn seed_bytes(words: [u32; 4]) -> [u8; 16] {
+    let mut bytes = [0; 16];
+    let mut k = 0;
+    while k < 16 {
+        bytes[k] = words[k / 4].to_le_bytes()[k % 4];
+        k += 1;
+    }
+    bytes
+}
 
 /// Every problem, in report order.
 pub const PROBLEMS: [Problem; 2] = [QUAD, PLATEAU];
@@ -140,6 +155,21 @@ mod tests {
         assert_eq!((PLATEAU.objective)(&[3.4]), 0.0);
         assert_eq!((PLATEAU.objective)(&[3.5]), 1.0);
         assert_eq!((PLATEAU.objective)(PLATEAU.start), 1.0);
+    }
+
+    /// QUAD's stream is `seed_from_u64(7)`'s, PLATEAU's `seed_from_u64(11)`'s.
+    #[test]
+    fn seeds_are_the_expansions_of_small_seeds() {
+        use rand_xoshiro::Xoshiro128PlusPlus;
+        use rand_xoshiro::rand_core::SeedableRng;
+        for (p, small) in [(QUAD, 7), (PLATEAU, 11)] {
+            assert_eq!(
+                Xoshiro128PlusPlus::from_seed(p.seed),
+                Xoshiro128PlusPlus::seed_from_u64(small),
+                "{}",
+                p.name
+            );
+        }
     }
 
     #[test]

@@ -2,14 +2,14 @@
 //! reports.
 //!
 //! ```text
-//! run QUAD OurHVPA evaluations=3008 iterations=41 end=max-evaluations theta=3a03126f,b9d1b717 ~ 5.0000e-4,-4.0000e-4
+//! run QUAD OurHVPA evaluations=3008 iterations=41 end=max-evaluations theta=3a03126f,b9d1b717
 //! ```
 //!
-//! θ is printed twice: as the hexadecimal bit patterns of the `f32`s, which the
-//! comparison reads (exact, and cheap to print), and after `~` in decimal for people.
-//! Printing one `f32` with `core::fmt` (Grisu with a Dragon fallback) adds 11 KiB of
-//! .text to the firmware, more than the minimal build's whole budget; these writers
-//! cost a few hundred bytes.
+//! θ is printed as the hexadecimal bit patterns of its `f32`s: exact, and the cheapest
+//! form to print. The firmware prints no decimal floats at all: `core::fmt`'s (Grisu with
+//! a Dragon fallback) weighs more than the minimal build's whole budget, and even a
+//! short writer of its own links software division and conversion that the minimal
+//! firmware otherwise does without. `host_reference --check` prints θ in decimal.
 //! Lines not starting with `run ` (the firmware's stack report) are not compared.
 
 use core::fmt;
@@ -72,13 +72,6 @@ pub fn write_run<O: Output + ?Sized>(
         }
         write_hex(out, x.to_bits());
     }
-    out.write(b" ~ ");
-    for (i, &x) in result.theta().iter().enumerate() {
-        if i > 0 {
-            out.write(b",");
-        }
-        write_scientific(out, x);
-    }
     out.write(b"\n");
 }
 
@@ -107,20 +100,38 @@ fn error_name(e: Error) -> &'static str {
     }
 }
 
+/// Decimal digits of `usize::MAX`.
+const DECIMAL_DIGITS: usize = usize::MAX.ilog10() as usize + 1;
+
+/// 10^(DECIMAL_DIGITS − 1), …, 100, 10, 1.
+const POWERS_OF_TEN: [usize; DECIMAL_DIGITS] = {
+    let mut powers = [1; DECIMAL_DIGITS];
+    let mut k = DECIMAL_DIGITS - 1;
+    while k > 0 {
+        powers[k - 1] = powers[k] * 10;
+        k -= 1;
+    }
+    powers
+};
+
 /// Writes `n` in decimal.
+///
+/// Digits come from repeated subtraction of powers of ten, not division: a Cortex-M0 has
+/// no divide instruction, and the software one would be linked for this alone.
 pub fn write_decimal<O: Output + ?Sized>(out: &mut O, mut n: usize) {
-    // usize::MAX has at most 20 decimal digits.
-    let mut digits = [0u8; 20];
-    let mut start = digits.len();
-    loop {
-        start -= 1;
-        digits[start] = b'0' + (n % 10) as u8;
-        n /= 10;
-        if n == 0 {
-            break;
+    let mut digits = [b'0'; DECIMAL_DIGITS];
+    for (digit, &power) in digits.iter_mut().zip(&POWERS_OF_TEN) {
+        while n >= power {
+            n -= power;
+            *digit += 1;
         }
     }
-    out.write(&digits[start..]);
+    // Leading zeros off, the units digit kept.
+    let first = digits
+        .iter()
+        .position(|&d| d != b'0')
+        .unwrap_or(DECIMAL_DIGITS - 1);
+    out.write(&digits[first..]);
 }
 
 /// Writes `bits` as eight lower-case hexadecimal digits.
@@ -131,48 +142,6 @@ pub fn write_hex<O: Output + ?Sized>(out: &mut O, bits: u32) {
         *d = b"0123456789abcdef"[nibble as usize];
     }
     out.write(&digits);
-}
-
-/// Writes `x` in scientific notation with five significant digits (`-1.2346e-3`), or
-/// `0e0`, `nan`, `inf`, `-inf`. For reading only: the scaling by powers of ten rounds
-/// once per decade (≤ 2e-6 relative over f32's range, below the 5e-5 the digits promise);
-/// the hexadecimal form is the exact one.
-pub fn write_scientific<O: Output + ?Sized>(out: &mut O, x: f32) {
-    if x.is_nan() {
-        return out.write(b"nan");
-    }
-    if x.is_sign_negative() {
-        out.write(b"-");
-    }
-    let mut a = if x.is_sign_negative() { -x } else { x };
-    if a.is_infinite() {
-        return out.write(b"inf");
-    }
-    if a == 0.0 {
-        return out.write(b"0e0");
-    }
-    let mut exponent: i32 = 0;
-    while a >= 10.0 {
-        a /= 10.0;
-        exponent += 1;
-    }
-    while a < 1.0 {
-        a *= 10.0;
-        exponent -= 1;
-    }
-    let mut mantissa = (a * 1e4 + 0.5) as u32;
-    if mantissa >= 100_000 {
-        mantissa /= 10;
-        exponent += 1;
-    }
-    let mut digits = *b"0.0000";
-    digits[0] = b'0' + (mantissa / 10_000) as u8;
-    for (k, d) in digits[2..].iter_mut().enumerate() {
-        *d = b'0' + (mantissa / 10u32.pow(3 - k as u32) % 10) as u8;
-    }
-    out.write(&digits);
-    out.write(if exponent < 0 { b"e-" } else { b"e" });
-    write_decimal(out, exponent.unsigned_abs() as usize);
 }
 
 /// One parsed report line.
@@ -421,6 +390,9 @@ mod tests {
     #[test]
     fn numbers_print_exactly() {
         assert_eq!(render(|o| write_decimal(o, 0)), "0");
+        for n in [7, 10, 99, 3008, 1_000_000] {
+            assert_eq!(render(|o| write_decimal(o, n)), std::format!("{n}"));
+        }
         assert_eq!(
             render(|o| write_decimal(o, usize::MAX)),
             std::format!("{}", usize::MAX)
@@ -430,33 +402,13 @@ mod tests {
     }
 
     #[test]
-    fn scientific_notation_has_five_significant_digits() {
-        let cases: [(f32, &str); 11] = [
-            (0.0, "0e0"),
-            (-0.0, "-0e0"),
-            (3.0, "3.0000e0"),
-            (-1.25, "-1.2500e0"),
-            (9.999_99, "1.0000e1"),
-            (1.234_56e-3, "1.2346e-3"),
-            (f32::MAX, "3.4028e38"),
-            (f32::MIN_POSITIVE / 4.0, "2.9387e-39"),
-            (f32::from_bits(1), "1.4013e-45"),
-            (f32::NAN, "nan"),
-            (f32::NEG_INFINITY, "-inf"),
-        ];
-        for (x, text) in cases {
-            assert_eq!(render(|o| write_scientific(o, x)), text, "{x:e}");
-        }
-    }
-
-    #[test]
     fn lines_parse_back() {
         let r = result([5e-4, -4e-4], 2);
         let line = render(|o| write_run(o, "QUAD", "OurHVPA", &r));
         assert_eq!(
             line,
             "run QUAD OurHVPA evaluations=3008 iterations=41 end=max-evaluations \
-             theta=3a03126f,b9d1b717 ~ 5.0000e-4,-4.0000e-4\n"
+             theta=3a03126f,b9d1b717\n"
         );
         let parsed = parse_run(&line).unwrap();
         assert_eq!((parsed.problem, parsed.algorithm), ("QUAD", "OurHVPA"));

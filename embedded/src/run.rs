@@ -146,7 +146,7 @@ pub fn run_one(problem: &Problem, algorithm: Algorithm, storage: &mut Storage) -
     };
     let s = &problem.settings;
     let ws = Workspace::new(n, &mut storage.workspace, &mut storage.seeds);
-    let rng = Xoshiro128PlusPlus::seed_from_u64(problem.seed);
+    let rng = Xoshiro128PlusPlus::from_seed(problem.seed);
     let optimiser = Estimator::new(s.sigma_start, s.pairs, rng).and_then(|estimator| {
         Optimiser::new(
             method,
@@ -185,7 +185,7 @@ fn run_auto(problem: &Problem, storage: &mut Storage) -> RunResult {
     let theta = &mut storage.theta[..n];
     theta.copy_from_slice(problem.start);
     let s = &problem.settings;
-    let rng = Xoshiro128PlusPlus::seed_from_u64(problem.seed);
+    let rng = Xoshiro128PlusPlus::from_seed(problem.seed);
     let auto = AutoOptions::default()
         .with_max_evaluations(s.evaluations)
         .and_then(|options| {

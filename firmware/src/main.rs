@@ -24,6 +24,8 @@
 #[cfg(target_arch = "arm")]
 #[allow(unsafe_code)]
 mod arm;
+#[allow(unsafe_code)]
+mod mem;
 #[cfg(target_arch = "riscv32")]
 #[allow(unsafe_code)]
 mod riscv;

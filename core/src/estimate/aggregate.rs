@@ -24,7 +24,9 @@ use crate::sample::place;
 pub(super) struct Gradient<'o, T> {
     n: usize,
     pairs: usize,
-    start: usize,
+    /// The component of the next group: (start + group) mod n, advanced by one per draw
+    /// (the driver draws groups in order), so no division is needed.
+    component: usize,
     sign: T,
     out: &'o mut [T],
 }
@@ -40,7 +42,7 @@ impl<'o, T: Real> Gradient<'o, T> {
         Gradient {
             n,
             pairs,
-            start: uniform_index(rng, n),
+            component: uniform_index(rng, n),
             sign,
             out,
         }
@@ -52,8 +54,12 @@ impl<T: Real> Scheme<T> for Gradient<'_, T> {
         self.pairs
     }
 
-    fn draw<R: Rng + ?Sized>(&mut self, group: usize, rng: &mut R, t: &mut [T]) {
-        place::gradient_element(rng, t, (self.start + group) % self.n);
+    fn draw<R: Rng + ?Sized>(&mut self, _group: usize, rng: &mut R, t: &mut [T]) {
+        place::gradient_element(rng, t, self.component);
+        self.component += 1;
+        if self.component == self.n {
+            self.component = 0;
+        }
     }
 
     fn accumulate(&mut self, _group: usize, t: &[T], pair: Pair<T>) {

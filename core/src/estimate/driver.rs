@@ -32,7 +32,8 @@ pub(crate) struct Pair<T> {
 pub(crate) trait Scheme<T: Real> {
     /// Number of groups (each one offset, two evaluations per centre).
     fn groups(&self) -> usize;
-    /// Draws the standardised offset of group `group` into `t` (length n).
+    /// Draws the standardised offset of group `group` into `t` (length n). The driver
+    /// calls it once per group, for groups 0, 1, … in order.
     fn draw<R: Rng + ?Sized>(&mut self, group: usize, rng: &mut R, t: &mut [T]);
     /// Adds group `group`'s contribution.
     fn accumulate(&mut self, group: usize, t: &[T], pair: Pair<T>);
@@ -77,8 +78,15 @@ where
 {
     let rows_per_group = 2 * placement.centres.len();
     let rows = buffers.seeds.len();
-    let per_chunk = (rows / rows_per_group).min(buffers.offsets.len() / dim);
-    debug_assert!(per_chunk >= 1);
+    // Groups per batch. The workspace holds offsets for rows/2 groups, enough for one
+    // centre; two centres fit half as many. Divisions by constants: a Cortex-M0 has no
+    // divide instruction.
+    let per_chunk = if placement.centres.len() == 1 {
+        rows / 2
+    } else {
+        rows / 4
+    };
+    debug_assert!(per_chunk >= 1 && per_chunk * dim <= buffers.offsets.len());
     let base_seed = rng.next_u64();
     let total = scheme.groups();
     let mut done = 0;
@@ -117,7 +125,7 @@ where
                 sample: placement.first_sample + done * rows_per_group + row,
             });
         }
-        #[cfg(feature = "cg")]
+        #[cfg(feature = "newton-cg")]
         buffers.note_extremes(used, placement.first_sample + done * rows_per_group);
         buffers.value_sum += buffers.values[..used].iter().fold(T::ZERO, |s, &v| s + v);
         buffers.value_count += used;
@@ -142,7 +150,7 @@ where
 
 /// Evaluates the control-variate baseline f(θ) through the batch buffers (so a failure
 /// leaves θ retrievable as the failed point).
-#[cfg(any(feature = "hessian", feature = "hvp"))]
+#[cfg(any(feature = "hessian", all(feature = "hvp", feature = "gaussian")))]
 pub(crate) fn evaluate_centre<T, O, R>(
     objective: &mut O,
     theta: &[T],

@@ -72,7 +72,7 @@ impl<T: Real> Scheme<T> for Hessian<'_, T> {
 }
 
 /// Gradient and HVP from the same samples.
-#[cfg(feature = "hvp")]
+#[cfg(all(feature = "hvp", feature = "gaussian"))]
 pub(super) struct Hvp<'o, T> {
     pairs: usize,
     v: &'o [T],
@@ -80,14 +80,14 @@ pub(super) struct Hvp<'o, T> {
     hv: &'o mut [T],
 }
 
-#[cfg(feature = "hvp")]
+#[cfg(all(feature = "hvp", feature = "gaussian"))]
 impl<'o, T: Real> Hvp<'o, T> {
     pub(super) fn new(pairs: usize, v: &'o [T], grad: &'o mut [T], hv: &'o mut [T]) -> Self {
         Hvp { pairs, v, grad, hv }
     }
 }
 
-#[cfg(feature = "hvp")]
+#[cfg(all(feature = "hvp", feature = "gaussian"))]
 impl<T: Real> Scheme<T> for Hvp<'_, T> {
     fn groups(&self) -> usize {
         self.pairs

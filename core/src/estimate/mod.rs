@@ -19,14 +19,14 @@
 //! | [`HessianMethod::Gaussian`] | N(0, I) | 2P + 1 |
 //! | [`HvpMethod::CentralDifference`] | two gradient estimates at θ ± εv/‖v‖ | 2× gradient |
 //! | [`HvpMethod::ForwardDifference`] | gradient estimates at θ + εv/‖v‖ and θ | 2× gradient (1× given g(θ)) |
-//! | [`HvpMethod::Kernel`] | N(0, I), shared with the gradient | 2P + 1 |
+//! | [`HvpMethod::Kernel`] (`gaussian`) | N(0, I), shared with the gradient | 2P + 1 |
 //!
 //! P is [`Estimator::pairs`]. All randomness comes from the estimator's RNG, in a fixed
 //! order, so a seed fixes the estimate.
 
 mod driver;
 mod fr22;
-#[cfg(any(feature = "gaussian", feature = "hessian", feature = "hvp"))]
+#[cfg(any(feature = "gaussian", feature = "hessian"))]
 mod gaussian;
 #[cfg(any(feature = "per-element", feature = "hessian"))]
 mod per_element;
@@ -41,7 +41,7 @@ mod regression;
 use rand_core::Rng;
 
 use crate::error::Error;
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 use crate::objective::NoiseSeed;
 use crate::objective::Objective;
 use crate::real::Real;
@@ -175,7 +175,8 @@ pub enum HvpMethod {
     },
     /// The Gaussian kernel (τ(τ·v)/σ⁴ − v/σ²) with τ ~ N(0, σ²I) and the f(θ) control
     /// variate (docs/design.md §1.4): unbiased, and the same samples give the gradient too
-    /// ([`Estimator::gradient_and_hvp`]).
+    /// ([`Estimator::gradient_and_hvp`]). With the `gaussian` feature.
+    #[cfg(feature = "gaussian")]
     Kernel,
 }
 
@@ -190,6 +191,7 @@ impl HvpMethod {
         match self {
             HvpMethod::CentralDifference { gradient, .. }
             | HvpMethod::ForwardDifference { gradient } => 2 * gradient.evaluations(n, pairs),
+            #[cfg(feature = "gaussian")]
             HvpMethod::Kernel => 2 * pairs + 1,
         }
     }
@@ -199,6 +201,7 @@ impl HvpMethod {
         match self {
             HvpMethod::CentralDifference { gradient, .. }
             | HvpMethod::ForwardDifference { gradient } => Some(gradient),
+            #[cfg(feature = "gaussian")]
             HvpMethod::Kernel => None,
         }
     }
@@ -226,23 +229,23 @@ pub struct Report<T> {
     /// The sample with the lowest value (the earliest among equals); its point is
     /// [`Workspace::lowest_point`] until the next estimate. `None` when the estimate
     /// drew no samples (an HVP along v = 0). This and the next two fields come with the
-    /// `cg` feature (the optimisers that compare samples): tracking them costs a
+    /// `newton-cg` feature (the optimiser that compares samples): tracking them costs a
     /// comparison per sample, and code the minimal build leaves out.
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub lowest: Option<Lowest<T>>,
     /// The highest value among the samples; `None` when there were none.
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub highest: Option<T>,
     /// The values of the one antithetic pair θ ∓ σt around θ itself, when that is all
     /// the estimate sampled (2 evaluations besides f(θ) in the table above: P = 1, and
     /// n = 1 for the per-element methods); its offset t is [`Workspace::pair_offset`]
     /// until the next estimate. `None` otherwise, and always for difference HVPs (their
     /// samples lie around θ ± εu).
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub pair: Option<PairValues<T>>,
 }
 
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 impl<T: Real> Report<T> {
     /// The spread of the sample values, highest − lowest (≥ 0, in the objective's
     /// units); `None` when there were no samples.
@@ -252,7 +255,7 @@ impl<T: Real> Report<T> {
 }
 
 /// The lowest-valued sample of an estimate ([`Report::lowest`]).
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Lowest<T> {
     /// Its objective value.
@@ -266,7 +269,7 @@ pub struct Lowest<T> {
 }
 
 /// The values of one antithetic pair θ ∓ σt ([`Report::pair`]).
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PairValues<T> {
     /// f(θ − σt).
@@ -286,17 +289,17 @@ fn report<T: Real>(
     centre_value: Option<T>,
     pair_around_theta: bool,
 ) -> Report<T> {
-    #[cfg(not(feature = "cg"))]
+    #[cfg(not(feature = "newton-cg"))]
     let _ = pair_around_theta;
     Report {
         evaluations,
         centre_value,
         mean_value: batch.mean_value(),
-        #[cfg(feature = "cg")]
+        #[cfg(feature = "newton-cg")]
         lowest: batch.lowest,
-        #[cfg(feature = "cg")]
+        #[cfg(feature = "newton-cg")]
         highest: batch.highest,
-        #[cfg(feature = "cg")]
+        #[cfg(feature = "newton-cg")]
         pair: {
             let sampled = evaluations - usize::from(centre_value.is_some());
             (pair_around_theta && sampled == 2).then(|| PairValues {
@@ -531,6 +534,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
                 ws,
                 hv,
             ),
+            #[cfg(feature = "gaussian")]
             HvpMethod::Kernel => self.kernel_hvp(objective, theta, v, ws, None, hv),
         }
     }
@@ -540,7 +544,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
     ///
     /// # Errors
     /// As [`Estimator::hvp`].
-    #[cfg(feature = "hvp")]
+    #[cfg(all(feature = "hvp", feature = "gaussian"))]
     pub fn gradient_and_hvp<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,
@@ -553,7 +557,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
         self.kernel_hvp(objective, theta, v, ws, Some(grad), hv)
     }
 
-    #[cfg(feature = "hvp")]
+    #[cfg(all(feature = "hvp", feature = "gaussian"))]
     fn kernel_hvp<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,

@@ -11,7 +11,7 @@
 //! | [`Adam`] | Adam on ĝ |
 //! | [`Newton`] (`hessian`) | (Ĥ + λI)p = −ĝ by shifted Cholesky, ‖p‖ ≤ Δσ |
 //! | [`Ncg`] (`cg`) | Fletcher–Reeves NCG, Newton–Raphson line search with HVPs |
-//! | [`NewtonCg`] (`cg`) | Steihaug trust-region CG on Ĥp = −ĝ with HVPs |
+//! | [`NewtonCg`] (`newton-cg`) | Steihaug trust-region CG on Ĥp = −ĝ with HVPs |
 //!
 //! σ follows a [`Schedule`] over the [`Budget`]'s progress. Memory is the caller's: θ and
 //! one buffer of [`Method::buffer_len`] floats.
@@ -27,7 +27,7 @@ mod oracle;
 #[cfg(all(
     feature = "hessian",
     feature = "aggregate",
-    feature = "cg",
+    feature = "newton-cg",
     feature = "regression",
     feature = "per-element",
     feature = "gaussian"
@@ -36,14 +36,14 @@ pub mod preset;
 #[cfg(all(
     feature = "hessian",
     feature = "aggregate",
-    feature = "cg",
+    feature = "newton-cg",
     feature = "regression",
     feature = "per-element",
     feature = "gaussian"
 ))]
 pub mod recipe;
 mod schedule;
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 mod steihaug;
 pub(crate) mod vector;
 
@@ -59,7 +59,7 @@ pub use ncg::{Curvature, Ncg};
 #[cfg(feature = "hessian")]
 pub use newton::Newton;
 pub use schedule::{Budget, Schedule, StepKind, Termination};
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 pub use steihaug::{COMPARISON_MARGIN, NewtonCg, PLATEAU_MARGIN};
 
 use crate::error::Error;
@@ -86,7 +86,7 @@ pub enum Method<T> {
     #[cfg(feature = "cg")]
     Ncg(Ncg<T>),
     /// Newton-CG with a Steihaug trust region.
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     NewtonCg(NewtonCg<T>),
 }
 
@@ -102,7 +102,7 @@ impl<T: Real> Method<T> {
                 Method::Newton(_) => Newton::<T>::buffer_len(n),
                 #[cfg(feature = "cg")]
                 Method::Ncg(m) => m.buffer_len(n),
-                #[cfg(feature = "cg")]
+                #[cfg(feature = "newton-cg")]
                 Method::NewtonCg(m) => m.buffer_len(n),
             }
     }
@@ -110,10 +110,10 @@ impl<T: Real> Method<T> {
     /// Floats that keep the point of an iteration's lowest sample: n for Newton-CG
     /// comparing samples ([`NewtonCg::compare_samples`]), the only method that steps to
     /// it; else none.
-    #[cfg_attr(not(feature = "cg"), allow(unused_variables))]
+    #[cfg_attr(not(feature = "newton-cg"), allow(unused_variables))]
     fn lowest_len(&self, n: usize) -> usize {
         match self {
-            #[cfg(feature = "cg")]
+            #[cfg(feature = "newton-cg")]
             Method::NewtonCg(m) if m.compare_samples => n,
             _ => 0,
         }
@@ -149,7 +149,7 @@ impl<T: Real> Method<T> {
                 Method::Ncg(m) => {
                     fits(m.gradient) || matches!(m.curvature, Curvature::Hvp(h) if hvp_fits(h))
                 }
-                #[cfg(feature = "cg")]
+                #[cfg(feature = "newton-cg")]
                 Method::NewtonCg(m) => fits(m.gradient) || hvp_fits(m.hvp),
             }
         }
@@ -166,7 +166,7 @@ impl<T: Real> Method<T> {
             Method::Newton(m) => m.gradient,
             #[cfg(feature = "cg")]
             Method::Ncg(m) => m.gradient,
-            #[cfg(feature = "cg")]
+            #[cfg(feature = "newton-cg")]
             Method::NewtonCg(m) => m.gradient,
         }
     }
@@ -188,7 +188,7 @@ impl<T: Real> Method<T> {
         match self {
             #[cfg(feature = "cg")]
             Method::Ncg(m) => m.reuse_samples,
-            #[cfg(feature = "cg")]
+            #[cfg(feature = "newton-cg")]
             Method::NewtonCg(m) => m.reuse_samples,
             _ => false,
         }
@@ -202,7 +202,7 @@ impl<T: Real> Method<T> {
             Method::Newton(m) => m.validate(),
             #[cfg(feature = "cg")]
             Method::Ncg(m) => m.validate(),
-            #[cfg(feature = "cg")]
+            #[cfg(feature = "newton-cg")]
             Method::NewtonCg(m) => m.validate(),
         }
     }
@@ -348,7 +348,7 @@ struct State<T> {
     #[cfg(feature = "cg")]
     ncg: ncg::NcgState<T>,
     /// Newton-CG's running mean of positive curvatures.
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     mean_curvature: Option<T>,
     /// σ chosen by an adaptive schedule for the next iteration (before the cap).
     adapted_sigma: Option<T>,
@@ -432,7 +432,7 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
                 adam_powers: (T::ONE, T::ONE),
                 #[cfg(feature = "cg")]
                 ncg: ncg::NcgState::default(),
-                #[cfg(feature = "cg")]
+                #[cfg(feature = "newton-cg")]
                 mean_curvature: None,
                 adapted_sigma: None,
                 value_at_theta: None,
@@ -521,7 +521,7 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
 
         let (saved, buf) = self.buffer.split_at_mut(n);
         saved.copy_from_slice(self.theta);
-        #[cfg_attr(not(feature = "cg"), allow(unused_variables))]
+        #[cfg_attr(not(feature = "newton-cg"), allow(unused_variables))]
         let (lowest_point, buf) = buf.split_at_mut(self.method.lowest_len(n));
         let snapshot = self
             .method
@@ -535,14 +535,14 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
             loss: None,
             snapshot,
             value_at_theta: st.value_at_theta,
-            #[cfg(feature = "cg")]
+            #[cfg(feature = "newton-cg")]
             centre_sample: None,
             settled: false,
-            #[cfg(feature = "cg")]
+            #[cfg(feature = "newton-cg")]
             lowest: None,
-            #[cfg(feature = "cg")]
+            #[cfg(feature = "newton-cg")]
             lowest_point,
-            #[cfg(feature = "cg")]
+            #[cfg(feature = "newton-cg")]
             highest: None,
         };
         let tol = self.budget.gradient_tolerance;
@@ -560,7 +560,7 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
                 m.step(&mut oracle, theta, buf, &mut st.ncg, tol),
                 m.trust_radius * sigma,
             ),
-            #[cfg(feature = "cg")]
+            #[cfg(feature = "newton-cg")]
             Method::NewtonCg(m) => (
                 m.step(&mut oracle, theta, buf, &mut st.mean_curvature, tol),
                 m.trust_radius * sigma,

@@ -167,6 +167,7 @@ impl<T: Real> Ncg<T> {
         for j in 0..self.line_search_iterations {
             let shared = j > 0 && self.shares_samples();
             if shared {
+                #[cfg(feature = "gaussian")]
                 oracle.gradient_and_hvp(theta, d, g, hd)?;
             } else {
                 if j > 0 {
@@ -220,10 +221,10 @@ impl<T: Real> Ncg<T> {
     /// True when the gradient and the HVP can come from one shared sample set.
     fn shares_samples(&self) -> bool {
         #[cfg(feature = "gaussian")]
-        let gaussian = self.gradient == GradientMethod::Gaussian;
+        return self.gradient == GradientMethod::Gaussian
+            && self.curvature == Curvature::Hvp(HvpMethod::Kernel);
         #[cfg(not(feature = "gaussian"))]
-        let gaussian = false;
-        gaussian && self.curvature == Curvature::Hvp(HvpMethod::Kernel)
+        false
     }
 
     /// Ĥd into `hd` (ĝ = `g` at θ), using `hess` (n² floats) for Hessian curvature.

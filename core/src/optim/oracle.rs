@@ -5,21 +5,21 @@
 
 use rand_core::Rng;
 
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 use super::vector::{axpy, distance, norm};
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 use super::{COMPARISON_MARGIN, PLATEAU_MARGIN, Verdict};
 use crate::error::Error;
 #[cfg(feature = "hessian")]
 use crate::estimate::HessianMethod;
 #[cfg(feature = "cg")]
 use crate::estimate::HvpMethod;
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 use crate::estimate::Lowest;
 use crate::estimate::{Estimator, GradientMethod, Report};
 #[cfg(feature = "cg")]
 use crate::objective::Batch;
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 use crate::objective::NoiseSeed;
 use crate::objective::Objective;
 use crate::real::Real;
@@ -42,20 +42,20 @@ pub(crate) struct Oracle<'a, 'w, T, R, O: ?Sized> {
     pub value_at_theta: Option<T>,
     /// f(θ) at the current θ evaluated with this noise seed this iteration
     /// ([`Oracle::pair_curvature`], [`Oracle::line_curvature`]).
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub centre_sample: Option<(T, NoiseSeed)>,
     /// [`Oracle::settle`] moved θ this iteration and set `value_at_theta` for it.
     pub settled: bool,
     /// The lowest sample of this iteration's estimates (the earliest among equals), from
     /// their reports.
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub lowest: Option<Lowest<T>>,
     /// Its point, kept for [`Oracle::settle`]: n floats of the optimiser's memory, or
     /// empty when the method never settles (then no point is kept).
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub lowest_point: &'a mut [T],
     /// The highest value among this iteration's samples, from the estimates' reports.
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub highest: Option<T>,
 }
 
@@ -68,13 +68,13 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     }
 
     /// Counts an estimate's evaluations and keeps its loss estimate: f(θ) when the
-    /// estimate evaluated it, else the mean of its samples. With `cg`, also keeps the
+    /// estimate evaluated it, else the mean of its samples. With `newton-cg`, also keeps the
     /// iteration's lowest sample (its point copied while the workspace still holds it)
     /// and highest value.
     fn record(&mut self, r: &Report<T>) {
         self.evaluations += r.evaluations;
         self.loss = r.centre_value.or(r.mean_value).or(self.loss);
-        #[cfg(feature = "cg")]
+        #[cfg(feature = "newton-cg")]
         {
             if let Some(low) = r.lowest {
                 if self.lowest.is_none_or(|kept| low.value < kept.value) {
@@ -142,7 +142,7 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
         Ok(())
     }
 
-    #[cfg(feature = "cg")]
+    #[cfg(all(feature = "cg", feature = "gaussian"))]
     pub fn gradient_and_hvp(
         &mut self,
         theta: &[T],
@@ -190,7 +190,7 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     ///
     /// # Errors
     /// [`Error::NonFiniteObjective`] for a non-finite f(θ) (θ stays in the workspace).
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub fn pair_curvature(
         &mut self,
         gradient: GradientMethod,
@@ -249,7 +249,7 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     ///
     /// # Errors
     /// [`Error::NonFiniteObjective`] (the point stays in the workspace).
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub fn line_curvature(&mut self, theta: &[T], g: &[T]) -> Result<T, Error> {
         let n = self.ws.dim;
         let seed = match self.lowest {
@@ -296,7 +296,7 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     /// Keeps f(θ) = `value`, evaluated this iteration with noise seed `seed`: for this
     /// iteration's comparison, and for later iterations while θ stays if the objective
     /// is deterministic.
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     fn remember_centre(&mut self, value: T, seed: NoiseSeed) {
         if self.objective.deterministic() {
             self.value_at_theta = Some(value);
@@ -308,7 +308,7 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     /// remembered value, else the value [`Oracle::pair_curvature`] or
     /// [`Oracle::line_curvature`] evaluated this
     /// iteration with noise seed `seed` (with any seed for `None`).
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     fn known_value(&self, seed: Option<NoiseSeed>) -> Option<T> {
         self.value_at_theta
             .filter(|_| self.objective.deterministic())
@@ -323,7 +323,7 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     /// known (remembered, or evaluated this iteration), all lie within
     /// [`PLATEAU_MARGIN`] (relative) of the lowest: nothing near θ tells one point from
     /// another — a plateau at this σ.
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub fn flat(&self) -> bool {
         let centre = self.known_value(None);
         match (self.lowest, self.highest) {
@@ -349,7 +349,7 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
     ///
     /// # Errors
     /// [`Error::NonFiniteObjective`] (the point stays in the workspace; θ is unchanged).
-    #[cfg(feature = "cg")]
+    #[cfg(feature = "newton-cg")]
     pub fn settle(&mut self, theta: &mut [T], p: &[T]) -> Result<(Verdict, T), Error> {
         let n = self.ws.dim;
         let deterministic = self.objective.deterministic();
@@ -450,13 +450,13 @@ impl<T: Real, R: Rng + Clone, O: Objective<T> + ?Sized> Oracle<'_, '_, T, R, O> 
 /// The estimator's scale m along an offset s from θ: m = (ĝ·s)/(‖s‖·D) with
 /// D = (f(θ + s) − f(θ − s))/(2‖s‖) the slope f shows along s, i.e.
 /// m = 2(ĝ·s)/(f(θ + s) − f(θ − s)) for `gs` = ĝ·s and `rise` = f(θ + s) − f(θ − s).
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 fn weight<T: Real>(gs: T, rise: T) -> T {
     T::TWO * gs / rise
 }
 
 /// a < b by more than `margin` × the larger magnitude (else they tie).
-#[cfg(feature = "cg")]
+#[cfg(feature = "newton-cg")]
 fn below<T: Real>(a: T, b: T, margin: f64) -> bool {
     a < b - T::from_f64(margin) * a.abs().max(b.abs())
 }

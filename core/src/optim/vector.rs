@@ -1,7 +1,7 @@
 //! Small dense vector helpers for the optimisers.
 
 // The curvature-based optimisers (feature `cg`) use all of them; smaller builds some.
-#![cfg_attr(not(feature = "cg"), allow(dead_code))]
+#![cfg_attr(not(feature = "newton-cg"), allow(dead_code))]
 
 use crate::real::Real;
 

@@ -140,7 +140,7 @@ pub(crate) fn ppnd7(p: f32) -> f32 {
         return q * num / den;
     }
     let tail = if q < 0.0 { p } else { 1.0 - p };
-    let mut r = libm::sqrtf(-libm::logf(tail));
+    let mut r = Real::sqrt(-libm::logf(tail));
     let x = if r <= 5.0 {
         r -= 1.6;
         let num = ((1.702_382_1e-1 * r + 1.306_728_5) * r + 2.756_815_4) * r + 1.423_437_3;
