@@ -11,7 +11,7 @@ use anyhow::{Context, Result};
 use super::Config;
 use super::methods::Method;
 use super::problem::{Family, Problem};
-use super::summary::{Cell, FamilyRow, Row, Run, target_labels};
+use super::summary::{Cell, FamilyRow, Ratio, Row, Run, target_labels};
 
 /// `suite.csv`: problem, family, n, method, seed, target, evaluations (empty when not
 /// reached), then the run's wall time, best f − f* and why it stopped before its budget
@@ -98,9 +98,9 @@ fn cell(c: &Cell) -> String {
 }
 
 /// A geometric-mean ratio and the problems that entered it, of `problems`.
-fn ratio(ratio: Option<f64>, entered: usize, problems: usize) -> String {
-    match ratio {
-        Some(x) => format!("{x:.2} ({entered}/{problems})"),
+fn ratio(ratio: Ratio, problems: usize) -> String {
+    match ratio.mean {
+        Some(x) => format!("{x:.2} ({}/{problems})", ratio.problems),
         None => format!("— (0/{problems})"),
     }
 }
@@ -112,7 +112,7 @@ pub fn pairwise_table(method: Method, pairs: &[super::summary::PairRow]) -> Stri
         return String::new();
     };
     let mut s = String::from("| group |");
-    for (m, _, _) in &first.ratios {
+    for (m, _) in &first.ratios {
         let _ = write!(s, " {method} ÷ {m} (problems) |");
     }
     s.push_str("\n|---|");
@@ -122,10 +122,10 @@ pub fn pairwise_table(method: Method, pairs: &[super::summary::PairRow]) -> Stri
     s.push('\n');
     for row in pairs {
         let _ = write!(s, "| {} |", row.group);
-        for (_, ratio, k) in &row.ratios {
-            match ratio {
+        for (_, ratio) in &row.ratios {
+            match ratio.mean {
                 Some(x) => {
-                    let _ = write!(s, " {x:.2} ({k}) |");
+                    let _ = write!(s, " {x:.2} ({}) |", ratio.problems);
                 }
                 None => s.push_str(" — (0) |"),
             }
@@ -150,8 +150,8 @@ pub fn family_table(families: &[FamilyRow], reference: Method) -> String {
             r.final_successes,
             r.runs,
             100.0 * r.targets_reached as f64 / r.targets.max(1) as f64,
-            ratio(r.ratio, r.ratio_problems, r.problems),
-            ratio(r.art_ratio, r.art_problems, r.problems),
+            ratio(r.ratio, r.problems),
+            ratio(r.art_ratio, r.problems),
             seconds(r.median_time),
         );
     }

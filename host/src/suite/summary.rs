@@ -145,15 +145,10 @@ pub struct FamilyRow {
     pub method: Method,
     /// Problems with runs of this method.
     pub problems: usize,
-    /// Geometric mean of the ratio to the reference, if any problem had a common target.
-    pub ratio: Option<f64>,
-    /// Problems that entered the ratio.
-    pub ratio_problems: usize,
-    /// Geometric mean of the aRT ratio to the reference, if any problem had a target
-    /// both reached in some run.
-    pub art_ratio: Option<f64>,
-    /// Problems that entered the aRT ratio.
-    pub art_problems: usize,
+    /// Median evaluations over the reference's, at the hardest target both medians reach.
+    pub ratio: Ratio,
+    /// aRT over the reference's, at the hardest target both reach in some run.
+    pub art_ratio: Ratio,
     /// Runs reaching the final target 10⁻⁸.
     pub final_successes: usize,
     /// Runs.
@@ -164,6 +159,25 @@ pub struct FamilyRow {
     pub targets: usize,
     /// Median wall time of a run, seconds.
     pub median_time: f64,
+}
+
+/// A geometric mean over problems of per-problem ratios, and how many problems had a
+/// target to compare at.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ratio {
+    /// exp(mean of the ln ratios); `None` when no problem entered.
+    pub mean: Option<f64>,
+    /// Problems that entered the mean.
+    pub problems: usize,
+}
+
+impl Ratio {
+    fn of(logs: &[f64]) -> Ratio {
+        Ratio {
+            mean: (!logs.is_empty()).then(|| (logs.iter().sum::<f64>() / logs.len() as f64).exp()),
+            problems: logs.len(),
+        }
+    }
 }
 
 /// What a ratio compares: median evaluations or aRT.
@@ -212,8 +226,8 @@ fn log_ratios(mine: &[&Row], rows: &[Row], reference: Method, statistic: Statist
 pub struct PairRow {
     /// The group's name: a family, or `bbob-fNN`.
     pub group: String,
-    /// (other method, geometric-mean ratio, problems in it).
-    pub ratios: Vec<(Method, Option<f64>, usize)>,
+    /// Each other method and the geometric-mean ratio against it.
+    pub ratios: Vec<(Method, Ratio)>,
 }
 
 /// `method` against every other method of `methods`, per family and per BBOB function.
@@ -247,10 +261,7 @@ pub fn pairwise(
         let ratios = methods
             .iter()
             .filter(|&&m| m != method)
-            .map(|&m| {
-                let logs = log_ratios(&mine, rows, m, Statistic::Median);
-                (m, geometric_mean(&logs), logs.len())
-            })
+            .map(|&m| (m, Ratio::of(&log_ratios(&mine, rows, m, Statistic::Median))))
             .collect();
         out.push(PairRow { group: g, ratios });
     }
@@ -277,8 +288,8 @@ pub fn families(
             if mine.is_empty() {
                 continue;
             }
-            let logs = log_ratios(&mine, rows, reference, Statistic::Median);
-            let art_logs = log_ratios(&mine, rows, reference, Statistic::Art);
+            let ratio = Ratio::of(&log_ratios(&mine, rows, reference, Statistic::Median));
+            let art_ratio = Ratio::of(&log_ratios(&mine, rows, reference, Statistic::Art));
             let my_runs: Vec<&Run> = runs
                 .iter()
                 .filter(|r| r.method == m && problems[r.problem].family == family)
@@ -289,10 +300,8 @@ pub fn families(
                 family,
                 method: m,
                 problems: mine.len(),
-                ratio: geometric_mean(&logs),
-                ratio_problems: logs.len(),
-                art_ratio: geometric_mean(&art_logs),
-                art_problems: art_logs.len(),
+                ratio,
+                art_ratio,
                 final_successes: reached.iter().filter(|r| r[last].is_some()).count(),
                 runs: my_runs.len(),
                 targets_reached: reached
@@ -305,11 +314,6 @@ pub fn families(
         }
     }
     out
-}
-
-/// exp(mean of `logs`), `None` when empty.
-fn geometric_mean(logs: &[f64]) -> Option<f64> {
-    (!logs.is_empty()).then(|| (logs.iter().sum::<f64>() / logs.len() as f64).exp())
 }
 
 #[cfg(test)]

@@ -144,13 +144,12 @@ pub fn update<T: Real>(
     }
     let rate = T::from_f64(rate(n));
     if shape == Shape::Diagonal {
-        let Some(mean) = target_mean(n, |i| h[i]) else {
+        let Some(Targets { top, low, mean }) = Targets::of(n, |i| h[i]) else {
             return;
         };
-        let (top, low) = mean.1;
         for i in 0..n {
             let target = top / h[i].abs().max(low);
-            c[i] = (T::ONE - rate) * c[i] + rate * target / mean.0;
+            c[i] = (T::ONE - rate) * c[i] + rate * target / mean;
         }
         refresh_diagonal(c, l, li, n);
         return;
@@ -158,7 +157,7 @@ pub fn update<T: Real>(
     let Scratch { a, v, w } = scratch;
     a[..n * n].copy_from_slice(&h[..n * n]);
     jacobi(a, v, n);
-    let Some((mean, (top, low))) = target_mean(n, |i| a[i * n + i]) else {
+    let Some(Targets { top, low, mean }) = Targets::of(n, |i| a[i * n + i]) else {
         return;
     };
     // Target C ∝ V diag(1/|λ|) Vᵀ with det 1: divide by the geometric mean.
@@ -174,20 +173,35 @@ pub fn update<T: Real>(
     refresh(c, l, li, n, a, v);
 }
 
-/// For curvatures λᵢ = `lambda(i)`: the geometric mean of the target axes
-/// top/max(|λᵢ|, low), with top = maxᵢ |λᵢ| and low = [`floor`]·top, and (top, low);
-/// `None` when top is zero or not finite.
-fn target_mean<T: Real>(n: usize, lambda: impl Fn(usize) -> T) -> Option<(T, (T, T))> {
-    let top = (0..n).fold(T::ZERO, |m, i| m.max(lambda(i).abs()));
-    if top <= T::ZERO || !top.is_finite() {
-        return None;
-    }
-    let low = floor::<T>() * top;
-    let log_mean = (0..n).fold(T::ZERO, |s, i| {
-        s + (T::ONE / lambda(i).abs().max(low) * top).ln()
-    });
-    Some(((log_mean / T::from_usize(n)).exp(), (top, low)))
+/// What an update's target axes top/max(|λᵢ|, low) share, for curvatures λᵢ.
+struct Targets<T> {
+    /// maxᵢ |λᵢ|.
+    top: T,
+    /// [`floor`]·top.
+    low: T,
+    /// The axes' geometric mean, which normalises the target to det 1.
+    mean: T,
 }
+
+impl<T: Real> Targets<T> {
+    /// For λᵢ = `lambda(i)`, i < n; `None` when top is zero or not finite.
+    fn of(n: usize, lambda: impl Fn(usize) -> T) -> Option<Targets<T>> {
+        let top = (0..n).fold(T::ZERO, |m, i| m.max(lambda(i).abs()));
+        if top <= T::ZERO || !top.is_finite() {
+            return None;
+        }
+        let low = floor::<T>() * top;
+        let log_mean = (0..n).fold(T::ZERO, |s, i| {
+            s + (T::ONE / lambda(i).abs().max(low) * top).ln()
+        });
+        Some(Targets {
+            top,
+            low,
+            mean: (log_mean / T::from_usize(n)).exp(),
+        })
+    }
+}
+
 /// Renormalises C to det 1 and sets L = Q diag(√e), L⁻¹ = diag(1/√e) Qᵀ from C = Q
 /// diag(e) Qᵀ.
 fn refresh<T: Real>(c: &mut [T], l: &mut [T], li: &mut [T], n: usize, a: &mut [T], v: &mut [T]) {
