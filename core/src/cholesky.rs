@@ -2,6 +2,7 @@
 //! and with a growing diagonal shift, for Newton steps on estimated (noisy, possibly
 //! indefinite) Hessians.
 
+use crate::optim::vector::{axpy, dot_lanes};
 use crate::real::Real;
 
 /// Most shifts tried before giving up; λ grows ×10 per try, so 40 tries span 40 decades.
@@ -64,42 +65,60 @@ fn factor<T: Real>(a: &[T], l: &mut [T], n: usize, lambda: T) -> bool {
 /// (then `a` holds no meaningful values).
 pub(crate) fn factor_in_place<T: Real>(a: &mut [T], n: usize, lambda: T) -> bool {
     for i in 0..n {
-        for j in 0..=i {
-            let mut s = a[i * n + j];
-            if i == j {
-                s += lambda;
-            }
-            for k in 0..j {
-                s -= a[i * n + k] * a[j * n + k];
-            }
-            if i == j {
-                if !(s > T::ZERO && s.is_finite()) {
-                    return false;
-                }
-                a[i * n + i] = s.sqrt();
-            } else {
-                a[i * n + j] = s / a[j * n + j];
-            }
+        let (done, rest) = a.split_at_mut(i * n);
+        let row = &mut rest[..=i];
+        for j in 0..i {
+            let lj = &done[j * n..j * n + j + 1];
+            row[j] = (row[j] - dot_lanes(&row[..j], &lj[..j])) / lj[j];
         }
+        let s = row[i] + lambda - dot_lanes(&row[..i], &row[..i]);
+        if !(s > T::ZERO && s.is_finite()) {
+            return false;
+        }
+        row[i] = s.sqrt();
     }
     true
 }
 
-/// Solves LLᵀx = b in place (`x` holds b on entry).
+/// Solves LLᵀx = b in place (`x` holds b on entry): [`forward`], then [`backward`].
 pub(crate) fn solve<T: Real>(l: &[T], n: usize, x: &mut [T]) {
+    forward(l, n, x);
+    backward(l, n, x);
+}
+
+/// Solves Lx = b in place, by rows of L.
+pub(crate) fn forward<T: Real>(l: &[T], n: usize, x: &mut [T]) {
     for i in 0..n {
-        let mut s = x[i];
-        for k in 0..i {
-            s -= l[i * n + k] * x[k];
-        }
-        x[i] = s / l[i * n + i];
+        let row = &l[i * n..i * n + i + 1];
+        x[i] = (x[i] - dot_lanes(&row[..i], &x[..i])) / row[i];
     }
+}
+
+/// Solves Lᵀx = b in place, by rows of L too (columns of Lᵀ), so that L is read
+/// contiguously.
+pub(crate) fn backward<T: Real>(l: &[T], n: usize, x: &mut [T]) {
     for i in (0..n).rev() {
-        let mut s = x[i];
-        for k in i + 1..n {
-            s -= l[k * n + i] * x[k];
+        let row = &l[i * n..i * n + i + 1];
+        let xi = x[i] / row[i];
+        x[i] = xi;
+        axpy(-xi, &row[..i], &mut x[..i]);
+    }
+}
+
+/// Solves LX = B in place for the n×k row-major `x` (B on entry): [`forward`] for k
+/// right-hand sides at once, each row of L read once and each update a row operation
+/// on k contiguous values.
+pub(crate) fn forward_many<T: Real>(l: &[T], n: usize, x: &mut [T], k: usize) {
+    for i in 0..n {
+        let row = &l[i * n..i * n + i + 1];
+        let (done, rest) = x.split_at_mut(i * k);
+        let xi = &mut rest[..k];
+        for (j, &lij) in row[..i].iter().enumerate() {
+            axpy(-lij, &done[j * k..(j + 1) * k], xi);
         }
-        x[i] = s / l[i * n + i];
+        for v in xi.iter_mut() {
+            *v /= row[i];
+        }
     }
 }
 

@@ -11,6 +11,27 @@ pub(crate) fn dot<T: Real>(x: &[T], y: &[T]) -> T {
     x.iter().zip(y).fold(T::ZERO, |s, (&a, &b)| s + a * b)
 }
 
+/// xᵀy summed in four interleaved partial sums, (s₀ + s₁) + (s₂ + s₃) plus the tail:
+/// independent sums the compiler keeps in vector registers, where [`dot`]'s single
+/// running sum is a chain of dependent additions. For the long products of O(m³)
+/// kernels (Auto's model fit); its rounding differs from [`dot`]'s.
+#[inline]
+pub(crate) fn dot_lanes<T: Real>(x: &[T], y: &[T]) -> T {
+    let mut lanes = [T::ZERO; 4];
+    let (xs, ys) = (x.chunks_exact(4), y.chunks_exact(4));
+    let tail = xs
+        .remainder()
+        .iter()
+        .zip(ys.remainder())
+        .fold(T::ZERO, |s, (&a, &b)| s + a * b);
+    for (a, b) in xs.zip(ys) {
+        for k in 0..4 {
+            lanes[k] += a[k] * b[k];
+        }
+    }
+    (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
+}
+
 /// ‖x‖₂, scaled by max |xᵢ| so that it neither overflows nor underflows.
 pub(crate) fn norm<T: Real>(x: &[T]) -> T {
     let big = x.iter().fold(T::ZERO, |m, &v| m.max(v.abs()));

@@ -89,12 +89,12 @@ mod tests {
                 (n, 0, 1)
             };
             let r = 2 * n.min(m / 2) + 2;
-            let formula = m * (2 * n + 5)
+            let formula = m * (2 * n + 6)
                 + m * m
                 + m * p
                 + p * p
                 + p
-                + 12 * n
+                + 13 * n
                 + 7 * h
                 + r * (n + 1)
                 + n * n

@@ -14,8 +14,8 @@
 //! by a fraction [`rate`] per update and is renormalised to det C = 1, so σ alone
 //! carries the scale.
 
+use super::eigen;
 use super::model::Shape;
-use super::trust::jacobi;
 use crate::real::Real;
 
 /// Fraction of the way C moves towards the target of one update in dimension n:
@@ -84,13 +84,30 @@ pub fn apply_transposed<T: Real>(shape: Shape, m: &[T], d: &[T], out: &mut [T]) 
 pub fn whitened_distance<T: Real>(shape: Shape, li: &[T], x: &[T], y: &[T]) -> T {
     let n = x.len();
     match shape {
-        Shape::Full => (0..n).fold(T::ZERO, |s, i| {
-            let row = (0..n).fold(T::ZERO, |r, j| r + li[i * n + j] * (x[j] - y[j]));
-            s + row.sq()
-        }),
+        Shape::Full => li[..n * n]
+            .chunks_exact(n)
+            .fold(T::ZERO, |s, row| s + row_times_difference(row, x, y).sq()),
         Shape::Diagonal => (0..n).fold(T::ZERO, |s, i| s + (li[i] * (x[i] - y[i])).sq()),
     }
     .sqrt()
+}
+
+/// Σⱼ aⱼ(xⱼ − yⱼ) in four interleaved partial sums (as [`dot_lanes`](crate::optim::vector::dot_lanes)).
+fn row_times_difference<T: Real>(a: &[T], x: &[T], y: &[T]) -> T {
+    let mut lanes = [T::ZERO; 4];
+    let (ac, xc, yc) = (a.chunks_exact(4), x.chunks_exact(4), y.chunks_exact(4));
+    let tail = (ac
+        .remainder()
+        .iter()
+        .zip(xc.remainder())
+        .zip(yc.remainder()))
+    .fold(T::ZERO, |s, ((&a, &x), &y)| s + a * (x - y));
+    for ((a, x), y) in ac.zip(xc).zip(yc) {
+        for k in 0..4 {
+            lanes[k] += a[k] * (x[k] - y[k]);
+        }
+    }
+    (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
 }
 
 /// out = Lᵀ H L (or L⁻ᵀ H L⁻¹ with `li`): the Hessian `h` of the same shape seen
@@ -156,13 +173,13 @@ pub fn update<T: Real>(
     }
     let Scratch { a, v, w } = scratch;
     a[..n * n].copy_from_slice(&h[..n * n]);
-    jacobi(a, v, n);
-    let Some(Targets { top, low, mean }) = Targets::of(n, |i| a[i * n + i]) else {
+    eigen::symmetric(a, v, n);
+    let Some(Targets { top, low, mean }) = Targets::of(n, |i| a[i]) else {
         return;
     };
     // Target C ∝ V diag(1/|λ|) Vᵀ with det 1: divide by the geometric mean.
     for i in 0..n {
-        w[i] = T::ONE / a[i * n + i].abs().max(low) * top;
+        w[i] = T::ONE / a[i].abs().max(low) * top;
     }
     for i in 0..n {
         for j in 0..n {
@@ -206,18 +223,17 @@ impl<T: Real> Targets<T> {
 /// diag(e) Qᵀ.
 fn refresh<T: Real>(c: &mut [T], l: &mut [T], li: &mut [T], n: usize, a: &mut [T], v: &mut [T]) {
     a[..n * n].copy_from_slice(&c[..n * n]);
-    jacobi(a, v, n);
-    let top = (0..n).fold(T::ZERO, |m, i| m.max(a[i * n + i]));
+    eigen::symmetric(a, v, n);
+    let top = a[..n].iter().fold(T::ZERO, |m, &x| m.max(x));
     let low = floor::<T>() * top;
     let mut log_mean = T::ZERO;
-    for i in 0..n {
-        let e = a[i * n + i].max(low);
-        a[i * n + i] = e;
+    for e in a[..n].iter_mut() {
+        *e = e.max(low);
         log_mean += e.ln();
     }
     let mean = (log_mean / T::from_usize(n)).exp();
     for i in 0..n {
-        let e = a[i * n + i] / mean;
+        let e = a[i] / mean;
         let root = e.sqrt();
         for k in 0..n {
             l[k * n + i] = v[k * n + i] * root;

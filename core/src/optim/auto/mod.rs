@@ -71,6 +71,7 @@
 //! (and O(mn² + n³) for the full model's linear part and eigen-decomposition); O(n³) per
 //! n pairs for the diagonal model's sampling frames.
 
+mod eigen;
 mod fixed;
 mod metric;
 mod model;
@@ -300,6 +301,10 @@ struct Memory<'b, T> {
     fs: &'b mut [T],
     /// The noise group of each remembered point (see [`State::groups`]).
     gs: &'b mut [T],
+    /// z of each remembered point, for θ = `zt` and the σ and metric of
+    /// [`State::reach_key`] (see `Auto::refresh_reach`).
+    zs: &'b mut [T],
+    zt: &'b mut [T],
     /// The fit's rows u, √w, noise groups, residuals, and its m×m system.
     u: &'b mut [T],
     sw: &'b mut [T],
@@ -342,7 +347,7 @@ struct Memory<'b, T> {
 }
 
 /// Region lengths for dimension n, in [`Memory`]'s order.
-const fn regions(n: usize) -> [usize; 35] {
+const fn regions(n: usize) -> [usize; 37] {
     let shape = Shape::for_dim(n);
     let m = history_len(n);
     let hl = shape.hessian_len(n);
@@ -359,6 +364,8 @@ const fn regions(n: usize) -> [usize; 35] {
         m * n,
         m,
         m,
+        m,
+        n,
         m * n,
         m,
         m,
@@ -394,7 +401,7 @@ const fn regions(n: usize) -> [usize; 35] {
 
 /// Floats of buffer an [`Auto`] run needs in dimension n, for m = [`Auto::history_len`]
 /// points remembered:
-/// m(2n + 5) + m² + mp + p² + p + 12n + 7h + r(n + 1) + n² + 2f,
+/// m(2n + 6) + m² + mp + p² + p + 13n + 7h + r(n + 1) + n² + 2f,
 /// with, for the full model (n ≤ [`FULL_MODEL_MAX_DIM`]), h = f = n² and p = n + 1, and
 /// for the diagonal one h = n, f = 0 and p = 1; r = 2·min(n, ⌊m/2⌋) + 2 staged points.
 /// A `const fn`, so that storage can be sized at compile time ([`FixedAuto`]).
@@ -454,6 +461,8 @@ fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         xs: take(),
         fs: take(),
         gs: take(),
+        zs: take(),
+        zt: take(),
         u: take(),
         sw: take(),
         gid: take(),
@@ -535,6 +544,11 @@ struct State<T> {
     /// θ moved this iteration to a point of lower value on a common seed.
     gained: bool,
     finished: Option<AutoTermination>,
+    /// Changes of the sampling metric so far.
+    metric_changes: u32,
+    /// (σ, `metric_changes`) for which [`Memory::zs`] holds the remembered points' z
+    /// (with θ = [`Memory::zt`]); `None` before it is first filled.
+    reach_key: Option<(T, u32)>,
 }
 
 /// Auto: a resumable run over θ (borrowed, updated in place to the best point found).
@@ -655,6 +669,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 shared: None,
                 gained: false,
                 finished: None,
+                metric_changes: 0,
+                reach_key: None,
             },
         })
     }
@@ -931,14 +947,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             }
         }
         // Remember the points and move θ to the lowest when it beats f(θ).
+        self.remember(allowed, group);
         let mut lowest: Option<(usize, T)> = None;
         for row in 0..allowed {
             let f = self.mem.stage_f[row];
-            if !f.is_finite() {
-                continue;
-            }
-            self.remember(row, f, group);
-            if lowest.is_none_or(|(_, b)| f < b) {
+            if f.is_finite() && lowest.is_none_or(|(_, b)| f < b) {
                 lowest = Some((row, f));
             }
         }
@@ -1046,12 +1059,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.evaluate(objective, rows, spent, |_| seed)?;
         let trial = self.mem.stage_f[0];
         let reference = if compare { self.mem.stage_f[1] } else { value };
-        for row in 0..rows {
-            let f = self.mem.stage_f[row];
-            if f.is_finite() {
-                self.remember(row, f, group);
-            }
-        }
+        self.remember(rows, group);
         if compare && reference.is_finite() {
             self.st.value = Some(reference);
         }
@@ -1295,28 +1303,58 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         T::from_usize((self.st.groups % (1 << 20)) as usize)
     }
 
-    /// Remembers staged point `row` with value f from noise group `group`, replacing the
-    /// point farthest from θ once the memory is full.
-    fn remember(&mut self, row: usize, f: T, group: T) {
+    /// Remembers the staged rows 0 … `rows` − 1 with finite values, in noise group
+    /// `group`. When the memory is full, each replaces the point farthest from θ (by z).
+    fn remember(&mut self, rows: usize, group: T) {
         let n = self.theta.len();
         let cap = history_len(n);
-        let slot = if self.st.count < cap {
-            self.st.count += 1;
-            self.st.count - 1
-        } else {
-            let mut far = (0, -T::ONE);
-            for k in 0..cap {
-                let d = self.reach_of(k);
-                if d > far.1 {
-                    far = (k, d);
-                }
+        for row in 0..rows {
+            let f = self.mem.stage_f[row];
+            if !f.is_finite() {
+                continue;
             }
-            far.0
-        };
-        self.mem.xs[slot * n..(slot + 1) * n]
-            .copy_from_slice(&self.mem.stage[row * n..(row + 1) * n]);
-        self.mem.fs[slot] = f;
-        self.mem.gs[slot] = group;
+            let slot = if self.st.count < cap {
+                self.st.count += 1;
+                self.st.count - 1
+            } else {
+                self.refresh_reach();
+                let mut far = (0, -T::ONE);
+                for (k, &z) in self.mem.zs[..cap].iter().enumerate() {
+                    if z > far.1 {
+                        far = (k, z);
+                    }
+                }
+                far.0
+            };
+            self.mem.xs[slot * n..(slot + 1) * n]
+                .copy_from_slice(&self.mem.stage[row * n..(row + 1) * n]);
+            self.mem.fs[slot] = f;
+            self.mem.gs[slot] = group;
+            if self.reach_is_current() {
+                self.mem.zs[slot] = self.reach_of(slot);
+            }
+        }
+    }
+
+    /// Whether [`Memory::zs`] holds the remembered points' z for the current θ, σ and
+    /// metric.
+    fn reach_is_current(&self) -> bool {
+        self.st.reach_key == Some((self.st.sigma, self.st.metric_changes))
+            && *self.mem.zt == *self.theta
+    }
+
+    /// Brings [`Memory::zs`] (z of remembered point k at index k) up to date, computing
+    /// it afresh only when θ, σ or the metric changed since it was filled: most
+    /// iterations ask several times (ties, spread, counts, the memory's replacements),
+    /// each O(mn²) for a full metric.
+    fn refresh_reach(&mut self) {
+        if !self.reach_is_current() {
+            for k in 0..self.st.count {
+                self.mem.zs[k] = self.reach_of(k);
+            }
+            self.mem.zt.copy_from_slice(self.theta);
+            self.st.reach_key = Some((self.st.sigma, self.st.metric_changes));
+        }
     }
 
     /// z = ‖L⁻¹(x − θ)‖/(σ√n) of remembered point k.
@@ -1327,22 +1365,25 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             / (self.st.sigma * T::from_usize(n).sqrt())
     }
 
-    fn count_within(&self, z: T) -> usize {
-        (0..self.st.count)
-            .filter(|&k| self.reach_of(k) <= z)
+    fn count_within(&mut self, z: T) -> usize {
+        self.refresh_reach();
+        self.mem.zs[..self.st.count]
+            .iter()
+            .filter(|&&r| r <= z)
             .count()
     }
 
     /// Remembered points within z other than θ, and how many of them tie with f(θ);
     /// (0, 0) when f(θ) is unknown. Deterministic objectives only: a noisy one's values
     /// compare only within their noise group.
-    fn ties_within(&self, z: T) -> (usize, usize) {
+    fn ties_within(&mut self, z: T) -> (usize, usize) {
         let Some(v) = self.st.value else {
             return (0, 0);
         };
+        self.refresh_reach();
         (0..self.st.count)
             .filter(|&k| {
-                let reach = self.reach_of(k);
+                let reach = self.mem.zs[k];
                 reach > T::ZERO && reach <= z
             })
             .fold((0, 0), |(near, ties), k| {
@@ -1353,11 +1394,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// max |f − f(θ)| over remembered points within z (0 when f(θ) is unknown); for a
     /// noisy objective the largest difference within a noise group, where values
     /// compare (max |f − f(θ)| where no group holds two such points).
-    fn spread(&self, z: T) -> T {
+    fn spread(&mut self, z: T) -> T {
         let Some(v) = self.st.value else {
             return T::ZERO;
         };
-        let near = |k: &usize| self.reach_of(*k) <= z;
+        self.refresh_reach();
+        let near = |k: &usize| self.mem.zs[*k] <= z;
         if self.st.noisy {
             let within = (0..self.st.count).filter(near).fold(T::ZERO, |s, k| {
                 (0..k)
@@ -1406,18 +1448,19 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let limit = T::from_f64(2.0 * REACH);
         let reach = T::from_f64(REACH);
         let mut m = 0;
+        let root_n = T::from_usize(n).sqrt();
         for k in 0..self.st.count {
-            let z = self.reach_of(k);
+            // Row m of u = L⁻¹(x − θ)/σ, kept if z = ‖u‖/√n is within the limit.
+            let x = &self.mem.xs[k * n..(k + 1) * n];
+            for ((ri, &xi), &ti) in self.mem.rs.iter_mut().zip(x).zip(self.theta.iter()) {
+                *ri = (xi - ti) / sigma;
+            }
+            let row = &mut self.mem.u[m * n..(m + 1) * n];
+            metric::apply(shape, self.mem.li, self.mem.rs, row);
+            let z = norm(row) / root_n;
             if z > limit {
                 continue;
             }
-            let row = &mut self.mem.u[m * n..(m + 1) * n];
-            let x = &self.mem.xs[k * n..(k + 1) * n];
-            for ((ui, &xi), &ti) in row.iter_mut().zip(x).zip(self.theta.iter()) {
-                *ui = (xi - ti) / sigma;
-            }
-            self.mem.rs.copy_from_slice(row);
-            metric::apply(shape, self.mem.li, self.mem.rs, row);
             let sw = (-(z / reach).sq() / T::from_f64(4.0)).exp();
             let prior = dot(self.mem.g, row) + shape.half_quadratic(self.mem.h, row);
             self.mem.sw[m] = sw;
@@ -1488,6 +1531,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// Moves the sampling metric towards the shape of the prior's curvature H₀.
     fn learn_metric(&mut self) {
         let n = self.theta.len();
+        self.st.metric_changes = self.st.metric_changes.wrapping_add(1);
         metric::update(
             self.shape,
             self.mem.c,

@@ -42,6 +42,7 @@
 //!   (1/(2λ_H)) Σᵢ √wᵢ αᵢ (‖uᵢ‖² + ω uᵢ²) (elementwise square), g by (1/λ_H) Σᵢ √wᵢ αᵢ uᵢ.
 
 use crate::cholesky;
+use crate::optim::vector::{axpy, dot, dot_lanes};
 use crate::real::Real;
 
 /// Which Hessian the model has.
@@ -244,11 +245,7 @@ pub(super) fn fit<T: Real>(
         for k in 0..=i {
             let uk = &u[k * n..(k + 1) * n];
             let q = match shape {
-                Shape::Full => ui
-                    .iter()
-                    .zip(uk)
-                    .fold(T::ZERO, |s, (&a, &b)| s + a * b)
-                    .sq(),
+                Shape::Full => dot_lanes(ui, uk).sq(),
                 Shape::Diagonal => {
                     let (quad, lin) = products(ui, uk);
                     quad * share + kp[i] * kp[k] + T::from_f64(4.0) * lin
@@ -266,43 +263,39 @@ pub(super) fn fit<T: Real>(
     if !cholesky::factor_in_place(gram, m, T::ZERO) {
         return None;
     }
-    // Z = K⁻¹P, column j of P being √wᵢ·(1, uᵢ)ⱼ; stored column by column.
+    // With K = LLᵀ: W = L⁻¹P (P's row i being √wᵢ·(1, uᵢ), or √wᵢ; m×cols, row-major)
+    // and w = L⁻¹r, so that the Schur complement PᵀK⁻¹P = WᵀW and PᵀK⁻¹r = Wᵀw.
     let cols = shape.free_columns(n);
-    let feature = |i: usize, j: usize| {
-        if j == 0 {
-            sw[i]
-        } else {
-            sw[i] * u[i * n + j - 1]
+    let w = &mut kp[..m * cols];
+    for (i, row) in w.chunks_exact_mut(cols).enumerate() {
+        row[0] = sw[i];
+        for (j, wij) in row[1..].iter_mut().enumerate() {
+            *wij = sw[i] * u[i * n + j];
         }
-    };
-    for j in 0..cols {
-        let z = &mut kp[j * m..(j + 1) * m];
-        for (i, zi) in z.iter_mut().enumerate() {
-            *zi = feature(i, j);
-        }
-        cholesky::solve(gram, m, z);
     }
+    cholesky::forward_many(gram, m, w, cols);
     let y = &mut r[..m];
-    cholesky::solve(gram, m, y);
-    // S β = Pᵀy with S = PᵀZ, ridged where the points leave the linear part free.
-    let mut diag = T::ZERO;
-    for a in 0..cols {
-        for b in 0..=a {
-            let zb = &kp[b * m..(b + 1) * m];
-            schur[a * cols + b] = (0..m).fold(T::ZERO, |s, i| s + feature(i, a) * zb[i]);
+    cholesky::forward(gram, m, y);
+    // S β = Wᵀw, ridged where the points leave the linear part free.
+    schur[..cols * cols].fill(T::ZERO);
+    beta[..cols].fill(T::ZERO);
+    for (wi, &yi) in w.chunks_exact(cols).zip(y.iter()) {
+        for a in 0..cols {
+            axpy(wi[a], &wi[..=a], &mut schur[a * cols..a * cols + a + 1]);
+            beta[a] += wi[a] * yi;
         }
-        diag += schur[a * cols + a];
-        beta[a] = (0..m).fold(T::ZERO, |s, i| s + feature(i, a) * y[i]);
     }
+    let diag = (0..cols).fold(T::ZERO, |s, a| s + schur[a * cols + a]);
     let ridge = T::EPSILON.sqrt() * (diag / T::from_usize(cols)).max(T::MIN_POSITIVE);
     if !cholesky::factor_in_place(&mut schur[..cols * cols], cols, ridge) {
         return None;
     }
     cholesky::solve(schur, cols, &mut beta[..cols]);
-    // α = y − Zβ: the weighted residuals of the fit.
-    for (i, yi) in y.iter_mut().enumerate() {
-        *yi -= (0..cols).fold(T::ZERO, |s, j| s + kp[j * m + i] * beta[j]);
+    // α = K⁻¹(r − Pβ) = L⁻ᵀ(w − Wβ): the weighted residuals of the fit.
+    for (yi, wi) in y.iter_mut().zip(w.chunks_exact(cols)) {
+        *yi -= dot(wi, &beta[..cols]);
     }
+    cholesky::backward(gram, m, y);
     let alpha = &*y;
     if alpha
         .iter()

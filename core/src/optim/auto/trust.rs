@@ -1,6 +1,6 @@
 //! The trust-region subproblem: minimise gᵀs + ½sᵀHs over ‖s‖ ≤ Δ, for any symmetric H.
 //!
-//! H = VΛVᵀ by cyclic Jacobi rotations (a diagonal H is its own decomposition), γ = Vᵀg.
+//! H = VΛVᵀ (the `eigen` module) (a diagonal H is its own decomposition), γ = Vᵀg.
 //! The minimiser is s(μ) = −V(Λ + μI)⁻¹γ with the smallest μ ≥ max(0, −λ_min) for which
 //! ‖s(μ)‖ ≤ Δ, and ‖s(μ)‖ = Δ whenever μ > 0 (Moré & Sorensen's characterisation). ‖s(μ)‖
 //! falls monotonically in μ, so μ is found by bisection. In the hard case — γ has no
@@ -9,65 +9,12 @@
 //! therefore gives a step to the boundary along the descending curvature, never a
 //! division by a non-positive number.
 
+use super::eigen;
 use super::model::Shape;
 use crate::real::Real;
 
-/// Jacobi sweeps before giving up on full convergence; each sweep brings the
-/// off-diagonal mass down quadratically once it is small, so a handful suffice.
-const MAX_SWEEPS: usize = 50;
-
 /// Bisection steps on μ: each halves the bracket, so 200 reach any precision of T.
 const MAX_BISECTIONS: usize = 200;
-
-/// Eigen-decomposes the symmetric row-major n×n `a` in place: on return its diagonal
-/// holds the eigenvalues and `v` (n×n, row-major) the eigenvectors as columns.
-pub(super) fn jacobi<T: Real>(a: &mut [T], v: &mut [T], n: usize) {
-    for i in 0..n {
-        for j in 0..n {
-            v[i * n + j] = if i == j { T::ONE } else { T::ZERO };
-        }
-    }
-    for _ in 0..MAX_SWEEPS {
-        let off = (0..n)
-            .flat_map(|i| (0..n).filter(move |&j| j != i).map(move |j| (i, j)))
-            .fold(T::ZERO, |s, (i, j)| s + a[i * n + j].sq());
-        let diag = (0..n).fold(T::ZERO, |s, i| s + a[i * n + i].sq());
-        if off <= T::EPSILON.sq() * diag || off == T::ZERO {
-            return;
-        }
-        for p in 0..n {
-            for q in p + 1..n {
-                let apq = a[p * n + q];
-                if apq == T::ZERO {
-                    continue;
-                }
-                let theta = (a[q * n + q] - a[p * n + p]) / (T::TWO * apq);
-                let t = theta.sign() / (theta.abs() + (theta.sq() + T::ONE).sqrt());
-                let t = if theta == T::ZERO { T::ONE } else { t };
-                let c = T::ONE / (t.sq() + T::ONE).sqrt();
-                let s = t * c;
-                for k in 0..n {
-                    let akp = a[k * n + p];
-                    let akq = a[k * n + q];
-                    a[k * n + p] = c * akp - s * akq;
-                    a[k * n + q] = s * akp + c * akq;
-                }
-                for k in 0..n {
-                    let apk = a[p * n + k];
-                    let aqk = a[q * n + k];
-                    a[p * n + k] = c * apk - s * aqk;
-                    a[q * n + k] = s * apk + c * aqk;
-                }
-                for k in 0..n {
-                    let vkp = v[k * n + p];
-                    let vkq = v[k * n + q];
-                    v[k * n + p] = c * vkp - s * vkq;
-                    v[k * n + q] = s * vkp + c * vkq;
-                }
-            }
-        }
-    }
-}
 
 /// Buffers of [`solve`]: `a` and `v` n² floats each (full shape only), `gamma` and
 /// `lambda` n floats.
@@ -102,9 +49,9 @@ pub(super) fn solve<T: Real>(
     match shape {
         Shape::Full => {
             a[..n * n].copy_from_slice(&h[..n * n]);
-            jacobi(a, v, n);
+            eigen::symmetric(a, v, n);
             for i in 0..n {
-                lambda[i] = a[i * n + i];
+                lambda[i] = a[i];
                 gamma[i] = (0..n).fold(T::ZERO, |acc, k| acc + v[k * n + i] * g[k]);
             }
         }
@@ -219,21 +166,6 @@ mod tests {
 
     fn norm(s: &[f64]) -> f64 {
         libm::sqrt(s.iter().map(|x| x * x).sum::<f64>())
-    }
-
-    #[test]
-    fn jacobi_diagonalises() {
-        let mut a = [4.0, 1.0, 2.0, 1.0, 3.0, 0.5, 2.0, 0.5, 1.0];
-        let orig = a;
-        let mut v = [0.0; 9];
-        jacobi(&mut a, &mut v, 3);
-        // A v_i = λ_i v_i for each column.
-        for i in 0..3 {
-            for r in 0..3 {
-                let av: f64 = (0..3).map(|k| orig[r * 3 + k] * v[k * 3 + i]).sum();
-                assert!((av - a[i * 3 + i] * v[r * 3 + i]).abs() < 1e-12);
-            }
-        }
     }
 
     #[test]
