@@ -25,9 +25,13 @@
 //! features, K = ΨΨᵀ/λ_H + I and P the weighted free features, the saddle system
 //! K α + P β = r, Pᵀα = 0 ([`fit`]).
 //!
-//! * **Full Hessian** (n ≤ [`super::FULL_MODEL_MAX_DIM`]): ψ holds the quadratic features,
-//!   whose inner product under the Frobenius penalty is (a·b)²/4, and P = √wᵢ(1, uᵢ). The
-//!   Hessian moves by (1/(2λ_H)) Σᵢ √wᵢ αᵢ uᵢuᵢᵀ.
+//! * **Full Hessian** (n ≤ [`super::FULL_MODEL_MAX_DIM`]): H = h̄I + D, a common
+//!   curvature h̄ (feature ½‖u‖²) and a full symmetric deviation D (the quadratic
+//!   features), both penalised alike, so ψ's inner product is (‖a‖²‖b‖² + (a·b)²)/4, and
+//!   P = √wᵢ(1, uᵢ). Every point informs h̄, so a few points fix the curvature's scale
+//!   in all directions — where the metric has made f round, nearly all of H — while D
+//!   keeps what was learnt along the directions not sampled. The Hessian moves by
+//!   (1/(2λ_H)) Σᵢ √wᵢ αᵢ (uᵢuᵢᵀ + ‖uᵢ‖²I).
 //! * **Diagonal Hessian** (large n): H = h̄I + diag(d), a common curvature h̄ (feature
 //!   ½‖u‖²) and per-coordinate deviations d (features ½uⱼ², weighted by ω), and the
 //!   gradient is penalised too (features u), so that P = √wᵢ is one column and the cost
@@ -234,7 +238,7 @@ pub(super) fn fit<T: Real>(
     let share = T::from_f64(deviation_share(n));
     let quarter_lh = T::ONE / (T::from_f64(4.0) * lh);
     let gram = &mut gram[..m * m];
-    if shape == Shape::Diagonal {
+    {
         // ‖uᵢ‖², kept in `kp` until the Gram matrix is built.
         for (i, norm) in kp[..m].iter_mut().enumerate() {
             *norm = products(&u[i * n..(i + 1) * n], &u[i * n..(i + 1) * n]).1;
@@ -245,7 +249,7 @@ pub(super) fn fit<T: Real>(
         for k in 0..=i {
             let uk = &u[k * n..(k + 1) * n];
             let q = match shape {
-                Shape::Full => dot_lanes(ui, uk).sq(),
+                Shape::Full => dot_lanes(ui, uk).sq() + kp[i] * kp[k],
                 Shape::Diagonal => {
                     let (quad, lin) = products(ui, uk);
                     quad * share + kp[i] * kp[k] + T::from_f64(4.0) * lin
@@ -327,11 +331,13 @@ pub(super) fn fit<T: Real>(
         let ui = &u[i * n..(i + 1) * n];
         match shape {
             Shape::Full => {
+                let common = c * ui.iter().fold(T::ZERO, |s, &x| s + x * x) * half_lh;
                 for j in 0..n {
                     let cj = c * ui[j] * half_lh;
                     for l in 0..n {
                         h[j * n + l] += cj * ui[l];
                     }
+                    h[j * n + j] += common;
                 }
             }
             Shape::Diagonal => {
@@ -526,32 +532,39 @@ mod tests {
         }
     }
 
-    /// With one point along e₀ and its mirror, the prior's curvature across survives.
+    /// With θ, one point along e₀ and its mirror, the prior's curvature across moves
+    /// only by the common part of the change: the data's +2 along e₀ splits evenly
+    /// between the deviation and the common curvature (equal penalties), so H = diag(2,
+    /// 5 + 1) with no cross term.
     #[test]
-    fn keeps_the_prior_where_points_say_nothing() {
+    fn moves_unsampled_curvature_by_the_common_change_only() {
         let n = 2;
-        let u = [1.0, 0.0, -1.0, 0.0];
-        let sw = [1.0, 1.0];
-        // f = u₀ + u₀² ; prior H = diag(0, 5): the second coordinate is not sampled.
+        let u = [1.0, 0.0, -1.0, 0.0, 0.0, 0.0];
+        let sw = [1.0, 1.0, 1.0];
+        // f = u₀ + u₀² ; prior H = diag(0, 5): the second coordinate is not sampled, and
+        // the prior is 0 along the first.
         let (mut g, mut h) = ([0.0; 2], [0.0, 0.0, 0.0, 5.0]);
-        let prior = |x: &[f64]| Shape::Full.half_quadratic(&[0.0, 0.0, 0.0, 5.0], x);
-        let mut r = [2.0 - prior(&u[..2]), 0.0 - prior(&u[2..])];
+        let mut r = [2.0, 0.0, 0.0];
         assert!(
             fit(
                 Shape::Full,
                 n,
-                2,
+                3,
                 &u,
                 &sw,
                 None,
                 &mut r,
-                Buffers::new().as_mut(Shape::Full, 2, n),
+                Buffers::new().as_mut(Shape::Full, 3, n),
                 &mut g,
                 &mut h
             )
             .is_some()
         );
         assert!((g[0] - 1.0).abs() < 1e-3, "g = {g:?}");
-        assert!((h[3] - 5.0).abs() < 1e-6, "H = {h:?}");
+        assert!(
+            (h[0] - 2.0).abs() < 1e-5 && (h[3] - 6.0).abs() < 1e-5,
+            "H = {h:?}"
+        );
+        assert!(h[1] == 0.0 && h[2] == 0.0, "H = {h:?}");
     }
 }
