@@ -13,9 +13,10 @@
 //!   points over a Gaussian of width ~σ, as hodr's estimators average samples, so the
 //!   model is that of the *smoothed* objective; an underdetermined one changes the
 //!   curvature least, as Powell's NEWUOA does, so curvature learnt earlier is kept.
-//!   A full Hessian is modelled for n ≤ [`FULL_MODEL_MAX_DIM`], a diagonal one above,
-//!   with a memory of at most [`DIAGONAL_MEMORY`] points, so that an iteration's cost
-//!   stays linear in n (the `model` module says how such a fit learns).
+//!   A full Hessian is modelled for n ≤ [`FULL_MODEL_MAX_DIM`], a diagonal one above;
+//!   the memory holds at most [`MAX_MEMORY`] points, so that an iteration's cost is
+//!   bounded for a full model and linear in n for a diagonal one (the `model` module says
+//!   how a fit with fewer points than coefficients learns).
 //! * **Samples.** Where fewer than n + 1 remembered points (or half the memory, if
 //!   smaller) lie within z ≤ ρ, the iteration evaluates antithetic pairs θ ± σ√n·b along
 //!   Lb, b the columns of a random orthonormal frame (n pairs, or half the memory's
@@ -94,11 +95,12 @@ use model::Shape;
 /// coefficients instead of (n+1)(n+2)/2, so memory and fitting stay affordable).
 pub const FULL_MODEL_MAX_DIM: usize = 20;
 
-/// Most points a diagonal model (n > [`FULL_MODEL_MAX_DIM`]) remembers. Its fit costs
-/// O(m²n + m³) per iteration for m remembered points, so a bounded memory keeps the cost
-/// linear in n; with fewer points than the model's 2n + 1 coefficients the fit corrects the
-/// model carried from earlier iterations along the directions of the recent points.
-pub const DIAGONAL_MEMORY: usize = 128;
+/// Most points Auto remembers (it reaches this for n ≥ 14 with a full model, n ≥ 42 with
+/// a diagonal one). A fit costs O(m²n + m³) per iteration for m remembered points, so
+/// the bound keeps the cost affordable for a full model and linear in n for a diagonal
+/// one; with fewer points than the model's coefficients the fit corrects the model
+/// carried from earlier iterations along the directions of the recent points.
+pub const MAX_MEMORY: usize = 128;
 
 /// ρ: the kernel's reach in units of σ√n (the distance of a fresh sample). Points with
 /// z ≤ ρ count as nearby; points with z ≤ 2ρ are fitted, with weight exp(−½(z/ρ)²) ≥ e⁻².
@@ -418,11 +420,7 @@ pub const fn buffer_len(n: usize) -> usize {
 
 const fn history_len(n: usize) -> usize {
     let m = Shape::for_dim(n).coefficients(n) + n + 1;
-    match Shape::for_dim(n) {
-        Shape::Full => m,
-        Shape::Diagonal if m > DIAGONAL_MEMORY => DIAGONAL_MEMORY,
-        Shape::Diagonal => m,
-    }
+    if m > MAX_MEMORY { MAX_MEMORY } else { m }
 }
 
 /// Remembered points within reach that a model needs before it steps without sampling:
@@ -600,8 +598,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Points remembered in dimension n: the model's coefficient count
-    /// ((n+1)(n+2)/2 for a full Hessian, 2n + 1 for a diagonal one) plus n + 1, for the
-    /// diagonal model at most [`DIAGONAL_MEMORY`].
+    /// ((n+1)(n+2)/2 for a full Hessian, 2n + 1 for a diagonal one) plus n + 1, at most
+    /// [`MAX_MEMORY`].
     pub const fn history_len(n: usize) -> usize {
         history_len(n)
     }

@@ -36,7 +36,7 @@
 //!   ½‖u‖²) and per-coordinate deviations d (features ½uⱼ², weighted by ω), and the
 //!   gradient is penalised too (features u), so that P = √wᵢ is one column and the cost
 //!   is O(m²n + m³) whatever n. ψ's inner product is (‖a‖²‖b‖² + ωΣⱼ aⱼ²bⱼ²)/4 + a·b.
-//!   The memory holds at most [`super::DIAGONAL_MEMORY`] points, fewer than the model's
+//!   The memory holds at most [`super::MAX_MEMORY`] points, fewer than the model's
 //!   2n + 1 coefficients for large n: a fit then corrects g only along the directions
 //!   the points were drawn in, as a subspace method does, and the curvature mostly
 //!   through h̄, which every point informs. The deviations d, each seen only through
