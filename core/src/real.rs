@@ -231,9 +231,15 @@ impl Real for f32 {
     #[inline]
     fn sqrt(self) -> Self {
         // Bare metal has no hardware square root in libm's reach: its software one is a
-        // table and Goldschmidt iterations; the bit-by-bit root is a few dozen
-        // instructions and equal to it bit for bit.
-        #[cfg(target_os = "none")]
+        // table and Goldschmidt iterations. Where the hard-float ABI promises an FPU
+        // (the Cortex-M4F), its VSQRT; elsewhere the bit-by-bit root, a few dozen
+        // instructions. Both are correctly rounded, so equal to libm's bit for bit.
+        #[cfg(all(target_os = "none", target_arch = "arm", target_abi = "eabihf"))]
+        return sqrt_vfp(self);
+        #[cfg(all(
+            target_os = "none",
+            not(all(target_arch = "arm", target_abi = "eabihf"))
+        ))]
         return sqrt_f32(self);
         #[cfg(not(target_os = "none"))]
         libm::sqrtf(self)
@@ -286,10 +292,51 @@ impl Real for f32 {
     }
 }
 
+/// √x for `f32` by the FPU's VSQRT instruction (Arm VFP, present wherever the hard-float
+/// ABI is): correctly rounded, as IEEE 754 prescribes, so bit for bit libm's `sqrtf` for
+/// every non-NaN x (a negative x gives the default NaN, `f32::NAN`, as libm returns; a NaN
+/// x its quieted self, as the host's SSE root does, where libm on bare metal returns
+/// `f32::NAN`).
+///
+/// (`target_feature = "vfp2"` would be the direct test, but Arm's FPU features are
+/// unstable, invisible to `cfg`, and without them `asm!` takes no operand in a VFP
+/// register; the `eabihf` ABI passes floats in VFP registers, so it implies them. The
+/// operand therefore travels in a core register and the instruction works in `s0`,
+/// which the block declares clobbered.)
+#[cfg(all(target_os = "none", target_arch = "arm", target_abi = "eabihf"))]
+#[allow(unsafe_code)]
+#[inline(never)]
+fn sqrt_vfp(x: f32) -> f32 {
+    let bits: u32;
+    // SAFETY: VMOV and VSQRT.F32 move and compute between a core register and `s0`
+    // (declared clobbered); they touch no memory, no stack and no APSR flags (only
+    // FPSCR's sticky exception bits, which Rust does not model).
+    unsafe {
+        core::arch::asm!(
+            "vmov s0, {x}",
+            "vsqrt.f32 s0, s0",
+            "vmov {x}, s0",
+            x = inout(reg) x.to_bits() => bits,
+            out("s0") _,
+            options(pure, nomem, nostack, preserves_flags),
+        );
+    }
+    f32::from_bits(bits)
+}
+
 /// √x for `f32`, correctly rounded (to nearest), in integer arithmetic: bit for bit
 /// libm's `sqrtf`, whose result IEEE 754 prescribes (±0 → ±0, +∞ → +∞, and a NaN or
 /// negative x → [`f32::NAN`], as libm returns).
-#[cfg_attr(not(any(target_os = "none", test)), allow(dead_code))]
+#[cfg_attr(
+    not(any(
+        all(
+            target_os = "none",
+            not(all(target_arch = "arm", target_abi = "eabihf"))
+        ),
+        test
+    )),
+    allow(dead_code)
+)]
 #[inline(never)]
 fn sqrt_f32(x: f32) -> f32 {
     let bits = x.to_bits();
