@@ -82,6 +82,13 @@ pub trait Real:
     fn ln(self) -> Self;
     /// ln(1 + x), accurate for small x.
     fn ln_1p(self) -> Self;
+    /// ln x for x in [½, 1], to full relative precision near 1.
+    ///
+    /// `f64`: `ln_1p(x − 1)`, x − 1 being exact there (libm's `log` and `log1p` differ
+    /// in the last bit for about 3 in 10⁸ such x). `f32`: `ln(x)` itself, which for
+    /// every such x equals libm's `log1pf(x − 1)` bit for bit (tested for all of them),
+    /// so that a build taking logarithms only here and in [`Real::ln`] links one.
+    fn ln_near_one(self) -> Self;
     /// Complementary error function erfc(x) = 1 − erf(x).
     fn erfc(self) -> Self;
     /// The larger of two values; if one is NaN, the other; of equal values (±0), `self`.
@@ -165,6 +172,10 @@ impl Real for f64 {
     #[inline]
     fn ln_1p(self) -> Self {
         libm::log1p(self)
+    }
+    #[inline]
+    fn ln_near_one(self) -> Self {
+        libm::log1p(self - 1.0)
     }
     #[inline]
     fn erfc(self) -> Self {
@@ -257,6 +268,10 @@ impl Real for f32 {
         libm::log1pf(self)
     }
     #[inline]
+    fn ln_near_one(self) -> Self {
+        libm::logf(self)
+    }
+    #[inline]
     fn erfc(self) -> Self {
         libm::erfcf(self)
     }
@@ -346,16 +361,18 @@ fn sqrt_f32(x: f32) -> f32 {
     if bits > f32::INFINITY.to_bits() {
         return f32::NAN;
     }
-    // x = m·2^(e − 23) with m a 24-bit integer, subnormals normalised.
-    let (mut m, mut e) = if bits >> 23 == 0 {
-        let shift = bits.leading_zeros() - 8;
-        (bits << shift, -126 - shift as i32)
+    // x = m·2^(e − 23) with m a 24-bit integer, subnormals normalised (by a loop: the
+    // Cortex-M0 and RV32IMAC count leading zeros only in a library routine).
+    let (mut m, mut e) = (bits & 0x007f_ffff, (bits >> 23) as i32 - 127);
+    if e == -127 {
+        e = -126;
     } else {
-        (
-            (bits & 0x007f_ffff) | 0x0080_0000,
-            (bits >> 23) as i32 - 127,
-        )
-    };
+        m |= 0x0080_0000;
+    }
+    while m < 0x0080_0000 {
+        m <<= 1;
+        e -= 1;
+    }
     if e % 2 != 0 {
         m <<= 1;
         e -= 1;
@@ -453,6 +470,20 @@ mod tests {
             for d in 0..4 {
                 assert_sqrt_is_libms((e << 23).wrapping_sub(2).wrapping_add(d));
             }
+        }
+    }
+
+    /// `f32`'s `ln_near_one` (libm's `logf`) against `log1pf(x − 1)`, which `f64`'s
+    /// form takes: equal for every x in [½, 1].
+    #[test]
+    fn ln_near_one_is_log1p_in_f32() {
+        for bits in 0.5f32.to_bits()..=1.0f32.to_bits() {
+            let x = f32::from_bits(bits);
+            assert_eq!(
+                x.ln_near_one().to_bits(),
+                libm::log1pf(x - 1.0).to_bits(),
+                "{x:e}"
+            );
         }
     }
 
