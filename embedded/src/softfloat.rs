@@ -168,6 +168,25 @@ pub fn compare(a: u32, b: u32) -> Option<i32> {
     Some(i32::from(ka > kb) - i32::from(ka < kb))
 }
 
+/// A comparison's outcome a < b, as a bit of the sets [`compare_is`] takes.
+pub const LESS: u32 = 1;
+/// A comparison's outcome a = b (±0 equal).
+pub const EQUAL: u32 = 2;
+/// A comparison's outcome a > b.
+pub const GREATER: u32 = 4;
+/// A comparison's outcome when a or b is a NaN.
+pub const UNORDERED: u32 = 8;
+
+/// Whether a and b compare with one of the outcomes in `set` (bits [`LESS`], [`EQUAL`],
+/// [`GREATER`], [`UNORDERED`]): one routine for every truth-valued comparison.
+pub fn compare_is(a: u32, b: u32, set: u32) -> bool {
+    let outcome = match compare(a, b) {
+        Some(order) => 1 << (order + 1),
+        None => UNORDERED,
+    };
+    set & outcome != 0
+}
+
 /// A float's place in the order of the reals as an integer: its magnitude, negated for
 /// a negative sign (so ±0 both give 0).
 fn order_key(a: u32) -> i32 {
@@ -297,6 +316,10 @@ mod tests {
         assert_eq!(compare(a, b), expected, "{a:#010x} <> {b:#010x}");
         assert_eq!(compare_le(a, b), expected.unwrap_or(1));
         assert_eq!(compare_ge(a, b), expected.unwrap_or(-1));
+        for set in 0..16 {
+            let outcome = expected.map_or(UNORDERED, |o| [LESS, EQUAL, GREATER][(o + 1) as usize]);
+            assert_eq!(compare_is(a, b, set), set & outcome != 0);
+        }
     }
 
     /// Signs, zeros, subnormals at both ends, the normal range's ends, one and its

@@ -16,6 +16,7 @@ use hodr_embedded::softfloat;
 #[cfg(target_arch = "arm")]
 mod aeabi {
     use super::softfloat;
+    use super::softfloat::{EQUAL, GREATER, LESS, UNORDERED};
 
     /// a + b.
     #[unsafe(no_mangle)]
@@ -56,43 +57,43 @@ mod aeabi {
     /// 1 if a = b, else 0 (also when unordered).
     #[unsafe(no_mangle)]
     pub extern "C" fn __aeabi_fcmpeq(a: f32, b: f32) -> i32 {
-        i32::from(softfloat::compare(a.to_bits(), b.to_bits()) == Some(0))
+        is(a, b, EQUAL)
     }
 
     /// 1 if a < b, else 0.
     #[unsafe(no_mangle)]
     pub extern "C" fn __aeabi_fcmplt(a: f32, b: f32) -> i32 {
-        i32::from(softfloat::compare(a.to_bits(), b.to_bits()) == Some(-1))
+        is(a, b, LESS)
     }
 
     /// 1 if a ≤ b, else 0.
     #[unsafe(no_mangle)]
     pub extern "C" fn __aeabi_fcmple(a: f32, b: f32) -> i32 {
-        i32::from(matches!(
-            softfloat::compare(a.to_bits(), b.to_bits()),
-            Some(-1 | 0)
-        ))
+        is(a, b, LESS | EQUAL)
     }
 
     /// 1 if a ≥ b, else 0.
     #[unsafe(no_mangle)]
     pub extern "C" fn __aeabi_fcmpge(a: f32, b: f32) -> i32 {
-        i32::from(matches!(
-            softfloat::compare(a.to_bits(), b.to_bits()),
-            Some(0 | 1)
-        ))
+        is(a, b, EQUAL | GREATER)
     }
 
     /// 1 if a > b, else 0.
     #[unsafe(no_mangle)]
     pub extern "C" fn __aeabi_fcmpgt(a: f32, b: f32) -> i32 {
-        i32::from(softfloat::compare(a.to_bits(), b.to_bits()) == Some(1))
+        is(a, b, GREATER)
     }
 
     /// 1 if a or b is a NaN, else 0.
     #[unsafe(no_mangle)]
     pub extern "C" fn __aeabi_fcmpun(a: f32, b: f32) -> i32 {
-        i32::from(softfloat::compare(a.to_bits(), b.to_bits()).is_none())
+        is(a, b, UNORDERED)
+    }
+
+    /// 1 if a and b compare with an outcome in `set`, else 0: the routine every
+    /// comparison above calls, only the set differing.
+    fn is(a: f32, b: f32, set: u32) -> i32 {
+        i32::from(softfloat::compare_is(a.to_bits(), b.to_bits(), set))
     }
 }
 
