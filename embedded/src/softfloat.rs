@@ -80,66 +80,97 @@ pub fn sub(a: u32, b: u32) -> u32 {
 
 /// a · b.
 pub fn mul(a: u32, b: u32) -> u32 {
-    let sign = (a ^ b) & SIGN;
-    let (x, y) = (a & !SIGN, b & !SIGN);
-    if x > INFINITY || y > INFINITY {
-        return nan(a, b);
-    }
-    if x == INFINITY || y == INFINITY {
-        return if x == 0 || y == 0 {
-            DEFAULT_NAN
-        } else {
-            sign | INFINITY
-        };
-    }
-    if x == 0 || y == 0 {
-        return sign;
-    }
-    let (ea, ma) = unpack(x);
-    let (eb, mb) = unpack(y);
-    // Both significands in [2²³, 2²⁴): the product is in [2⁴⁶, 2⁴⁸), its top 32 bits
-    // keep 30 or more below the leading one; the other 16 stick.
-    let p = u64::from(ma) * u64::from(mb);
-    let m = (p >> 16) as u32 | u32::from(p as u16 != 0);
-    // a·b = p·2^(ea + eb − 300) = m·2^(ea + eb − 284).
-    round(sign, ea + eb - 126, m)
+    mul_or_div(a, b, false)
 }
 
 /// a / b.
 pub fn div(a: u32, b: u32) -> u32 {
+    mul_or_div(a, b, true)
+}
+
+/// a · b, or a / b if `divide`: one routine, the special cases being the same once b's
+/// zero and infinity trade places for a quotient (x/0 is x·∞, x/∞ is x·0, 0/0 and ∞/∞
+/// are 0·∞).
+fn mul_or_div(a: u32, b: u32, divide: bool) -> u32 {
     let sign = (a ^ b) & SIGN;
     let (x, y) = (a & !SIGN, b & !SIGN);
     if x > INFINITY || y > INFINITY {
         return nan(a, b);
     }
-    if x == INFINITY {
-        return if y == INFINITY {
+    let (x_zero, x_infinite) = (x == 0, x == INFINITY);
+    let (y_zero, y_infinite) = if divide {
+        (y == INFINITY, y == 0)
+    } else {
+        (y == 0, y == INFINITY)
+    };
+    if x_infinite || y_infinite {
+        return if x_zero || y_zero {
             DEFAULT_NAN
         } else {
             sign | INFINITY
         };
     }
-    if y == 0 {
-        return if x == 0 { DEFAULT_NAN } else { sign | INFINITY };
-    }
-    if x == 0 || y == INFINITY {
+    if x_zero || y_zero {
         return sign;
     }
     let (ea, ma) = unpack(x);
     let (eb, mb) = unpack(y);
-    // Restoring division, one quotient bit a step (no divide instruction on the M0):
-    // q = ⌊ma/mb·2³¹⌋ in [2³⁰, 2³²), the remainder sticks.
-    let (mut q, mut r) = (0u32, ma);
-    for _ in 0..32 {
-        q <<= 1;
-        if r >= mb {
-            r -= mb;
-            q |= 1;
+    let (e, m) = if divide {
+        // Restoring division, one quotient bit a step (no divide instruction on the
+        // M0): q = ⌊ma/mb·2³¹⌋ in [2³⁰, 2³²), the remainder sticks; a/b = q·2^(ea − eb − 31).
+        let (mut q, mut r) = (0u32, ma);
+        for _ in 0..32 {
+            q <<= 1;
+            if r >= mb {
+                r -= mb;
+                q |= 1;
+            }
+            r <<= 1;
         }
-        r <<= 1;
-    }
-    // a/b = q·2^(ea − eb − 31).
-    round(sign, ea - eb + 127, q | u32::from(r != 0))
+        (ea - eb + 127, q | u32::from(r != 0))
+    } else {
+        // Both significands in [2²³, 2²⁴): the product p is in [2⁴⁶, 2⁴⁸), its top 32
+        // bits keep 30 or more below the leading one, the other 16 stick;
+        // a·b = p·2^(ea + eb − 300).
+        (ea + eb - 126, product(ma, mb))
+    };
+    round(sign, e, m)
+}
+
+/// ⌊p/2¹⁶⌋ for the product p = ma·mb of two 24-bit significands, its lowest bit or-ed
+/// with any nonzero bits of p mod 2¹⁶ (sticky).
+///
+/// Thumb-1 multiplies only 32 by 32 bits into 32, so a 64-bit product is a library call
+/// (`__aeabi_lmul`, which nothing else in the minimal firmware needs); there the
+/// significands are multiplied in 12-bit halves. RISC-V's `mulhu` gives the high word
+/// directly.
+#[cfg(target_arch = "arm")]
+fn product(ma: u32, mb: u32) -> u32 {
+    product_by_halves(ma, mb)
+}
+
+/// See the Arm form.
+#[cfg(not(target_arch = "arm"))]
+fn product(ma: u32, mb: u32) -> u32 {
+    product_wide(ma, mb)
+}
+
+/// [`product`] in 64-bit arithmetic.
+#[cfg_attr(all(target_arch = "arm", not(test)), allow(dead_code))]
+fn product_wide(ma: u32, mb: u32) -> u32 {
+    let p = u64::from(ma) * u64::from(mb);
+    (p >> 16) as u32 | u32::from(p as u16 != 0)
+}
+
+/// [`product`] from four 12-by-12-bit products: with a = a₁2¹² + a₀ and b = b₁2¹² + b₀,
+/// p = a₁b₁2²⁴ + (a₁b₀ + a₀b₁)2¹² + a₀b₀, and the middle sum's low four bits go with
+/// the low product below bit 16.
+#[cfg_attr(not(any(target_arch = "arm", test)), allow(dead_code))]
+fn product_by_halves(ma: u32, mb: u32) -> u32 {
+    let (a1, a0, b1, b0) = (ma >> 12, ma & 0xfff, mb >> 12, mb & 0xfff);
+    let middle = a1 * b0 + a0 * b1;
+    let low = ((middle & 0xf) << 12) + a0 * b0;
+    (((a1 * b1) << 8) + (middle >> 4) + (low >> 16)) | u32::from(low as u16 != 0)
 }
 
 /// The integer i, rounded to nearest.
@@ -405,6 +436,34 @@ mod tests {
     #[ignore = "10⁸ pairs, about a minute in release"]
     fn softfloat_random_pairs_agree_at_length() {
         random_pairs(2, 100_000_000);
+    }
+
+    /// Both forms of the significand product (the host's `mul` takes the 64-bit one, the
+    /// Cortex-M0's the other), on the extremes and random significands.
+    fn products(seed: u64, pairs: u64) {
+        let ends = [HIDDEN, HIDDEN + 1, 2 * HIDDEN - 1];
+        for &a in &ends {
+            for &b in &ends {
+                assert_eq!(product_by_halves(a, b), product_wide(a, b), "{a:#x}·{b:#x}");
+            }
+        }
+        let mut rng = Xoshiro128PlusPlus::seed_from_u64(seed);
+        for _ in 0..pairs {
+            let (a, b) = (rng.next_u32() >> 8 | HIDDEN, rng.next_u32() >> 8 | HIDDEN);
+            assert_eq!(product_by_halves(a, b), product_wide(a, b), "{a:#x}·{b:#x}");
+        }
+    }
+
+    #[test]
+    fn products_agree() {
+        products(3, 1_000_000);
+    }
+
+    /// 10⁹ random pairs: `cargo test -p hodr-embedded --release -- --ignored softfloat`.
+    #[test]
+    #[ignore = "10⁹ pairs, some seconds in release"]
+    fn softfloat_products_agree_at_length() {
+        products(4, 1_000_000_000);
     }
 
     fn check_conversions(i: u32) {
