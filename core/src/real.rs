@@ -275,7 +275,18 @@ impl Real for f32 {
     fn erfc(self) -> Self {
         libm::erfcf(self)
     }
-    #[inline]
+    // Where `f32` is software on Arm (the Cortex-M0), each of these is two library calls
+    // (NaN test and comparison) with Thumb-1's register moves around them: once out of
+    // line, every use is one call (on RV32IMAC, with more argument registers, inlining
+    // stays smaller).
+    #[cfg_attr(
+        all(target_os = "none", target_arch = "arm", not(target_abi = "eabihf")),
+        inline(never)
+    )]
+    #[cfg_attr(
+        not(all(target_os = "none", target_arch = "arm", not(target_abi = "eabihf"))),
+        inline
+    )]
     fn max(self, other: Self) -> Self {
         if self.is_nan() || self < other {
             other
@@ -283,7 +294,14 @@ impl Real for f32 {
             self
         }
     }
-    #[inline]
+    #[cfg_attr(
+        all(target_os = "none", target_arch = "arm", not(target_abi = "eabihf")),
+        inline(never)
+    )]
+    #[cfg_attr(
+        not(all(target_os = "none", target_arch = "arm", not(target_abi = "eabihf"))),
+        inline
+    )]
     fn min(self, other: Self) -> Self {
         if other.is_nan() || self < other {
             self
