@@ -91,7 +91,7 @@ pub fn div(a: u32, b: u32) -> u32 {
 /// a · b, or a / b if `divide`: one routine, the special cases being the same once b's
 /// zero and infinity trade places for a quotient (x/0 is x·∞, x/∞ is x·0, 0/0 and ∞/∞
 /// are 0·∞).
-fn mul_or_div(a: u32, b: u32, divide: bool) -> u32 {
+pub fn mul_or_div(a: u32, b: u32, divide: bool) -> u32 {
     let sign = (a ^ b) & SIGN;
     let (x, y) = (a & !SIGN, b & !SIGN);
     if x > INFINITY || y > INFINITY {
