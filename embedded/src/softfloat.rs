@@ -116,18 +116,25 @@ pub fn mul_or_div(a: u32, b: u32, divide: bool) -> u32 {
     let (ea, ma) = unpack(x);
     let (eb, mb) = unpack(y);
     let (e, m) = if divide {
-        // Restoring division, one quotient bit a step (no divide instruction on the
-        // M0): q = ⌊ma/mb·2³¹⌋ in [2³⁰, 2³²), the remainder sticks; a/b = q·2^(ea − eb − 31).
-        let (mut q, mut r) = (0u32, ma);
-        for _ in 0..32 {
+        // a/b = q·2^(ea − eb − 31) for q = ⌊ma/mb·2³¹⌋ in [2³⁰, 2³²), the remainder
+        // sticking: restoring division, one quotient bit a step (no divide instruction
+        // on the M0), 32 steps counted by a marker bit that q starts with and the last
+        // step shifts out.
+        let e = ea - eb + 127;
+        let (mut q, mut r) = (1u32, ma);
+        loop {
+            let last = q >> 31 != 0;
             q <<= 1;
             if r >= mb {
                 r -= mb;
                 q |= 1;
             }
             r <<= 1;
+            if last {
+                break;
+            }
         }
-        (ea - eb + 127, q | u32::from(r != 0))
+        (e, q | u32::from(r != 0))
     } else {
         // Both significands in [2²³, 2²⁴): the product p is in [2⁴⁶, 2⁴⁸), its top 32
         // bits keep 30 or more below the leading one, the other 16 stick;
@@ -260,12 +267,14 @@ fn unpack(x: u32) -> (i32, u32) {
 }
 
 /// m shifted right by n bits, any bits shifted out or-ed into the lowest bit.
-fn shift_right_sticky(mut m: u32, n: u32) -> u32 {
-    // Past 32 steps every nonzero m is 1 already.
-    for _ in 0..n.min(32) {
-        m = m >> 1 | m & 1;
+fn shift_right_sticky(m: u32, n: u32) -> u32 {
+    if n == 0 {
+        m
+    } else if n < 32 {
+        m >> n | u32::from(m << (32 - n) != 0)
+    } else {
+        u32::from(m != 0)
     }
-    m
 }
 
 /// The float nearest to m·2^(e − 158), with the given sign: m ≠ 0, its lowest bit sticky
