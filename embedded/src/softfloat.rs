@@ -19,10 +19,11 @@
 //! Tested on the host against the native `f32` operations and the NaN rules above: edge
 //! cases, every pair of them, and random pairs (10⁸ of each operation, and every
 //! integer converted, in ignored tests:
-//! `cargo test -p hodr-embedded --release -- --ignored softfloat`). The NaN rules and
-//! the comparisons' values were checked against compiler-builtins' own routines (its
-//! host build, whose code is the targets') outside the repository, which forbids the
-//! `unsafe` a call into them needs.
+//! `cargo test -p hodr-embedded --release -- --ignored softfloat`). Every result, NaN
+//! rules and comparison values included, is also checked against compiler-builtins' own
+//! routines (its host build, whose code is the targets') by
+//! `bash embedded/softfloat-check/run.sh`, a program of its own because calling them
+//! takes the `unsafe` this workspace forbids.
 
 /// The sign bit.
 const SIGN: u32 = 0x8000_0000;
