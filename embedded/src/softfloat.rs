@@ -12,9 +12,9 @@
 //!
 //! One rounding routine serves every operation: each computes its exact result as
 //! `m·2^(e − 158)` with `m` a 32-bit integer whose lowest bit also records ("sticks")
-//! any nonzero bits shifted out below it, and [`round`] normalises `m`, rounds it to 24
-//! bits and packs the exponent. Loops replace count-leading-zeros and variable shifts
-//! wider than a word, which neither target has in one instruction.
+//! any nonzero bits shifted out below it, and the routine normalises `m`, rounds it to
+//! 24 bits and packs the exponent. Normalisation shifts one bit a step: neither target
+//! counts leading zeros in one instruction.
 //!
 //! Tested on the host against the native `f32` operations and the NaN rules above: edge
 //! cases, every pair of them, and random pairs (10⁸ of each operation, and every
