@@ -71,8 +71,10 @@ for target in "${targets[@]}"; do
         echo "== $arch $name: ${flags[*]:-default features}"
         # -D warnings reaches hodr-core and hodr-embedded (path dependencies), whose
         # feature-gated code the host workspace's clippy only sees with every feature.
-        (cd firmware && RUSTFLAGS="-D warnings" cargo build --release --locked \
-            --target "$triple" "${flags[@]}")
+        # Given as the target's rustflags, it joins firmware/.cargo/config.toml's, where
+        # RUSTFLAGS would replace them.
+        (cd firmware && cargo build --release --locked --target "$triple" \
+            --config "target.$triple.rustflags = ['-D', 'warnings']" "${flags[@]}")
         elf="$out/hodr-firmware-$triple-$name"
         cp "firmware/target/$triple/release/hodr-firmware" "$elf"
         log="$out/$triple-$name.log"

@@ -47,8 +47,8 @@
 //! * [`Objective`], [`Workspace`], [`Error`].
 //!
 //! ## Features
-//! The minimal build (no default features) has the FR22 gradient with gradient descent
-//! and Adam. `per-element`, `gaussian`, `aggregate` and `regression` add the other
+//! The minimal build (no default features) has the FR22 gradient with Adam;
+//! `gradient-descent` adds plain gradient descent. `per-element`, `gaussian`, `aggregate` and `regression` add the other
 //! gradient estimators; `hessian` (Hessians, Newton), `hvp`, `cg` (NCG; implies `hvp`)
 //! and `newton-cg` (Newton-CG; implies `cg`) the second-order methods; all are on by
 //! default. Each estimator is an

@@ -82,6 +82,13 @@ pub trait Real:
     fn ln(self) -> Self;
     /// ln(1 + x), accurate for small x.
     fn ln_1p(self) -> Self;
+    /// ln x for x in [½, 1], to full relative precision near 1.
+    ///
+    /// `f64`: `ln_1p(x − 1)`, x − 1 being exact there (libm's `log` and `log1p` differ
+    /// in the last bit for about 3 in 10⁸ such x). `f32`: `ln(x)` itself, which for
+    /// every such x equals libm's `log1pf(x − 1)` bit for bit (tested for all of them),
+    /// so that a build taking logarithms only here and in [`Real::ln`] links one.
+    fn ln_near_one(self) -> Self;
     /// Complementary error function erfc(x) = 1 − erf(x).
     fn erfc(self) -> Self;
     /// The larger of two values; if one is NaN, the other; of equal values (±0), `self`.
@@ -167,6 +174,10 @@ impl Real for f64 {
         libm::log1p(self)
     }
     #[inline]
+    fn ln_near_one(self) -> Self {
+        libm::log1p(self - 1.0)
+    }
+    #[inline]
     fn erfc(self) -> Self {
         libm::erfc(self)
     }
@@ -231,9 +242,15 @@ impl Real for f32 {
     #[inline]
     fn sqrt(self) -> Self {
         // Bare metal has no hardware square root in libm's reach: its software one is a
-        // table and Goldschmidt iterations; the bit-by-bit root is a few dozen
-        // instructions and equal to it bit for bit.
-        #[cfg(target_os = "none")]
+        // table and Goldschmidt iterations. Where the hard-float ABI promises an FPU
+        // (the Cortex-M4F), its VSQRT; elsewhere the bit-by-bit root, a few dozen
+        // instructions. Both are correctly rounded, so equal to libm's bit for bit.
+        #[cfg(all(target_os = "none", target_arch = "arm", target_abi = "eabihf"))]
+        return sqrt_vfp(self);
+        #[cfg(all(
+            target_os = "none",
+            not(all(target_arch = "arm", target_abi = "eabihf"))
+        ))]
         return sqrt_f32(self);
         #[cfg(not(target_os = "none"))]
         libm::sqrtf(self)
@@ -251,10 +268,25 @@ impl Real for f32 {
         libm::log1pf(self)
     }
     #[inline]
+    fn ln_near_one(self) -> Self {
+        libm::logf(self)
+    }
+    #[inline]
     fn erfc(self) -> Self {
         libm::erfcf(self)
     }
-    #[inline]
+    // Where `f32` is software on Arm (the Cortex-M0), each of these is two library calls
+    // (NaN test and comparison) with Thumb-1's register moves around them: once out of
+    // line, every use is one call (on RV32IMAC, with more argument registers, inlining
+    // stays smaller).
+    #[cfg_attr(
+        all(target_os = "none", target_arch = "arm", not(target_abi = "eabihf")),
+        inline(never)
+    )]
+    #[cfg_attr(
+        not(all(target_os = "none", target_arch = "arm", not(target_abi = "eabihf"))),
+        inline
+    )]
     fn max(self, other: Self) -> Self {
         if self.is_nan() || self < other {
             other
@@ -262,7 +294,14 @@ impl Real for f32 {
             self
         }
     }
-    #[inline]
+    #[cfg_attr(
+        all(target_os = "none", target_arch = "arm", not(target_abi = "eabihf")),
+        inline(never)
+    )]
+    #[cfg_attr(
+        not(all(target_os = "none", target_arch = "arm", not(target_abi = "eabihf"))),
+        inline
+    )]
     fn min(self, other: Self) -> Self {
         if other.is_nan() || self < other {
             self
@@ -286,10 +325,51 @@ impl Real for f32 {
     }
 }
 
+/// √x for `f32` by the FPU's VSQRT instruction (Arm VFP, present wherever the hard-float
+/// ABI is): correctly rounded, as IEEE 754 prescribes, so bit for bit libm's `sqrtf` for
+/// every non-NaN x (a negative x gives the default NaN, `f32::NAN`, as libm returns; a NaN
+/// x its quieted self, as the host's SSE root does, where libm on bare metal returns
+/// `f32::NAN`).
+///
+/// (`target_feature = "vfp2"` would be the direct test, but Arm's FPU features are
+/// unstable, invisible to `cfg`, and without them `asm!` takes no operand in a VFP
+/// register; the `eabihf` ABI passes floats in VFP registers, so it implies them. The
+/// operand therefore travels in a core register and the instruction works in `s0`,
+/// which the block declares clobbered.)
+#[cfg(all(target_os = "none", target_arch = "arm", target_abi = "eabihf"))]
+#[allow(unsafe_code)]
+#[inline(never)]
+fn sqrt_vfp(x: f32) -> f32 {
+    let bits: u32;
+    // SAFETY: VMOV and VSQRT.F32 move and compute between a core register and `s0`
+    // (declared clobbered); they touch no memory, no stack and no APSR flags (only
+    // FPSCR's sticky exception bits, which Rust does not model).
+    unsafe {
+        core::arch::asm!(
+            "vmov s0, {x}",
+            "vsqrt.f32 s0, s0",
+            "vmov {x}, s0",
+            x = inout(reg) x.to_bits() => bits,
+            out("s0") _,
+            options(pure, nomem, nostack, preserves_flags),
+        );
+    }
+    f32::from_bits(bits)
+}
+
 /// √x for `f32`, correctly rounded (to nearest), in integer arithmetic: bit for bit
 /// libm's `sqrtf`, whose result IEEE 754 prescribes (±0 → ±0, +∞ → +∞, and a NaN or
 /// negative x → [`f32::NAN`], as libm returns).
-#[cfg_attr(not(any(target_os = "none", test)), allow(dead_code))]
+#[cfg_attr(
+    not(any(
+        all(
+            target_os = "none",
+            not(all(target_arch = "arm", target_abi = "eabihf"))
+        ),
+        test
+    )),
+    allow(dead_code)
+)]
 #[inline(never)]
 fn sqrt_f32(x: f32) -> f32 {
     let bits = x.to_bits();
@@ -299,16 +379,18 @@ fn sqrt_f32(x: f32) -> f32 {
     if bits > f32::INFINITY.to_bits() {
         return f32::NAN;
     }
-    // x = m·2^(e − 23) with m a 24-bit integer, subnormals normalised.
-    let (mut m, mut e) = if bits >> 23 == 0 {
-        let shift = bits.leading_zeros() - 8;
-        (bits << shift, -126 - shift as i32)
+    // x = m·2^(e − 23) with m a 24-bit integer, subnormals normalised (by a loop: the
+    // Cortex-M0 and RV32IMAC count leading zeros only in a library routine).
+    let (mut m, mut e) = (bits & 0x007f_ffff, (bits >> 23) as i32 - 127);
+    if e == -127 {
+        e = -126;
     } else {
-        (
-            (bits & 0x007f_ffff) | 0x0080_0000,
-            (bits >> 23) as i32 - 127,
-        )
-    };
+        m |= 0x0080_0000;
+    }
+    while m < 0x0080_0000 {
+        m <<= 1;
+        e -= 1;
+    }
     if e % 2 != 0 {
         m <<= 1;
         e -= 1;
@@ -406,6 +488,20 @@ mod tests {
             for d in 0..4 {
                 assert_sqrt_is_libms((e << 23).wrapping_sub(2).wrapping_add(d));
             }
+        }
+    }
+
+    /// `f32`'s `ln_near_one` (libm's `logf`) against `log1pf(x − 1)`, which `f64`'s
+    /// form takes: equal for every x in [½, 1].
+    #[test]
+    fn ln_near_one_is_log1p_in_f32() {
+        for bits in 0.5f32.to_bits()..=1.0f32.to_bits() {
+            let x = f32::from_bits(bits);
+            assert_eq!(
+                x.ln_near_one().to_bits(),
+                libm::log1pf(x - 1.0).to_bits(),
+                "{x:e}"
+            );
         }
     }
 

@@ -13,7 +13,10 @@
 //!   ([`Storage`]), one report line per run to an [`Output`];
 //! * [`report`]: writing those lines without `core::fmt` (θ as the bit patterns of its
 //!   `f32`s, counts by repeated subtraction), and parsing and comparing them (the
-//!   firmware-against-host check).
+//!   firmware-against-host check);
+//! * [`softfloat`]: `f32` arithmetic, comparisons and conversions in integer
+//!   instructions, which the firmware links in place of compiler-builtins' on the
+//!   targets without an FPU.
 //!
 //! Features select the algorithms and, through them, the hodr-core features the firmware
 //! links: none (gradient estimators + Adam), `ncg` (+ hvp, aggregate, cg), `hessian`
@@ -37,6 +40,7 @@ pub mod algorithm;
 pub mod problem;
 pub mod report;
 mod run;
+pub mod softfloat;
 
 pub use report::Output;
 #[cfg(feature = "auto")]

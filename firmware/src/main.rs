@@ -24,6 +24,10 @@
 #[cfg(target_arch = "arm")]
 #[allow(unsafe_code)]
 mod arm;
+// The Cortex-M4F computes `f32` in hardware and calls no such routines.
+#[cfg(not(target_abi = "eabihf"))]
+#[allow(unsafe_code)]
+mod float;
 #[allow(unsafe_code)]
 mod mem;
 #[cfg(target_arch = "riscv32")]

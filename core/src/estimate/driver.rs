@@ -8,7 +8,8 @@
 //! value, and hands each group's antithetic combinations to the scheme.
 //!
 //! Offsets are drawn group by group in order from the caller's RNG, so the estimate is
-//! the same whatever the batch capacity. All points of a group share one noise seed.
+//! the same whatever the batch capacity. All points of a group share one noise seed
+//! (0 for a deterministic objective, which ignores it).
 
 use rand_core::Rng;
 
@@ -88,6 +89,7 @@ where
     };
     debug_assert!(per_chunk >= 1 && per_chunk * dim <= buffers.offsets.len());
     let base_seed = rng.next_u64();
+    let deterministic = objective.deterministic();
     let total = scheme.groups();
     let mut done = 0;
     while done < total {
@@ -95,7 +97,14 @@ where
         for k in 0..chunk {
             let t = &mut buffers.offsets[k * dim..(k + 1) * dim];
             scheme.draw(done + k, rng, t);
-            let seed = mix_seed(base_seed, (done + k) as u64);
+            // A deterministic objective ignores its seeds (`Objective::deterministic`):
+            // it gets 0, sparing it three 64-bit multiplies a group, which a
+            // microcontroller without a 64-bit multiplier does in a library routine.
+            let seed = if deterministic {
+                0
+            } else {
+                mix_seed(base_seed, (done + k) as u64)
+            };
             for (c, centre) in placement.centres.iter().enumerate() {
                 let row = k * rows_per_group + 2 * c;
                 let (minus, plus) = buffers.points[row * dim..(row + 2) * dim].split_at_mut(dim);

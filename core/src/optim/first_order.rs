@@ -1,4 +1,5 @@
-//! First-order optimisers: gradient descent and Adam (the paper's first-order rows).
+//! First-order optimisers: gradient descent (feature `gradient-descent`) and Adam (the
+//! paper's first-order rows).
 
 use rand_core::Rng;
 
@@ -11,6 +12,7 @@ use crate::objective::Objective;
 use crate::real::Real;
 
 /// θ ← θ − η·ĝ.
+#[cfg(feature = "gradient-descent")]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GradientDescent<T> {
     /// The gradient estimator.
@@ -19,6 +21,7 @@ pub struct GradientDescent<T> {
     pub learning_rate: T,
 }
 
+#[cfg(feature = "gradient-descent")]
 impl<T: Real> GradientDescent<T> {
     pub(crate) fn validate(&self) -> Result<(), Error> {
         check_positive(self.learning_rate, "learning_rate")

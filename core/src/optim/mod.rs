@@ -7,7 +7,7 @@
 //!
 //! | method | per iteration |
 //! |---|---|
-//! | [`GradientDescent`] | θ ← θ − ηĝ |
+//! | [`GradientDescent`] (`gradient-descent`) | θ ← θ − ηĝ |
 //! | [`Adam`] | Adam on ĝ |
 //! | [`Newton`] (`hessian`) | (Ĥ + λI)p = −ĝ by shifted Cholesky, ‖p‖ ≤ Δσ |
 //! | [`Ncg`] (`cg`) | Fletcher–Reeves NCG, Newton–Raphson line search with HVPs |
@@ -53,7 +53,9 @@ use rand_core::Rng;
 
 #[cfg(feature = "auto")]
 pub use auto::{Auto, AutoOptions, AutoReport, AutoStep, AutoTermination, FixedAuto, NonFinite};
-pub use first_order::{Adam, GradientDescent};
+pub use first_order::Adam;
+#[cfg(feature = "gradient-descent")]
+pub use first_order::GradientDescent;
 #[cfg(feature = "cg")]
 pub use ncg::{Curvature, Ncg};
 #[cfg(feature = "hessian")]
@@ -76,6 +78,7 @@ use oracle::Oracle;
 #[non_exhaustive]
 pub enum Method<T> {
     /// Plain gradient descent.
+    #[cfg(feature = "gradient-descent")]
     GradientDescent(GradientDescent<T>),
     /// Adam.
     Adam(Adam<T>),
@@ -96,6 +99,7 @@ impl<T: Real> Method<T> {
         // One extra vector keeps θ at the start of the iteration, restored on failure.
         n + self.lowest_len(n)
             + match self {
+                #[cfg(feature = "gradient-descent")]
                 Method::GradientDescent(_) => GradientDescent::<T>::buffer_len(n),
                 Method::Adam(_) => Adam::<T>::buffer_len(n),
                 #[cfg(feature = "hessian")]
@@ -141,6 +145,7 @@ impl<T: Real> Method<T> {
             #[cfg(feature = "cg")]
             let hvp_fits = |h: HvpMethod| h.differenced().is_some_and(fits);
             match self {
+                #[cfg(feature = "gradient-descent")]
                 Method::GradientDescent(m) => fits(m.gradient),
                 Method::Adam(m) => fits(m.gradient),
                 #[cfg(feature = "hessian")]
@@ -160,6 +165,7 @@ impl<T: Real> Method<T> {
     /// The estimator of this method's gradient.
     pub fn gradient_method(&self) -> GradientMethod {
         match self {
+            #[cfg(feature = "gradient-descent")]
             Method::GradientDescent(m) => m.gradient,
             Method::Adam(m) => m.gradient,
             #[cfg(feature = "hessian")]
@@ -196,6 +202,7 @@ impl<T: Real> Method<T> {
 
     fn validate(&self) -> Result<(), Error> {
         match self {
+            #[cfg(feature = "gradient-descent")]
             Method::GradientDescent(m) => m.validate(),
             Method::Adam(m) => m.validate(),
             #[cfg(feature = "hessian")]
@@ -548,6 +555,7 @@ impl<'b, T: Real, R: Rng + Clone> Optimiser<'b, T, R> {
         let tol = self.budget.gradient_tolerance;
         let theta = &mut *self.theta;
         let (result, trust) = match &self.method {
+            #[cfg(feature = "gradient-descent")]
             Method::GradientDescent(m) => (m.step(&mut oracle, theta, buf, tol), T::ZERO),
             Method::Adam(m) => (
                 m.step(&mut oracle, theta, buf, &mut st.adam_powers, tol),

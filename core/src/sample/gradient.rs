@@ -11,8 +11,9 @@ use super::normal::clamp_open;
 /// The inverse CDF of p_G (σ = 1).
 ///
 /// ξ is clamped to the open unit interval (NaN is treated as 0), so the result is finite:
-/// about ±38.6 at the ends in `f64`. Near ξ = ½, ln 2ξ is evaluated as ln_1p(2ξ − 1), whose
-/// argument is exact, so small |t| keeps full relative precision.
+/// about ±38.6 at the ends in `f64`. Near ξ = ½, ln 2ξ is evaluated by
+/// [`Real::ln_near_one`] (in `f64` as ln_1p(2ξ − 1), whose argument is exact), so small |t|
+/// keeps full relative precision.
 #[inline]
 pub fn quantile<T: Real>(xi: T) -> T {
     let xi = clamp_open(xi);
@@ -23,7 +24,7 @@ pub fn quantile<T: Real>(xi: T) -> T {
     };
     let two_tail = T::TWO * tail;
     let ln = if two_tail >= T::HALF {
-        (two_tail - T::ONE).ln_1p()
+        two_tail.ln_near_one()
     } else {
         two_tail.ln()
     };
