@@ -48,7 +48,7 @@ def main():
         if m:
             source = origin(m.group(1))
             continue
-        m = re.match(r"^\s+([0-9a-f]+):", line)
+        m = re.match(r"^\s*([0-9a-f]+):\s", line)
         if m:
             addresses.append((int(m.group(1), 16), source))
     by_file = collections.Counter()
