@@ -238,11 +238,9 @@ pub(super) fn fit<T: Real>(
     let share = T::from_f64(deviation_share(n));
     let quarter_lh = T::ONE / (T::from_f64(4.0) * lh);
     let gram = &mut gram[..m * m];
-    {
-        // ‖uᵢ‖², kept in `kp` until the Gram matrix is built.
-        for (i, norm) in kp[..m].iter_mut().enumerate() {
-            *norm = products(&u[i * n..(i + 1) * n], &u[i * n..(i + 1) * n]).1;
-        }
+    // ‖uᵢ‖², kept in `kp` until the Gram matrix is built.
+    for (i, norm) in kp[..m].iter_mut().enumerate() {
+        *norm = products(&u[i * n..(i + 1) * n], &u[i * n..(i + 1) * n]).1;
     }
     for i in 0..m {
         let ui = &u[i * n..(i + 1) * n];
