@@ -62,6 +62,25 @@ fn panic(_: &core::panic::PanicInfo) -> ! {
     }
 }
 
+/// Where riscv-rt sends every exception, its `no-exceptions` feature leaving the
+/// dispatch to the program: the firmware handles none, so it rests here, as riscv-rt's
+/// default handlers would (QEMU's timeout then ends a test run).
+#[unsafe(no_mangle)]
+extern "C" fn _dispatch_exception() -> ! {
+    loop {
+        riscv::asm::wfi();
+    }
+}
+
+/// Where riscv-rt sends every interrupt (feature `no-interrupts`): none is enabled, so
+/// none arrives; should one, it rests here too.
+#[unsafe(no_mangle)]
+extern "C" fn _dispatch_core_interrupt() -> ! {
+    loop {
+        riscv::asm::wfi();
+    }
+}
+
 /// The stack pointer.
 #[inline(always)]
 fn stack_pointer() -> usize {
