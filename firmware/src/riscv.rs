@@ -49,19 +49,6 @@ fn main() -> ! {
     }
 }
 
-/// Reports the panic (without its message: formatting it would link `core::fmt`) and
-/// makes QEMU exit with a failure status, so a test fails at once rather than timing out.
-#[panic_handler]
-fn panic(_: &core::panic::PanicInfo) -> ! {
-    if let Ok(mut stderr) = hio::hstderr() {
-        let _ = stderr.write_all(b"panic\n");
-    }
-    debug::exit(debug::EXIT_FAILURE);
-    loop {
-        riscv::asm::wfi();
-    }
-}
-
 /// Where riscv-rt sends every exception, its `no-exceptions` feature leaving the
 /// dispatch to the program: the firmware handles none, so it rests here, as riscv-rt's
 /// default handlers would (QEMU's timeout then ends a test run).
