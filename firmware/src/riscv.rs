@@ -1,4 +1,5 @@
-//! RISC-V start-up (riscv-rt), output and exit over semihosting, and the peak stack use
+//! RISC-V start-up (riscv-rt), output and exit over semihosting (through the panic
+//! handler's crate, riscv-panic/), and the peak stack use
 //! from a paint this module lays down itself (riscv-rt has none).
 //!
 //! The first thing `main` does is fill the free stack, from `__estack` (the end of .bss;
@@ -8,8 +9,8 @@
 //! word would be missed: the figure can be low by such a run of words, never high.
 
 use hodr_embedded::Storage;
+use hodr_firmware_riscv_panic::{EXIT_FAILURE, EXIT_SUCCESS, exit, open_stdout, write};
 use riscv_rt::entry;
-use riscv_semihosting::{debug, hio};
 
 /// The paint: a value that stack frames rarely hold.
 const PAINT: u32 = 0xCCCC_CCCC;
@@ -31,22 +32,13 @@ fn main() -> ! {
     // (Through a raw pointer: a direct `&mut STORAGE` is refused by the 2024 edition.)
     #[allow(clippy::deref_addrof)]
     let storage = unsafe { &mut *(&raw mut STORAGE) };
-    // Nowhere to report a failed write to the host's stdout: drop it.
-    let stdout = hio::hstdout().ok().map(|mut stream| {
-        move |bytes: &[u8]| {
-            let _ = stream.write_all(bytes);
-        }
-    });
+    let stdout = open_stdout().then_some(write);
     let status = if crate::run_and_report(stdout, storage, peak) {
-        debug::EXIT_SUCCESS
+        EXIT_SUCCESS
     } else {
-        debug::EXIT_FAILURE
+        EXIT_FAILURE
     };
-    debug::exit(status);
-    // Without a debugger or emulator to end the program, rest here.
-    loop {
-        riscv::asm::wfi();
-    }
+    exit(status)
 }
 
 /// Where riscv-rt sends every exception, its `no-exceptions` feature leaving the
