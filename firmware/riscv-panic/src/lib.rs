@@ -114,7 +114,11 @@ pub fn exit(reason: usize) -> ! {
         semihost(SYS_EXIT, reason)
     };
     loop {
-        riscv::asm::wfi();
+        // SAFETY: waits for an interrupt; touches no memory.
+        #[allow(unsafe_code)]
+        unsafe {
+            core::arch::asm!("wfi", options(nomem, nostack))
+        };
     }
 }
 
