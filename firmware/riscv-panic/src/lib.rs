@@ -17,9 +17,9 @@ use core::sync::atomic::{AtomicUsize, Ordering};
 /// Semihosting operation SYS_OPEN: opens a file; its argument points to the name, the
 /// mode and the name's length. The name `:tt` is the host's console.
 const SYS_OPEN: usize = 0x01;
-/// Semihosting operation SYS_WRITEC: writes the byte its argument points to to the
-/// host's console (QEMU: its standard error).
-const SYS_WRITEC: usize = 0x03;
+/// Semihosting operation SYS_WRITE0: writes the NUL-terminated string its argument
+/// points to to the host's console (QEMU: its standard error).
+const SYS_WRITE0: usize = 0x04;
 /// Semihosting operation SYS_WRITE: writes to an open file; its argument points to the
 /// handle, the address of the bytes and their count. Returns the count not written.
 const SYS_WRITE: usize = 0x05;
@@ -42,7 +42,7 @@ pub const EXIT_FAILURE: usize = 0x2_0023;
 /// # Safety
 ///
 /// `arg` must be what `op` takes: for the operations this crate makes, the address of a
-/// readable byte (SYS_WRITEC), of a parameter block whose addresses are readable
+/// NUL-terminated string (SYS_WRITE0), of a parameter block whose addresses are readable
 /// (SYS_OPEN, SYS_WRITE), or an exit reason (SYS_EXIT).
 #[allow(unsafe_code)]
 #[unsafe(naked)]
@@ -93,18 +93,6 @@ pub fn write(bytes: &[u8]) {
     };
 }
 
-/// Writes `bytes` to the host's console, one SYS_WRITEC each: what the panic handler
-/// says, needing no handle (QEMU writes it to its standard error).
-fn write_console(bytes: &[u8]) {
-    for byte in bytes {
-        // SAFETY: SYS_WRITEC reads the one byte `byte` refers to.
-        #[allow(unsafe_code)]
-        unsafe {
-            semihost(SYS_WRITEC, core::ptr::from_ref(byte) as usize)
-        };
-    }
-}
-
 /// Ends the program with `reason` ([`EXIT_SUCCESS`] or [`EXIT_FAILURE`]). Without a
 /// debugger or emulator to end it, rests in a loop.
 pub fn exit(reason: usize) -> ! {
@@ -126,6 +114,10 @@ pub fn exit(reason: usize) -> ! {
 /// makes QEMU exit with a failure status, so a test fails at once rather than timing out.
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {
-    write_console(b"panic\n");
+    // SAFETY: SYS_WRITE0 reads the string up to its NUL.
+    #[allow(unsafe_code)]
+    unsafe {
+        semihost(SYS_WRITE0, c"panic\n".as_ptr() as usize)
+    };
     exit(EXIT_FAILURE)
 }
