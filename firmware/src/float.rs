@@ -184,40 +184,48 @@ mod libgcc {
         softfloat::from_u32(u)
     }
 
+    /// −1, 0 or 1 as a < b, a = b or a > b, and `unordered` when a or b is a NaN: the
+    /// comparisons' one body, each entry point a tail call to it with its `unordered`
+    /// (out of line: inlined, each entry point carried a copy).
+    #[inline(never)]
+    fn compare_or(a: u32, b: u32, unordered: i32) -> i32 {
+        softfloat::compare(a, b).unwrap_or(unordered)
+    }
+
     /// Zero if a = b; nonzero if not or unordered.
     #[unsafe(no_mangle)]
     pub extern "C" fn __eqsf2(a: u32, b: u32) -> i32 {
-        softfloat::compare_le(a, b)
+        compare_or(a, b, 1)
     }
 
     /// Nonzero if a ≠ b or unordered; zero if a = b.
     #[unsafe(no_mangle)]
     pub extern "C" fn __nesf2(a: u32, b: u32) -> i32 {
-        softfloat::compare_le(a, b)
+        compare_or(a, b, 1)
     }
 
     /// Negative if a < b; zero or positive if not or unordered.
     #[unsafe(no_mangle)]
     pub extern "C" fn __ltsf2(a: u32, b: u32) -> i32 {
-        softfloat::compare_le(a, b)
+        compare_or(a, b, 1)
     }
 
     /// Zero or negative if a ≤ b; positive if not or unordered.
     #[unsafe(no_mangle)]
     pub extern "C" fn __lesf2(a: u32, b: u32) -> i32 {
-        softfloat::compare_le(a, b)
+        compare_or(a, b, 1)
     }
 
     /// Zero or positive if a ≥ b; negative if not or unordered.
     #[unsafe(no_mangle)]
     pub extern "C" fn __gesf2(a: u32, b: u32) -> i32 {
-        softfloat::compare_ge(a, b)
+        compare_or(a, b, -1)
     }
 
     /// Positive if a > b; zero or negative if not or unordered.
     #[unsafe(no_mangle)]
     pub extern "C" fn __gtsf2(a: u32, b: u32) -> i32 {
-        softfloat::compare_ge(a, b)
+        compare_or(a, b, -1)
     }
 
     /// Nonzero if a or b is a NaN.
