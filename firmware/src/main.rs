@@ -33,6 +33,9 @@ mod mem;
 #[cfg(target_arch = "riscv32")]
 #[allow(unsafe_code)]
 mod riscv;
+#[cfg(target_arch = "riscv32")]
+#[allow(unsafe_code)]
+mod semihosting;
 // The RISC-V panic handler, in a crate of its own (built without call relaxation, see
 // relax-exempt.sh); linked for the handler alone.
 #[cfg(target_arch = "riscv32")]

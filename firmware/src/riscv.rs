@@ -1,5 +1,5 @@
-//! RISC-V start-up, output and exit over semihosting (through the panic handler's
-//! crate, riscv-panic/), and the peak stack use from a paint the start-up lays down.
+//! RISC-V start-up, output and exit over semihosting (src/semihosting.rs), and the peak
+//! stack use from a paint the start-up lays down.
 //!
 //! The start-up is the firmware's own (with `link-riscv.x`, its sections): set the stack
 //! pointer, clear .bss, paint the stack, point every trap at a rest loop, and jump to
@@ -17,8 +17,8 @@
 //! value itself at its lowest word would be missed: the figure can be low by such a run
 //! of words, never high.
 
+use crate::semihosting::{EXIT_FAILURE, EXIT_SUCCESS, exit, open_stdout, write};
 use hodr_embedded::Storage;
-use hodr_firmware_riscv_panic::{EXIT_FAILURE, EXIT_SUCCESS, exit, open_stdout, write};
 
 core::arch::global_asm!(
     ".pushsection .text.start, \"ax\", @progbits",

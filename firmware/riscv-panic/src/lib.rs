@@ -1,123 +1,69 @@
-//! The RISC-V firmware's panic handler, and the semihosting calls it and the firmware
-//! make (output to the host's standard output and error, and exit).
+//! The RISC-V firmware's panic handler, and the semihosting numbers it shares with the
+//! firmware's own calls (src/semihosting.rs).
 //!
 //! A crate of its own for one reason: the firmware's other crates are built with RISC-V
 //! call relaxation, and the panic handler must not be (`../relax-exempt.sh` says why:
 //! with the feature on the handler, every panic site keeps its message and location in
-//! .rodata). The semihosting calls are here rather than in the firmware crate because
-//! the handler needs them too; they are a few instructions each, written for this
-//! firmware's uses in place of riscv-semihosting's general streams and their error
-//! handling, which the firmware dropped (RV32 minimal .text 6 844 -> 6 660 B).
+//! .rodata). It calls nothing, so that no call of this crate goes unrelaxed: its two
+//! semihosting requests are written out in place.
 
 #![no_std]
 #![deny(missing_docs, unsafe_code)]
 
-use core::sync::atomic::{AtomicUsize, Ordering};
-
 /// Semihosting operation SYS_OPEN: opens a file; its argument points to the name, the
 /// mode and the name's length. The name `:tt` is the host's console.
-const SYS_OPEN: usize = 0x01;
+pub const SYS_OPEN: usize = 0x01;
 /// Semihosting operation SYS_WRITE0: writes the NUL-terminated string its argument
 /// points to to the host's console (QEMU: its standard error).
-const SYS_WRITE0: usize = 0x04;
+pub const SYS_WRITE0: usize = 0x04;
 /// Semihosting operation SYS_WRITE: writes to an open file; its argument points to the
 /// handle, the address of the bytes and their count. Returns the count not written.
-const SYS_WRITE: usize = 0x05;
+pub const SYS_WRITE: usize = 0x05;
 /// SYS_OPEN's mode "w": for the console, its output (QEMU: the standard output).
-const MODE_W: usize = 4;
+pub const MODE_W: usize = 4;
 /// Semihosting operation SYS_EXIT: ends the program with the reason its argument gives.
-const SYS_EXIT: usize = 0x18;
+pub const SYS_EXIT: usize = 0x18;
 /// SYS_EXIT's reason ADP_Stopped_ApplicationExit: a normal end (QEMU exits with 0).
 pub const EXIT_SUCCESS: usize = 0x2_0026;
 /// SYS_EXIT's reason ADP_Stopped_RunTimeErrorUnknown: a failure (QEMU exits with 1).
 pub const EXIT_FAILURE: usize = 0x2_0023;
 
-/// Makes semihosting call `op` with argument `arg` and returns the host's answer.
-///
-/// The call is the RISC-V semihosting sequence: `ebreak` between two no-op shifts that
-/// tell a debugger or emulator this breakpoint is a request. The three must be 4-byte
-/// instructions (no compressed forms) and lie in one page; the 16-byte alignment keeps
-/// them in one.
-///
-/// # Safety
-///
-/// `arg` must be what `op` takes: for the operations this crate makes, the address of a
-/// NUL-terminated string (SYS_WRITE0), of a parameter block whose addresses are readable
-/// (SYS_OPEN, SYS_WRITE), or an exit reason (SYS_EXIT).
-#[allow(unsafe_code)]
-#[unsafe(naked)]
-unsafe extern "C" fn semihost(op: usize, arg: usize) -> usize {
-    core::arch::naked_asm!(
-        ".option push",
-        ".option norvc",
-        ".balign 16",
-        "slli zero, zero, 0x1f",
-        "ebreak",
-        "srai zero, zero, 0x7",
-        ".option pop",
-        "ret",
-    )
-}
-
-/// The semihosting handle of the host's standard output, once [`open_stdout`] has
-/// opened it (the firmware has one hart and no interrupts: plain loads and stores).
-static STDOUT: AtomicUsize = AtomicUsize::new(0);
-
-/// Opens the host's standard output (`:tt` for writing) for [`write`]; false if the host
-/// refuses.
-pub fn open_stdout() -> bool {
-    let name = b":tt\0";
-    let block = [name.as_ptr() as usize, MODE_W, name.len() - 1];
-    // SAFETY: SYS_OPEN reads the block, and from it the NUL-terminated name.
-    #[allow(unsafe_code)]
-    let handle = unsafe { semihost(SYS_OPEN, block.as_ptr() as usize) };
-    STDOUT.store(handle, Ordering::Relaxed);
-    handle as isize >= 0
-}
-
-/// Writes `bytes` to the host's standard output, which [`open_stdout`] must have opened
-/// (before, the host refuses the write). A write the host refuses or leaves unfinished
-/// is given up: a report has nowhere to say so.
-// Out of line: inlined, every write of the report built the parameter block itself.
-#[inline(never)]
-pub fn write(bytes: &[u8]) {
-    let block = [
-        STDOUT.load(Ordering::Relaxed),
-        bytes.as_ptr() as usize,
-        bytes.len(),
-    ];
-    // SAFETY: SYS_WRITE reads the block, and from it `bytes`.
-    #[allow(unsafe_code)]
-    unsafe {
-        semihost(SYS_WRITE, block.as_ptr() as usize)
-    };
-}
-
-/// Ends the program with `reason` ([`EXIT_SUCCESS`] or [`EXIT_FAILURE`]). Without a
-/// debugger or emulator to end it, rests in a loop.
-pub fn exit(reason: usize) -> ! {
-    // SAFETY: SYS_EXIT takes the reason itself on a 32-bit target.
-    #[allow(unsafe_code)]
-    unsafe {
-        semihost(SYS_EXIT, reason)
-    };
-    loop {
-        // SAFETY: waits for an interrupt; touches no memory.
-        #[allow(unsafe_code)]
-        unsafe {
-            core::arch::asm!("wfi", options(nomem, nostack))
-        };
-    }
-}
-
 /// Reports the panic (without its message: formatting it would link `core::fmt`) and
 /// makes QEMU exit with a failure status, so a test fails at once rather than timing out.
+///
+/// Two semihosting requests, each the RISC-V sequence `ebreak` between two no-op shifts
+/// that tell a debugger or emulator the breakpoint is a request: SYS_WRITE0 of "panic",
+/// then SYS_EXIT. The shifts and `ebreak` must be 4-byte instructions (no compressed
+/// forms) in one page; each sequence starts 16-aligned, which keeps it in one.
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {
-    // SAFETY: SYS_WRITE0 reads the string up to its NUL.
+    // SAFETY: SYS_WRITE0 reads the NUL-terminated message a1 points to; SYS_EXIT takes
+    // the reason itself on a 32-bit target and does not return (the rest loop is for a
+    // host that lets it).
     #[allow(unsafe_code)]
     unsafe {
-        semihost(SYS_WRITE0, c"panic\n".as_ptr() as usize)
-    };
-    exit(EXIT_FAILURE)
+        core::arch::asm!(
+            ".option push",
+            ".option norvc",
+            ".balign 16",
+            "slli zero, zero, 0x1f",
+            "ebreak",
+            "srai zero, zero, 0x7",
+            "li a0, {exit}",
+            "li a1, {failure}",
+            ".balign 16",
+            "slli zero, zero, 0x1f",
+            "ebreak",
+            "srai zero, zero, 0x7",
+            ".option pop",
+            "1:",
+            "wfi",
+            "j 1b",
+            exit = const SYS_EXIT,
+            failure = const EXIT_FAILURE,
+            in("a0") SYS_WRITE0,
+            in("a1") c"panic\n".as_ptr(),
+            options(noreturn, nostack),
+        )
+    }
 }
