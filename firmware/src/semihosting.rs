@@ -1,13 +1,27 @@
 //! The RISC-V firmware's semihosting calls: open the host's standard output, write to
-//! it, exit. A few instructions each, written for this firmware's uses in place of
-//! riscv-semihosting's general streams and their error handling, which the firmware
-//! dropped. The operation numbers are the panic handler's crate's (riscv-panic/), which
-//! makes its own two requests.
+//! it, exit, and the panic report. A few instructions each, written for this firmware's
+//! uses in place of riscv-semihosting's general streams and their error handling, which
+//! the firmware dropped.
 
 use core::sync::atomic::{AtomicUsize, Ordering};
 
-pub(crate) use hodr_firmware_riscv_panic::{EXIT_FAILURE, EXIT_SUCCESS};
-use hodr_firmware_riscv_panic::{MODE_W, SYS_EXIT, SYS_OPEN, SYS_WRITE};
+/// Semihosting operation SYS_OPEN: opens a file; its argument points to the name, the
+/// mode and the name's length. The name `:tt` is the host's console.
+const SYS_OPEN: usize = 0x01;
+/// Semihosting operation SYS_WRITE0: writes the NUL-terminated string its argument
+/// points to to the host's console (QEMU: its standard error).
+const SYS_WRITE0: usize = 0x04;
+/// Semihosting operation SYS_WRITE: writes to an open file; its argument points to the
+/// handle, the address of the bytes and their count. Returns the count not written.
+const SYS_WRITE: usize = 0x05;
+/// SYS_OPEN's mode "w": for the console, its output (QEMU: the standard output).
+const MODE_W: usize = 4;
+/// Semihosting operation SYS_EXIT: ends the program with the reason its argument gives.
+const SYS_EXIT: usize = 0x18;
+/// SYS_EXIT's reason ADP_Stopped_ApplicationExit: a normal end (QEMU exits with 0).
+pub(crate) const EXIT_SUCCESS: usize = 0x2_0026;
+/// SYS_EXIT's reason ADP_Stopped_RunTimeErrorUnknown: a failure (QEMU exits with 1).
+pub(crate) const EXIT_FAILURE: usize = 0x2_0023;
 
 /// Makes semihosting call `op` with argument `arg` and returns the host's answer.
 ///
@@ -19,8 +33,8 @@ use hodr_firmware_riscv_panic::{MODE_W, SYS_EXIT, SYS_OPEN, SYS_WRITE};
 /// # Safety
 ///
 /// `arg` must be what `op` takes: for the operations made here, the address of a
-/// parameter block whose addresses are readable (SYS_OPEN, SYS_WRITE), or an exit
-/// reason (SYS_EXIT).
+/// parameter block whose addresses are readable (SYS_OPEN, SYS_WRITE), of a
+/// NUL-terminated string (SYS_WRITE0), or an exit reason (SYS_EXIT).
 #[unsafe(naked)]
 unsafe extern "C" fn semihost(op: usize, arg: usize) -> usize {
     core::arch::naked_asm!(
@@ -82,4 +96,13 @@ pub(crate) fn exit(reason: usize) -> ! {
         // SAFETY: waits for an interrupt; touches no memory.
         unsafe { core::arch::asm!("wfi", options(nomem, nostack)) };
     }
+}
+
+/// The panic handler's report (riscv-panic/ jumps here): "panic" on the host's console
+/// (QEMU: its standard error), then exit with [`EXIT_FAILURE`].
+#[unsafe(no_mangle)]
+extern "C" fn hodr_panic() -> ! {
+    // SAFETY: SYS_WRITE0 reads the string up to its NUL.
+    unsafe { semihost(SYS_WRITE0, c"panic\n".as_ptr() as usize) };
+    exit(EXIT_FAILURE)
 }
