@@ -1,6 +1,7 @@
 //! Puts the target's memory map where the linker finds it as `memory.x` (cortex-m-rt's
-//! and riscv-rt's `link.x` include it), links with `link.x`, and relinks when a map
-//! changes.
+//! `link.x` includes it, and on RISC-V the firmware's own, `link-riscv.x`, which this
+//! script puts there as `link.x`), links with `link.x`, and relinks when a map or the
+//! RISC-V sections change.
 //!
 //! | target | machine (QEMU) | map |
 //! |---|---|---|
@@ -25,11 +26,17 @@ fn main() {
     let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
     let text = fs::read(map).expect("the memory map is in the crate's directory");
     fs::write(out.join("memory.x"), text).expect("OUT_DIR is writable");
+    // cortex-m-rt brings its link.x; on RISC-V the sections are the firmware's own.
+    if target.starts_with("riscv") {
+        let sections = fs::read("link-riscv.x").expect("link-riscv.x is in the crate's directory");
+        fs::write(out.join("link.x"), sections).expect("OUT_DIR is writable");
+    }
     println!("cargo:rustc-link-search={}", out.display());
     for map in [
         "memory-mps2-an386.x",
         "memory-microbit.x",
         "memory-riscv-virt.x",
+        "link-riscv.x",
     ] {
         println!("cargo:rerun-if-changed={map}");
     }

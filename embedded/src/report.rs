@@ -104,6 +104,7 @@ fn error_name(e: Error) -> &'static str {
 const DECIMAL_DIGITS: usize = usize::MAX.ilog10() as usize + 1;
 
 /// 10^(DECIMAL_DIGITS − 1), …, 100, 10, 1.
+#[cfg_attr(not(any(target_arch = "arm", test)), allow(dead_code))]
 const POWERS_OF_TEN: [usize; DECIMAL_DIGITS] = {
     let mut powers = [1; DECIMAL_DIGITS];
     let mut k = DECIMAL_DIGITS - 1;
@@ -115,11 +116,32 @@ const POWERS_OF_TEN: [usize; DECIMAL_DIGITS] = {
 };
 
 /// Writes `n` in decimal.
-///
-/// Digits come from repeated subtraction of powers of ten, not division: a Cortex-M0 has
-/// no divide instruction, and the software one would be linked for this alone.
-pub fn write_decimal<O: Output + ?Sized>(out: &mut O, mut n: usize) {
+pub fn write_decimal<O: Output + ?Sized>(out: &mut O, n: usize) {
     let mut digits = [b'0'; DECIMAL_DIGITS];
+    let first = decimal_digits(n, &mut digits);
+    out.write(digits.get(first..).unwrap_or_default());
+}
+
+/// Puts `n`'s decimal digits at the end of `digits` (which holds `b'0'`s) and returns
+/// where the first is.
+///
+/// Arm repeats subtractions of powers of ten: a Cortex-M0 has no divide instruction, and
+/// the software one would be linked for this alone. Elsewhere (RV32IMAC has `divu` and
+/// `remu`) a digit is a remainder by ten, in less code.
+#[cfg(target_arch = "arm")]
+fn decimal_digits(n: usize, digits: &mut [u8; DECIMAL_DIGITS]) -> usize {
+    decimal_digits_by_subtraction(n, digits)
+}
+
+/// See the Arm form.
+#[cfg(not(target_arch = "arm"))]
+fn decimal_digits(n: usize, digits: &mut [u8; DECIMAL_DIGITS]) -> usize {
+    decimal_digits_by_division(n, digits)
+}
+
+/// [`decimal_digits`] by repeated subtraction of powers of ten.
+#[cfg_attr(not(any(target_arch = "arm", test)), allow(dead_code))]
+fn decimal_digits_by_subtraction(mut n: usize, digits: &mut [u8; DECIMAL_DIGITS]) -> usize {
     for (digit, &power) in digits.iter_mut().zip(&POWERS_OF_TEN) {
         while n >= power {
             n -= power;
@@ -127,11 +149,25 @@ pub fn write_decimal<O: Output + ?Sized>(out: &mut O, mut n: usize) {
         }
     }
     // Leading zeros off, the units digit kept.
-    let first = digits
+    digits
         .iter()
         .position(|&d| d != b'0')
-        .unwrap_or(DECIMAL_DIGITS - 1);
-    out.write(&digits[first..]);
+        .unwrap_or(DECIMAL_DIGITS - 1)
+}
+
+/// [`decimal_digits`] by division by ten, the units digit first.
+#[cfg_attr(all(target_arch = "arm", not(test)), allow(dead_code))]
+fn decimal_digits_by_division(mut n: usize, digits: &mut [u8; DECIMAL_DIGITS]) -> usize {
+    let mut first = DECIMAL_DIGITS;
+    for digit in digits.iter_mut().rev() {
+        *digit = b'0' + (n % 10) as u8;
+        n /= 10;
+        first -= 1;
+        if n == 0 {
+            break;
+        }
+    }
+    first
 }
 
 /// Writes `bits` as eight lower-case hexadecimal digits.
@@ -384,6 +420,28 @@ mod tests {
             evaluations: 3008,
             iterations: 41,
             end: End::Finished(Termination::MaxEvaluations),
+        }
+    }
+
+    #[test]
+    fn both_digit_methods_agree() {
+        let mut n = 1usize;
+        let numbers = core::iter::from_fn(|| {
+            n = n.checked_mul(3)?;
+            Some(n)
+        });
+        for n in [0, 1, 9, 10, 11, 99, 100, 101, usize::MAX - 1, usize::MAX]
+            .into_iter()
+            .chain(numbers)
+            .chain((0..100_000).step_by(7))
+        {
+            let (mut a, mut b) = ([b'0'; DECIMAL_DIGITS], [b'0'; DECIMAL_DIGITS]);
+            let (i, j) = (
+                decimal_digits_by_subtraction(n, &mut a),
+                decimal_digits_by_division(n, &mut b),
+            );
+            assert_eq!((&a[i..], i), (&b[j..], j), "{n}");
+            assert_eq!(std::str::from_utf8(&a[i..]).unwrap(), std::format!("{n}"));
         }
     }
 

@@ -139,85 +139,98 @@ mod aeabi {
 }
 
 /// libgcc's names, as RISC-V uses them.
+///
+/// The soft-float ABI (ilp32) passes and returns an `f32` in an integer register, as a
+/// `u32`; these definitions say `u32` so that each is a tail call to its routine (with
+/// `f32` the bit casts kept LLVM from one, and each entry point paid a frame of its own:
+/// 64 bytes in all).
 #[cfg(target_arch = "riscv32")]
 mod libgcc {
     use super::softfloat;
 
     /// a + b.
     #[unsafe(no_mangle)]
-    pub extern "C" fn __addsf3(a: f32, b: f32) -> f32 {
-        f32::from_bits(softfloat::add(a.to_bits(), b.to_bits()))
+    pub extern "C" fn __addsf3(a: u32, b: u32) -> u32 {
+        softfloat::add(a, b)
     }
 
     /// a − b.
     #[unsafe(no_mangle)]
-    pub extern "C" fn __subsf3(a: f32, b: f32) -> f32 {
-        f32::from_bits(softfloat::sub(a.to_bits(), b.to_bits()))
+    pub extern "C" fn __subsf3(a: u32, b: u32) -> u32 {
+        softfloat::sub(a, b)
     }
 
     /// a · b.
     #[unsafe(no_mangle)]
-    pub extern "C" fn __mulsf3(a: f32, b: f32) -> f32 {
-        f32::from_bits(softfloat::mul(a.to_bits(), b.to_bits()))
+    pub extern "C" fn __mulsf3(a: u32, b: u32) -> u32 {
+        softfloat::mul(a, b)
     }
 
     /// a / b.
     #[unsafe(no_mangle)]
-    pub extern "C" fn __divsf3(a: f32, b: f32) -> f32 {
-        f32::from_bits(softfloat::div(a.to_bits(), b.to_bits()))
+    pub extern "C" fn __divsf3(a: u32, b: u32) -> u32 {
+        softfloat::div(a, b)
     }
 
     /// The integer, rounded to nearest.
     #[unsafe(no_mangle)]
-    pub extern "C" fn __floatsisf(i: i32) -> f32 {
-        f32::from_bits(softfloat::from_i32(i))
+    pub extern "C" fn __floatsisf(i: i32) -> u32 {
+        softfloat::from_i32(i)
     }
 
     /// The integer, rounded to nearest.
     #[unsafe(no_mangle)]
-    pub extern "C" fn __floatunsisf(u: u32) -> f32 {
-        f32::from_bits(softfloat::from_u32(u))
+    pub extern "C" fn __floatunsisf(u: u32) -> u32 {
+        softfloat::from_u32(u)
+    }
+
+    /// −1, 0 or 1 as a < b, a = b or a > b, and `unordered` when a or b is a NaN: the
+    /// comparisons' one body, each entry point a tail call to it with its `unordered`
+    /// (out of line: inlined, each entry point carried a copy).
+    #[inline(never)]
+    fn compare_or(a: u32, b: u32, unordered: i32) -> i32 {
+        softfloat::compare(a, b).unwrap_or(unordered)
     }
 
     /// Zero if a = b; nonzero if not or unordered.
     #[unsafe(no_mangle)]
-    pub extern "C" fn __eqsf2(a: f32, b: f32) -> i32 {
-        softfloat::compare_le(a.to_bits(), b.to_bits())
+    pub extern "C" fn __eqsf2(a: u32, b: u32) -> i32 {
+        compare_or(a, b, 1)
     }
 
     /// Nonzero if a ≠ b or unordered; zero if a = b.
     #[unsafe(no_mangle)]
-    pub extern "C" fn __nesf2(a: f32, b: f32) -> i32 {
-        softfloat::compare_le(a.to_bits(), b.to_bits())
+    pub extern "C" fn __nesf2(a: u32, b: u32) -> i32 {
+        compare_or(a, b, 1)
     }
 
     /// Negative if a < b; zero or positive if not or unordered.
     #[unsafe(no_mangle)]
-    pub extern "C" fn __ltsf2(a: f32, b: f32) -> i32 {
-        softfloat::compare_le(a.to_bits(), b.to_bits())
+    pub extern "C" fn __ltsf2(a: u32, b: u32) -> i32 {
+        compare_or(a, b, 1)
     }
 
     /// Zero or negative if a ≤ b; positive if not or unordered.
     #[unsafe(no_mangle)]
-    pub extern "C" fn __lesf2(a: f32, b: f32) -> i32 {
-        softfloat::compare_le(a.to_bits(), b.to_bits())
+    pub extern "C" fn __lesf2(a: u32, b: u32) -> i32 {
+        compare_or(a, b, 1)
     }
 
     /// Zero or positive if a ≥ b; negative if not or unordered.
     #[unsafe(no_mangle)]
-    pub extern "C" fn __gesf2(a: f32, b: f32) -> i32 {
-        softfloat::compare_ge(a.to_bits(), b.to_bits())
+    pub extern "C" fn __gesf2(a: u32, b: u32) -> i32 {
+        compare_or(a, b, -1)
     }
 
     /// Positive if a > b; zero or negative if not or unordered.
     #[unsafe(no_mangle)]
-    pub extern "C" fn __gtsf2(a: f32, b: f32) -> i32 {
-        softfloat::compare_ge(a.to_bits(), b.to_bits())
+    pub extern "C" fn __gtsf2(a: u32, b: u32) -> i32 {
+        compare_or(a, b, -1)
     }
 
     /// Nonzero if a or b is a NaN.
     #[unsafe(no_mangle)]
-    pub extern "C" fn __unordsf2(a: f32, b: f32) -> i32 {
-        i32::from(softfloat::compare(a.to_bits(), b.to_bits()).is_none())
+    pub extern "C" fn __unordsf2(a: u32, b: u32) -> i32 {
+        i32::from(softfloat::compare(a, b).is_none())
     }
 }

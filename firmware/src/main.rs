@@ -33,6 +33,13 @@ mod mem;
 #[cfg(target_arch = "riscv32")]
 #[allow(unsafe_code)]
 mod riscv;
+#[cfg(target_arch = "riscv32")]
+#[allow(unsafe_code)]
+mod semihosting;
+// The RISC-V panic handler, in a crate of its own (built without call relaxation, see
+// relax-exempt.sh); linked for the handler alone.
+#[cfg(target_arch = "riscv32")]
+use hodr_firmware_riscv_panic as _;
 
 use hodr_embedded::report::write_decimal;
 use hodr_embedded::{Output, Storage, run_all};
