@@ -20,8 +20,12 @@
 //! * **Samples.** Where fewer than n + 1 remembered points (or half the memory, if
 //!   smaller) lie within z ≤ ρ, the iteration evaluates antithetic pairs θ ± σ√n·b along
 //!   Lb, b the columns of a random orthonormal frame (n pairs, or half the memory's
-//!   worth, and θ on the first iteration), mirrored into the bounds at the faces they
-//!   cross. The two halves of a pair share a noise seed.
+//!   worth, and θ on the first iteration). A half that would leave the box stops at
+//!   the face on its line (so the pair still fixes the slope and curvature along it,
+//!   and a survey of a quadratic gives the exact model), unless that keeps less than an
+//!   eighth of its length; then, and for the pairs drawn to explore (below), it is
+//!   mirrored into the box at the faces it crosses, keeping its reach. The two halves
+//!   of a pair share a noise seed.
 //! * **Metric.** Samples, reach and the trust region live in whitened coordinates
 //!   u = L⁻¹(x − θ)/σ, C = LLᵀ a shape (det C = 1) that moves towards |H|⁻¹ after each
 //!   step the model predicted (the `metric` module), as CMA-ES's covariance follows its
@@ -328,6 +332,7 @@ struct Memory<'b, T> {
     gamma: &'b mut [T],
     lambda: &'b mut [T],
     s: &'b mut [T],
+    /// θ at the start of the iteration (the report's step length).
     tmp: &'b mut [T],
     /// Orthonormal sampling frame (columns as rows of n).
     frame: &'b mut [T],
@@ -339,7 +344,8 @@ struct Memory<'b, T> {
     rg: &'b mut [T],
     rh: &'b mut [T],
     rs: &'b mut [T],
-    /// The model's gradient and Hessian in parameter directions (bounded steps).
+    /// The model's gradient and Hessian in parameter directions (bounded steps); `gx`
+    /// then holds the trial step Ls.
     gx: &'b mut [T],
     hx: &'b mut [T],
     /// The sampling metric C = LLᵀ, L and L⁻¹, of the model's shape (see `metric`).
@@ -909,8 +915,26 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 self.mem.rs,
             );
             for sign in [T::ONE, -T::ONE] {
+                // A half that would leave the box stops where its line does, so that the
+                // pair stays on one line through θ: three points on a line fix the
+                // model's slope and curvature along it, as a survey of such lines fixes
+                // a quadratic. Where that leaves less than an eighth of its length, and
+                // for a pair drawn to explore (whose reach is its purpose), it is
+                // mirrored at the faces instead.
+                let room = room_along(
+                    self.theta,
+                    self.mem.rs,
+                    sign,
+                    self.mem.lower,
+                    self.mem.upper,
+                );
+                let length = if exploring || room >= radius || room < T::from_f64(0.125) * radius {
+                    radius
+                } else {
+                    room
+                };
                 for i in 0..n {
-                    let x = self.theta[i] + sign * radius * self.mem.rs[i];
+                    let x = self.theta[i] + sign * length * self.mem.rs[i];
                     self.mem.stage[rows * n + i] = reflect(x, self.mem.lower[i], self.mem.upper[i]);
                 }
                 rows += 1;
@@ -1013,9 +1037,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let radius = root_n;
         let ok = self.trust_step(radius);
         // Project the trial point θ + σLs into the box; the step is what remains of s.
-        metric::apply(self.shape, self.mem.l, self.mem.s, self.mem.tmp);
+        metric::apply(self.shape, self.mem.l, self.mem.s, self.mem.gx);
         for i in 0..n {
-            let x = (self.theta[i] + sigma * self.mem.tmp[i])
+            let x = (self.theta[i] + sigma * self.mem.gx[i])
                 .max(self.mem.lower[i])
                 .min(self.mem.upper[i]);
             self.mem.stage[i] = x;
@@ -1549,6 +1573,24 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
 /// f ties with v: equal to within 16 ulps of v (a smooth f almost never does).
 fn ties_with<T: Real>(f: T, v: T) -> bool {
     (f - v).abs() <= T::from_f64(16.0) * T::EPSILON * v.abs()
+}
+
+/// The largest t ≥ 0 with θ + t·sign·d inside [lower, upper] (+∞ if d never leaves it),
+/// for θ inside the box.
+fn room_along<T: Real>(theta: &[T], d: &[T], sign: T, lower: &[T], upper: &[T]) -> T {
+    let mut room = T::MAX;
+    for i in 0..theta.len() {
+        let step = sign * d[i];
+        let limit = if step > T::ZERO {
+            (upper[i] - theta[i]) / step
+        } else if step < T::ZERO {
+            (lower[i] - theta[i]) / step
+        } else {
+            continue;
+        };
+        room = room.min(limit.max(T::ZERO));
+    }
+    room
 }
 
 /// x mirrored into [lower, upper] at the bounds it crosses (clamped after a few

@@ -141,6 +141,22 @@ fn curvature_penalty<T: Real>() -> T {
     T::from_f64(16.0) * T::EPSILON.sqrt()
 }
 
+/// The Schur complement's ridge relative to its mean diagonal: ε^¾.
+///
+/// S = PᵀK⁻¹P is nearly singular whenever the remembered points lie at one distance from
+/// θ (a survey of antithetic pairs): there the common curvature's feature ½‖u‖² is nearly
+/// the constant one, and the pair (c, h̄) is fixed only by θ's own value, through an
+/// eigenvalue of S some 10⁻⁷ of its mean diagonal (K⁻¹ shrinks every direction the
+/// penalised features span by ~λ_H). A ridge of √ε there biased the fitted curvature by
+/// a few per cent — a sphere's model from a survey of 2n + 1 points was not exact — while
+/// ε^¾ leaves such directions within a few ppm of the data, and still keeps the pivots of
+/// truly undetermined directions (fewer points than n + 1) far above the rounding of S,
+/// with the change of g there at most ε^¼ of its determined part's.
+fn schur_ridge<T: Real>() -> T {
+    let root = T::EPSILON.sqrt();
+    root * root.sqrt()
+}
+
 /// ω, the weight of a diagonal Hessian's per-coordinate deviations from its common
 /// curvature: ω = min(1, m/(2n + 1))² for a memory of m points (see the module's header).
 fn deviation_share(n: usize) -> f64 {
@@ -196,8 +212,8 @@ pub(super) const fn scratch_lens(shape: Shape, m: usize, n: usize) -> [usize; 4]
 /// The free part (c and, for a full Hessian, g) is unpenalised and the rest pays λ_H per
 /// squared change, as in Powell's NEWUOA: with K = ΨΨᵀ/λ_H + I over the penalised
 /// features ψᵢ and P the weighted free features (see the module's header), the saddle system K α + P β = r, Pᵀα = 0 is solved through K's
-/// Cholesky factor and the Schur complement PᵀK⁻¹P (given a ridge of √ε times its mean
-/// diagonal where the points do not determine the linear part). On success `g` and `h`
+/// Cholesky factor and the Schur complement PᵀK⁻¹P, given a ridge of ε^¾ times its mean
+/// diagonal (see [`schur_ridge`]). On success `g` and `h`
 /// hold the fitted coefficients; the scratch and `r` are overwritten.
 ///
 /// With `groups` (one id per row), rows with equal ids share an unknown offset: the
@@ -278,7 +294,7 @@ pub(super) fn fit<T: Real>(
     cholesky::forward_many(gram, m, w, cols);
     let y = &mut r[..m];
     cholesky::forward(gram, m, y);
-    // S β = Wᵀw, ridged where the points leave the linear part free.
+    // S β = Wᵀw, ridged so that it factors where the points leave the linear part free.
     schur[..cols * cols].fill(T::ZERO);
     beta[..cols].fill(T::ZERO);
     for (wi, &yi) in w.chunks_exact(cols).zip(y.iter()) {
@@ -288,7 +304,7 @@ pub(super) fn fit<T: Real>(
         }
     }
     let diag = (0..cols).fold(T::ZERO, |s, a| s + schur[a * cols + a]);
-    let ridge = T::EPSILON.sqrt() * (diag / T::from_usize(cols)).max(T::MIN_POSITIVE);
+    let ridge = schur_ridge::<T>() * (diag / T::from_usize(cols)).max(T::MIN_POSITIVE);
     if !cholesky::factor_in_place(&mut schur[..cols * cols], cols, ridge) {
         return None;
     }
