@@ -23,9 +23,10 @@
 //!   worth, and θ on the first iteration). A half that would leave the box stops at
 //!   the face on its line (so the pair still fixes the slope and curvature along it,
 //!   and a survey of a quadratic gives the exact model), unless that keeps less than an
-//!   eighth of its length; then, and for the pairs drawn to explore (below), it is
-//!   mirrored into the box at the faces it crosses, keeping its reach. The two halves
-//!   of a pair share a noise seed.
+//!   eighth of its length; then, for the pairs drawn to explore (below), and where the
+//!   memory is smaller than the model (a full model from n = 15), it is mirrored into
+//!   the box at the faces it crosses, keeping its reach. The two halves of a pair share
+//!   a noise seed.
 //! * **Metric.** Samples, reach and the trust region live in whitened coordinates
 //!   u = L⁻¹(x − θ)/σ, C = LLᵀ a shape (det C = 1) that moves towards |H|⁻¹ after each
 //!   step the model predicted (the `metric` module), as CMA-ES's covariance follows its
@@ -427,6 +428,15 @@ pub const fn buffer_len(n: usize) -> usize {
 const fn history_len(n: usize) -> usize {
     let m = Shape::for_dim(n).coefficients(n) + n + 1;
     if m > MAX_MEMORY { MAX_MEMORY } else { m }
+}
+
+/// Whether the memory holds as many points as the model has coefficients, so that a fit
+/// can determine the model from the data alone: n ≤ 14 with a full model, 21 ≤ n ≤ 63
+/// with a diagonal one. Above, every fit leans on its prior, and the means to make a
+/// survey's model exact (pairs kept on their lines, a minimal ridge on the linear part)
+/// cost more than they bring.
+const fn memory_determines_model(n: usize) -> bool {
+    Shape::for_dim(n).coefficients(n) <= history_len(n)
 }
 
 /// Remembered points within reach that a model needs before it steps without sampling:
@@ -918,9 +928,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 // A half that would leave the box stops where its line does, so that the
                 // pair stays on one line through θ: three points on a line fix the
                 // model's slope and curvature along it, as a survey of such lines fixes
-                // a quadratic. Where that leaves less than an eighth of its length, and
-                // for a pair drawn to explore (whose reach is its purpose), it is
-                // mirrored at the faces instead.
+                // a quadratic. Where that leaves less than an eighth of its length, for a
+                // pair drawn to explore (whose reach is its purpose), and where no fit
+                // can be exact (`memory_determines_model`), it is mirrored at the faces
+                // instead.
                 let room = room_along(
                     self.theta,
                     self.mem.rs,
@@ -928,7 +939,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                     self.mem.lower,
                     self.mem.upper,
                 );
-                let length = if exploring || room >= radius || room < T::from_f64(0.125) * radius {
+                let length = if exploring
+                    || !memory_determines_model(n)
+                    || room >= radius
+                    || room < T::from_f64(0.125) * radius
+                {
                     radius
                 } else {
                     room

@@ -141,20 +141,30 @@ fn curvature_penalty<T: Real>() -> T {
     T::from_f64(16.0) * T::EPSILON.sqrt()
 }
 
-/// The Schur complement's ridge relative to its mean diagonal: ε^¾.
+/// The Schur complement's ridge relative to its mean diagonal: ε^¾ where the memory can
+/// hold as many points as the model has coefficients, √ε where it cannot.
 ///
-/// S = PᵀK⁻¹P is nearly singular whenever the remembered points lie at one distance from
-/// θ (a survey of antithetic pairs): there the common curvature's feature ½‖u‖² is nearly
-/// the constant one, and the pair (c, h̄) is fixed only by θ's own value, through an
-/// eigenvalue of S some 10⁻⁷ of its mean diagonal (K⁻¹ shrinks every direction the
-/// penalised features span by ~λ_H). A ridge of √ε there biased the fitted curvature by
-/// a few per cent — a sphere's model from a survey of 2n + 1 points was not exact — while
-/// ε^¾ leaves such directions within a few ppm of the data, and still keeps the pivots of
-/// truly undetermined directions (fewer points than n + 1) far above the rounding of S,
-/// with the change of g there at most ε^¼ of its determined part's.
-fn schur_ridge<T: Real>() -> T {
+/// The ridge is a penalty on the change of the free part (c, g): it holds them at the
+/// prior's along directions that S = PᵀK⁻¹P barely determines. S is nearly singular
+/// whenever the remembered points lie at one distance from θ (a survey of antithetic
+/// pairs): there the common curvature's feature ½‖u‖² is nearly the constant one, and
+/// the pair (c, h̄) is fixed only by θ's own value, through an eigenvalue of S some 10⁻⁷
+/// of its mean diagonal (K⁻¹ shrinks every direction the penalised features span by
+/// ~λ_H). A ridge of √ε there bent the fitted curvature by a few per cent, so that a
+/// sphere's model from a survey of 2n + 1 points was not exact; ε^¾ leaves such
+/// directions within a few ppm of the data and still keeps the pivots of undetermined
+/// directions far above the rounding of S. Where the memory can never determine the
+/// model (a full model from n = 15, [`super::MAX_MEMORY`] points against (n + 1)(n + 2)/2
+/// coefficients), every fit leans on the prior, for g as for H, and the √ε ridge that
+/// keeps g's weakly determined part near the prior's does better (BBOB at n = 20).
+/// `n` is the dimension; the model has the shape [`Shape::for_dim`] gives it.
+fn schur_ridge<T: Real>(n: usize) -> T {
     let root = T::EPSILON.sqrt();
-    root * root.sqrt()
+    if super::memory_determines_model(n) {
+        root * root.sqrt()
+    } else {
+        root
+    }
 }
 
 /// ω, the weight of a diagonal Hessian's per-coordinate deviations from its common
@@ -212,8 +222,8 @@ pub(super) const fn scratch_lens(shape: Shape, m: usize, n: usize) -> [usize; 4]
 /// The free part (c and, for a full Hessian, g) is unpenalised and the rest pays λ_H per
 /// squared change, as in Powell's NEWUOA: with K = ΨΨᵀ/λ_H + I over the penalised
 /// features ψᵢ and P the weighted free features (see the module's header), the saddle system K α + P β = r, Pᵀα = 0 is solved through K's
-/// Cholesky factor and the Schur complement PᵀK⁻¹P, given a ridge of ε^¾ times its mean
-/// diagonal (see [`schur_ridge`]). On success `g` and `h`
+/// Cholesky factor and the Schur complement PᵀK⁻¹P, given a small ridge relative to its
+/// mean diagonal ([`schur_ridge`]). On success `g` and `h`
 /// hold the fitted coefficients; the scratch and `r` are overwritten.
 ///
 /// With `groups` (one id per row), rows with equal ids share an unknown offset: the
@@ -304,7 +314,7 @@ pub(super) fn fit<T: Real>(
         }
     }
     let diag = (0..cols).fold(T::ZERO, |s, a| s + schur[a * cols + a]);
-    let ridge = schur_ridge::<T>() * (diag / T::from_usize(cols)).max(T::MIN_POSITIVE);
+    let ridge = schur_ridge::<T>(n) * (diag / T::from_usize(cols)).max(T::MIN_POSITIVE);
     if !cholesky::factor_in_place(&mut schur[..cols * cols], cols, ridge) {
         return None;
     }
