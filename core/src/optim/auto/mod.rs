@@ -23,9 +23,9 @@
 //!   worth, and θ on the first iteration). A half that would leave the box stops at
 //!   the face on its line (so the pair still fixes the slope and curvature along it,
 //!   and a survey of a quadratic gives the exact model), unless that keeps less than an
-//!   eighth of its length; then, for the pairs drawn to explore (below), and where the
-//!   memory is smaller than the model (a full model from n = 15), it is mirrored into
-//!   the box at the faces it crosses, keeping its reach. The two halves of a pair share
+//!   eighth of its length; then, for the pairs drawn to explore (below), and from n = 15
+//!   (where the memory is smaller than the full model, and for the diagonal model), it
+//!   is mirrored into the box at the faces it crosses, keeping its reach. The two halves of a pair share
 //!   a noise seed.
 //! * **Metric.** Samples, reach and the trust region live in whitened coordinates
 //!   u = L⁻¹(x − θ)/σ, C = LLᵀ a shape (det C = 1) that moves towards |H|⁻¹ after each
@@ -430,13 +430,15 @@ const fn history_len(n: usize) -> usize {
     if m > MAX_MEMORY { MAX_MEMORY } else { m }
 }
 
-/// Whether the memory holds as many points as the model has coefficients, so that a fit
-/// can determine the model from the data alone: n ≤ 14 with a full model, 21 ≤ n ≤ 63
-/// with a diagonal one. Above, every fit leans on its prior, and the means to make a
-/// survey's model exact (pairs kept on their lines, a minimal ridge on the linear part)
-/// cost more than they bring.
+/// Whether a fit can determine the model from the data alone: the model is full (its
+/// linear part unpenalised) and the memory holds as many points as it has coefficients,
+/// which is n ≤ 14. Above, every fit leans on its prior (and the diagonal model's
+/// penalised gradient is never exact), and the means to make a survey's model exact
+/// (pairs kept on their lines, a minimal ridge on the linear part) cost more than they
+/// bring.
 const fn memory_determines_model(n: usize) -> bool {
-    Shape::for_dim(n).coefficients(n) <= history_len(n)
+    let shape = Shape::for_dim(n);
+    matches!(shape, Shape::Full) && shape.coefficients(n) <= history_len(n)
 }
 
 /// Remembered points within reach that a model needs before it steps without sampling:

@@ -141,8 +141,8 @@ fn curvature_penalty<T: Real>() -> T {
     T::from_f64(16.0) * T::EPSILON.sqrt()
 }
 
-/// The Schur complement's ridge relative to its mean diagonal: ε^¾ where the memory can
-/// hold as many points as the model has coefficients, √ε where it cannot.
+/// The Schur complement's ridge relative to its mean diagonal: ε^¾ where a fit can
+/// determine the full model (`memory_determines_model`), √ε elsewhere.
 ///
 /// The ridge is a penalty on the change of the free part (c, g): it holds them at the
 /// prior's along directions that S = PᵀK⁻¹P barely determines. S is nearly singular
@@ -156,7 +156,8 @@ fn curvature_penalty<T: Real>() -> T {
 /// directions far above the rounding of S. Where the memory can never determine the
 /// model (a full model from n = 15, [`super::MAX_MEMORY`] points against (n + 1)(n + 2)/2
 /// coefficients), every fit leans on the prior, for g as for H, and the √ε ridge that
-/// keeps g's weakly determined part near the prior's does better (BBOB at n = 20).
+/// keeps g's weakly determined part near the prior's does better (BBOB at n = 20); the
+/// diagonal model (whose S is 1×1, the constant's) keeps √ε too.
 /// `n` is the dimension; the model has the shape [`Shape::for_dim`] gives it.
 fn schur_ridge<T: Real>(n: usize) -> T {
     let root = T::EPSILON.sqrt();
