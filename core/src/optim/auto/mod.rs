@@ -1626,3 +1626,38 @@ fn reflect<T: Real>(mut x: T, lower: T, upper: T) -> T {
     }
     x.max(lower).min(upper)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The room along a line is set by the first face it meets, on either side of θ.
+    #[test]
+    fn room_along_a_line_ends_at_the_first_face() {
+        let (lower, upper) = ([0.0, -1.0], [4.0, 1.0]);
+        let theta = [1.0, 0.0];
+        let d = [0.6, 0.8];
+        // +d meets y = 1 at t = 1.25 before x = 4 at t = 5; −d meets y = −1 at t = 1.25
+        // and x = 0 at t = 1/0.6.
+        assert_eq!(room_along(&theta, &d, 1.0, &lower, &upper), 1.25);
+        assert_eq!(room_along(&theta, &d, -1.0, &lower, &upper), 1.25);
+        let along_x = [1.0, 0.0];
+        assert_eq!(room_along(&theta, &along_x, 1.0, &lower, &upper), 3.0);
+        assert_eq!(room_along(&theta, &along_x, -1.0, &lower, &upper), 1.0);
+    }
+
+    /// On a face, the room towards it is 0; without bounds (±T::MAX), it is T::MAX.
+    #[test]
+    fn room_on_a_face_and_without_bounds() {
+        let (lower, upper) = ([0.0, 0.0], [1.0, 1.0]);
+        assert_eq!(
+            room_along(&[0.0, 0.5], &[1.0, 0.0], -1.0, &lower, &upper),
+            0.0
+        );
+        let (lower, upper) = ([-f64::MAX; 2], [f64::MAX; 2]);
+        assert_eq!(
+            room_along(&[3.0, -2.0], &[0.6, -0.8], 1.0, &lower, &upper),
+            f64::MAX
+        );
+    }
+}
