@@ -4,7 +4,6 @@
 
 use std::fmt::Write as _;
 use std::path::Path;
-use std::process::Command;
 
 use anyhow::{Context, Result};
 
@@ -45,25 +44,12 @@ pub fn write_csv(path: &Path, problems: &[Problem], runs: &[Run]) -> Result<()> 
     std::fs::write(path, csv).with_context(|| format!("writing {}", path.display()))
 }
 
-/// The commit of the checkout this binary was built from (its crate directory, so the
-/// answer does not depend on the working directory), with "+ uncommitted changes" when
-/// tracked files differ from it; `None` when that directory is not a git checkout.
+/// The commit this binary was built from, as its build script recorded it (`build.rs`:
+/// `git rev-parse --short HEAD`, with "+ uncommitted changes" when the compiled crates'
+/// tracked files differed from it); `None` when it was not built in a git checkout.
 pub fn commit() -> Option<String> {
-    let dir = env!("CARGO_MANIFEST_DIR");
-    let head = Command::new("git")
-        .args(["-C", dir, "rev-parse", "--short", "HEAD"])
-        .output()
-        .ok()
-        .filter(|o| o.status.success())?;
-    let mut s = String::from_utf8_lossy(&head.stdout).trim().to_string();
-    let dirty = Command::new("git")
-        .args(["-C", dir, "status", "--porcelain", "--untracked-files=no"])
-        .output()
-        .is_ok_and(|o| o.status.success() && !o.stdout.is_empty());
-    if dirty {
-        s.push_str(" + uncommitted changes");
-    }
-    Some(s)
+    let stamp = env!("HODR_COMMIT");
+    (!stamp.is_empty()).then(|| stamp.to_string())
 }
 
 /// Evaluations in a compact form: 1234, 12.3k, 1.23M.
