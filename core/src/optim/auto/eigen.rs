@@ -41,7 +41,7 @@ pub(super) fn symmetric<T: Real>(a: &mut [T], v: &mut [T], n: usize) {
 }
 
 /// Reduces the symmetric `q` (n ≥ 2) to tridiagonal form: on return `d` holds T's
-/// diagonal, `e[i]` (i ≥ 1) its entry T[i][i−1] (`e[0]` = 0), and `q` the orthogonal Q
+/// diagonal, `e[i]` (i ≥ 1) its entry `T[i][i−1]` (`e[0]` = 0), and `q` the orthogonal Q
 /// with A = Q T Qᵀ.
 fn tridiagonalise<T: Real>(q: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
     // Reflectors: uₖ is stored in column k below the diagonal (rows k + 1 …), unscaled;

@@ -22,11 +22,11 @@
 //!   Lb, b the columns of a random orthonormal frame (n pairs, or half the memory's
 //!   worth, and θ on the first iteration). A half that would leave the box stops at
 //!   the face on its line (so the pair still fixes the slope and curvature along it,
-//!   and a survey of a quadratic gives the exact model), unless that keeps less than an
-//!   eighth of its length; then, for the pairs drawn to explore (below), and from n = 15
-//!   (where the memory is smaller than the full model, and for the diagonal model), it
-//!   is mirrored into the box at the faces it crosses, keeping its reach. The two halves of a pair share
-//!   a noise seed.
+//!   and a survey of a quadratic gives the exact model) unless that keeps less than an
+//!   eighth of its length. Such a half, the pairs drawn to explore (below), and every
+//!   pair from n = 15 (where the memory is smaller than the full model, and for the
+//!   diagonal model) are mirrored into the box at the faces they cross instead, keeping
+//!   their reach. The two halves of a pair share a noise seed.
 //! * **Metric.** Samples, reach and the trust region live in whitened coordinates
 //!   u = L⁻¹(x − θ)/σ, C = LLᵀ a shape (det C = 1) that moves towards |H|⁻¹ after each
 //!   step the model predicted (the `metric` module), as CMA-ES's covariance follows its
@@ -1592,8 +1592,8 @@ fn ties_with<T: Real>(f: T, v: T) -> bool {
     (f - v).abs() <= T::from_f64(16.0) * T::EPSILON * v.abs()
 }
 
-/// The largest t ≥ 0 with θ + t·sign·d inside [lower, upper] (+∞ if d never leaves it),
-/// for θ inside the box.
+/// The largest t ≥ 0 with θ + t·sign·d inside [lower, upper] (`T::MAX` where d never
+/// leaves it), for θ inside the box.
 fn room_along<T: Real>(theta: &[T], d: &[T], sign: T, lower: &[T], upper: &[T]) -> T {
     let mut room = T::MAX;
     for i in 0..theta.len() {

@@ -156,9 +156,9 @@ fn curvature_penalty<T: Real>() -> T {
 /// directions far above the rounding of S. Where the memory can never determine the
 /// model (a full model from n = 15, [`super::MAX_MEMORY`] points against (n + 1)(n + 2)/2
 /// coefficients), every fit leans on the prior, for g as for H, and the √ε ridge that
-/// keeps g's weakly determined part near the prior's does better (BBOB at n = 20); the
-/// diagonal model (whose S is 1×1, the constant's) keeps √ε too.
-/// `n` is the dimension; the model has the shape [`Shape::for_dim`] gives it.
+/// keeps g's weakly determined part near the prior's does better; the diagonal model
+/// (whose S is 1×1, the constant's) keeps √ε too. `n` is the dimension, the model's
+/// shape that of [`Shape::for_dim`].
 fn schur_ridge<T: Real>(n: usize) -> T {
     let root = T::EPSILON.sqrt();
     if super::memory_determines_model(n) {
