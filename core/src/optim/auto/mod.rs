@@ -909,6 +909,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         let root_n = T::from_usize(n).sqrt();
         let exploring = !survey && self.st.resample;
+        // Halves that would leave the box stay on their lines (below) only where that can
+        // make the model exact: geometry pairs of a model the memory can determine.
+        let keep_on_line = !exploring && memory_determines_model(n);
         for _ in 0..pairs {
             let k = self.next_direction();
             // Geometry pairs lie at the samples' typical distance σ√n; a pair drawn to
@@ -932,24 +935,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 // model's slope and curvature along it, as a survey of such lines fixes
                 // a quadratic. Where that leaves less than an eighth of its length, for a
                 // pair drawn to explore (whose reach is its purpose), and where no fit
-                // can be exact (`memory_determines_model`), it is mirrored at the faces
-                // instead.
-                let room = room_along(
-                    self.theta,
-                    self.mem.rs,
-                    sign,
-                    self.mem.lower,
-                    self.mem.upper,
-                );
-                let length = if exploring
-                    || !memory_determines_model(n)
-                    || room >= radius
-                    || room < T::from_f64(0.125) * radius
-                {
-                    radius
-                } else {
-                    room
-                };
+                // can be exact, it is mirrored at the faces instead.
+                let mut length = radius;
+                if keep_on_line {
+                    let (lower, upper) = (&*self.mem.lower, &*self.mem.upper);
+                    let room = room_along(self.theta, self.mem.rs, sign, lower, upper);
+                    if room < radius && room >= T::from_f64(0.125) * radius {
+                        length = room;
+                    }
+                }
                 for i in 0..n {
                     let x = self.theta[i] + sign * length * self.mem.rs[i];
                     self.mem.stage[rows * n + i] = reflect(x, self.mem.lower[i], self.mem.upper[i]);
