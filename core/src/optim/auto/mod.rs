@@ -60,7 +60,12 @@
 //!   t ~ N(0, I): where a model-based method sees zero slope, the wider kernel reaches
 //!   the slope. A smooth f never ties, so where some samples tie (a lattice, a
 //!   staircase) f is piecewise constant at σ: a failed step there draws another pair at
-//!   the same σ instead of shrinking it below the steps' width.
+//!   the same σ instead of shrinking it below the steps' width. Until f(θ) falls, σ
+//!   does not shrink back to a scale where the samples tied, nor — after a step whose
+//!   model was blind (it saw no decrease, or f rose by more than it predicted) — to one
+//!   where the model was blind before: the iteration draws another pair instead, and a
+//!   blind one widens σ, so that a plateau seen through a rasteriser's pixel jitter is
+//!   searched ever wider rather than between two scales.
 //! * **Anytime.** Nothing depends on a budget: the first k evaluations of a run are the
 //!   same whatever its [`AutoOptions::max_evaluations`], which only stops it (never
 //!   exceeded, even inside an iteration). When σ falls below
@@ -547,6 +552,14 @@ struct State<T> {
     /// Some remembered point within reach other than θ ties with f(θ): f is piecewise
     /// constant at this scale, so a failed step is no reason to shrink σ.
     lattice: bool,
+    /// The largest σ at which an iteration's samples tied with f(θ) (a plateau) while
+    /// the values around θ differed from it by more than √ε·|f(θ)|, since f(θ) last fell
+    /// or the run last restarted; zero when none did (`Auto::hold_sigma`).
+    tie_scale: T,
+    /// The largest σ at which the model was blind since f(θ) last fell or the run last
+    /// restarted — f rough there, or a held step's model blind (`Auto::hold_sigma`);
+    /// zero when none was.
+    rough_scale: T,
     /// The objective is noisy ([`Objective::deterministic`] is false): values are
     /// compared, and fitted, only within a noise group — the points evaluated on one
     /// seed.
@@ -680,6 +693,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 widenings: 0,
                 cycle: 0,
                 lattice: false,
+                tie_scale: T::ZERO,
+                rough_scale: T::ZERO,
                 noisy: false,
                 groups: 0,
                 shared: None,
@@ -812,6 +827,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let kind = kind.unwrap_or(AutoStep::OutOfBudget);
         self.st.iteration += 1;
         self.st.resample |= kind == AutoStep::Plateau;
+        self.hold_sigma(sigma, kind, ratio);
         if self.st.gained {
             self.st.stale = 0;
             self.st.may_restart = true;
@@ -1020,6 +1036,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         };
         self.st.lattice = ties > 0 && ties < near;
         if self.st.value.is_none() || 2 * ties > near || ties == near {
+            // Ties say that f is flat here only where the values around θ differ by far
+            // more than the 16 ulps within which they tie: at a smooth minimum they tie
+            // once σ is small enough that the arithmetic no longer resolves f.
+            if let Some(v) = self.st.value {
+                if self.spread(T::from_f64(2.0 * REACH)) > T::EPSILON.sqrt() * v.abs() {
+                    self.st.tie_scale = self.st.tie_scale.max(sigma);
+                }
+            }
             self.st.sigma = self.widened_sigma(PLATEAU_WIDTH);
             return Ok(Some(AutoStep::Plateau));
         }
@@ -1110,6 +1134,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             // f is rough at this scale — the fit leaves scatter comparable to the values'
             // spread — and the trial is no worse than that scatter: look wider, where
             // the smoothed function has a slope to see.
+            self.st.rough_scale = self.st.rough_scale.max(sigma);
             self.st.sigma = self.widened_sigma(PLATEAU_WIDTH);
             return Ok((AutoStep::Plateau, Some(ratio)));
         }
@@ -1215,6 +1240,45 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         metric::apply(shape, m.li, &m.hx[..n], m.s);
         ok
+    }
+
+    /// Keeps σ off the scales where it has already learnt nothing since f(θ) last fell:
+    /// an iteration that began at `sigma` and would end below it keeps `sigma` and draws
+    /// another pair instead:
+    ///
+    /// * when the new σ would be at or under [`State::tie_scale`], where the samples tied
+    ///   (a plateau): there they would only tie again, and the run would cycle between
+    ///   the two scales;
+    /// * when its model was blind — it saw no decrease (`AtModelMinimum`), or f rose by
+    ///   more than the decrease it predicted (ρ̂ < −1) — and the new σ would be at or
+    ///   under [`State::rough_scale`], where the model was blind before.
+    ///
+    /// A blind model that is held also widens σ as on a plateau, with `sigma` the new
+    /// rough scale: the variation at this scale is one the quadratic cannot see (a
+    /// rasteriser's pixel jitter on a plateau), and the samples of a wider σ may reach
+    /// a slope. A gain or a restart clears both scales.
+    fn hold_sigma(&mut self, sigma: T, kind: AutoStep, ratio: Option<T>) {
+        if self.st.gained {
+            self.st.tie_scale = T::ZERO;
+            self.st.rough_scale = T::ZERO;
+            return;
+        }
+        let next = self.st.sigma;
+        if next >= sigma {
+            return;
+        }
+        let blind = kind == AutoStep::AtModelMinimum || ratio.is_some_and(|r| r < -T::ONE);
+        let tied = next <= self.st.tie_scale;
+        let rough = blind && next <= self.st.rough_scale;
+        if !tied && !rough {
+            return;
+        }
+        self.st.sigma = sigma;
+        self.st.resample = true;
+        if blind {
+            self.st.rough_scale = sigma;
+            self.st.sigma = self.widened_sigma(PLATEAU_WIDTH);
+        }
     }
 
     /// 2σ, capped at `width`·σ₀ and, with bounds, at half the box's widest side.
@@ -1554,6 +1618,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// The metric is kept: it is a shape, not a scale, and the shape that a narrow valley
     /// or ridge taught is what the next descent along it needs.
     fn restart(&mut self, sigma: T) {
+        self.st.tie_scale = T::ZERO;
+        self.st.rough_scale = T::ZERO;
         self.st.may_restart = false;
         self.st.stale = 0;
         self.st.sigma = sigma;
