@@ -422,7 +422,7 @@ fn convergence_rates_hold() {
     // samples clamped into the box instead of mirrored, and plateaus read only from
     // unanimous ties, 35 of 400; with σ free to fall back to where the samples tied
     // (so that it cycled between the pixels' scale and the next), 293 of 400.
-    // Measured: 382 of 400. Bound: P(X < 33 | p = 0.955, N = 40) = 3.5e-4.
+    // Measured: 383 of 400. Bound: P(X < 33 | p = 0.9575, N = 40) = 2.4e-4.
     let inside = |c: &[f64], px: f64, py: f64| (px - c[0]).powi(2) + (py - c[1]).powi(2) < 36.0;
     let (lower, upper) = ([0.0, 0.0], [64.0, 64.0]);
     let solved = (0..seeds)

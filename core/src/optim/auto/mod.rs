@@ -61,11 +61,11 @@
 //!   the slope. A smooth f never ties, so where some samples tie (a lattice, a
 //!   staircase) f is piecewise constant at σ: a failed step there draws another pair at
 //!   the same σ instead of shrinking it below the steps' width. Until f(θ) falls, σ
-//!   does not shrink back to a scale where the samples tied, nor — after a step whose
-//!   model was blind (it saw no decrease, or f rose by more than it predicted) — to one
-//!   where the model was blind before: the iteration draws another pair instead, and a
-//!   blind one widens σ, so that a plateau seen through a rasteriser's pixel jitter is
-//!   searched ever wider rather than between two scales.
+//!   does not shrink back to a scale where the samples tied, nor, once some have, after
+//!   a step whose model was blind (it saw no decrease, or f rose by more than it
+//!   predicted) to one where the model was blind before: the iteration draws another
+//!   pair instead, and a blind one widens σ, so that a plateau seen through a
+//!   rasteriser's pixel jitter is searched ever wider rather than between two scales.
 //! * **Anytime.** Nothing depends on a budget: the first k evaluations of a run are the
 //!   same whatever its [`AutoOptions::max_evaluations`], which only stops it (never
 //!   exceeded, even inside an iteration). When σ falls below
@@ -1249,14 +1249,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// * when the new σ would be at or under [`State::tie_scale`], where the samples tied
     ///   (a plateau): there they would only tie again, and the run would cycle between
     ///   the two scales;
-    /// * when its model was blind — it saw no decrease (`AtModelMinimum`), or f rose by
-    ///   more than the decrease it predicted (ρ̂ < −1) — and the new σ would be at or
-    ///   under [`State::rough_scale`], where the model was blind before.
+    /// * on a plateau (a tie scale is set), when its model was blind — it saw no
+    ///   decrease (`AtModelMinimum`), or f rose by more than the decrease it predicted
+    ///   (ρ̂ < −1) — and the new σ would be at or under [`State::rough_scale`], where the
+    ///   model was blind before.
     ///
     /// A blind model that is held also widens σ as on a plateau, with `sigma` the new
-    /// rough scale: the variation at this scale is one the quadratic cannot see (a
-    /// rasteriser's pixel jitter on a plateau), and the samples of a wider σ may reach
-    /// a slope. A gain or a restart clears both scales.
+    /// rough scale: on a plateau the variation the quadratic cannot see is jitter (a
+    /// rasteriser's pixel counts), and the samples of a wider σ may reach a slope. Off
+    /// plateaus a blind model shrinks σ as before: on a rugged f the lower values lie
+    /// at finer scales. A gain or a restart clears both scales.
     fn hold_sigma(&mut self, sigma: T, kind: AutoStep, ratio: Option<T>) {
         if self.st.gained {
             self.st.tie_scale = T::ZERO;
@@ -1269,7 +1271,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         let blind = kind == AutoStep::AtModelMinimum || ratio.is_some_and(|r| r < -T::ONE);
         let tied = next <= self.st.tie_scale;
-        let rough = blind && next <= self.st.rough_scale;
+        let rough = blind && self.st.tie_scale > T::ZERO && next <= self.st.rough_scale;
         if !tied && !rough {
             return;
         }
