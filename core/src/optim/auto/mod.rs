@@ -1261,8 +1261,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// at finer scales. A gain or a restart clears both scales.
     fn hold_sigma(&mut self, sigma: T, kind: AutoStep, ratio: Option<T>) {
         if self.st.gained {
-            self.st.tie_scale = T::ZERO;
-            self.st.rough_scale = T::ZERO;
+            self.forget_scales();
             return;
         }
         let next = self.st.sigma;
@@ -1281,6 +1280,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.st.rough_scale = sigma;
             self.st.sigma = self.widened_sigma(PLATEAU_WIDTH);
         }
+    }
+
+    /// Clears the tie and rough scales (`Auto::hold_sigma`): f(θ) fell, or the run
+    /// restarts, so what they recorded no longer describes θ's surroundings.
+    fn forget_scales(&mut self) {
+        self.st.tie_scale = T::ZERO;
+        self.st.rough_scale = T::ZERO;
     }
 
     /// 2σ, capped at `width`·σ₀ and, with bounds, at half the box's widest side.
@@ -1620,8 +1626,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// The metric is kept: it is a shape, not a scale, and the shape that a narrow valley
     /// or ridge taught is what the next descent along it needs.
     fn restart(&mut self, sigma: T) {
-        self.st.tie_scale = T::ZERO;
-        self.st.rough_scale = T::ZERO;
+        self.forget_scales();
         self.st.may_restart = false;
         self.st.stale = 0;
         self.st.sigma = sigma;
