@@ -360,7 +360,7 @@ impl Objective<f64> for SeedLevel {
 fn convergence_rates_hold() {
     let seeds = 40;
     // Rosenbrock in 5-D from (−1.5, …), to f < 1e-8 within 2 000 evaluations.
-    // Measured: 348 of 400. Bound: P(X < 27 | p = 0.87, N = 40) = 3.3e-4.
+    // Measured: 351 of 400. Bound: P(X < 28 | p = 0.8775, N = 40) = 6.7e-4.
     let solved = (0..seeds)
         .filter(|&seed| {
             let mut f = |x: &[f64]| {
@@ -372,7 +372,7 @@ fn convergence_rates_hold() {
             v.is_some_and(|v| v < 1e-8)
         })
         .count();
-    assert!(solved >= 27, "Rosenbrock-5: {solved} of {seeds}");
+    assert!(solved >= 28, "Rosenbrock-5: {solved} of {seeds}");
     // A rounded 2-D quadratic (an integer plateau) to its exact minimum within 300.
     // Measured: 400 of 400. Bound: P(X < 38 | p = 0.99875, N = 40) = 1.9e-5 (p one
     // half-failure short of 1).
@@ -422,7 +422,7 @@ fn convergence_rates_hold() {
     // samples clamped into the box instead of mirrored, and plateaus read only from
     // unanimous ties, 35 of 400; with σ free to fall back to where the samples tied
     // (so that it cycled between the pixels' scale and the next), 293 of 400.
-    // Measured: 383 of 400. Bound: P(X < 33 | p = 0.9575, N = 40) = 2.4e-4.
+    // Measured: 387 of 400. Bound: P(X < 34 | p = 0.9675, N = 40) = 2.8e-4.
     let inside = |c: &[f64], px: f64, py: f64| (px - c[0]).powi(2) + (py - c[1]).powi(2) < 36.0;
     let (lower, upper) = ([0.0, 0.0], [64.0, 64.0]);
     let solved = (0..seeds)
@@ -441,7 +441,7 @@ fn convergence_rates_hold() {
             v == Some(0.0)
         })
         .count();
-    assert!(solved >= 33, "disc on a grid: {solved} of {seeds}");
+    assert!(solved >= 34, "disc on a grid: {solved} of {seeds}");
     // A 100-D ellipsoid of condition 100, where the diagonal model's memory (128 points)
     // holds fewer points than its 201 coefficients, from 0 to a tenth of the start's
     // parameter error within 800 evaluations. Measured: 400 of 400.

@@ -47,7 +47,10 @@
 //!   model's minimum of a flat piece of f). A sample lower than f(θ) on its seed
 //!   replaces θ too.
 //! * **σ is the trust radius** and follows the ratio ρ̂ of actual to predicted decrease:
-//!   ρ̂ ≥ 0.7 with a step to the boundary doubles σ; a step shorter than half the radius
+//!   ρ̂ ≥ 0.7 with a step to the boundary doubles σ; a step to the boundary that lowered
+//!   f with ρ̂ < 0.1 grows σ by 2^¼ (the model overstated the decrease — a kink or a
+//!   ridge that its fit smooths over, which a smaller σ fits no better — but not the
+//!   direction); a step shorter than half the radius
 //!   shrinks σ towards twice its length (at most halving it); ρ̂ < 0.1 halves σ — unless
 //!   the model rested on its prior (fewer points than it has coefficients, and at most
 //!   2n — or all but two of a full memory — within reach: then a pair is drawn at the
@@ -135,6 +138,11 @@ pub const TOLERANCE: f64 = 1e-9;
 /// common seed does not cancel, a mesh's facets — which a model at that width descends
 /// step by step, each a spurious gain that keeps the run from restarting wider.
 pub const NOISY_TOLERANCE: f64 = 1e-4;
+
+/// σ's growth after a step to the trust region's boundary that lowered f by less than a
+/// tenth of the decrease its model predicted: 2^¼, so that four such steps double σ as
+/// one well-predicted step does.
+const STRIDE: f64 = 1.189_207_115_002_721;
 
 /// Scales in the restarts' cycle σ₀, 2σ₀, …, [`PLATEAU_WIDTH`]·σ₀.
 const RESTART_SCALES: u32 = 5;
@@ -1140,21 +1148,27 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         let boundary = length >= T::from_f64(0.9) * radius;
         let determined = fitted > self.shape.coefficients(n);
-        self.st.sigma =
-            if ratio < T::from_f64(0.1) && !tie && (self.st.lattice || !determined && !validated) {
-                // Too few points to blame the scale, or f is piecewise constant at it:
-                // sample more at this σ first.
-                self.st.resample = true;
-                sigma
-            } else if ratio < T::from_f64(0.1) && !tie {
-                sigma * T::HALF
-            } else if ratio >= T::from_f64(0.7) && boundary {
-                self.widened_sigma(GROWTH_WIDTH)
-            } else if length < T::HALF * radius && validated {
-                sigma * (T::TWO * length / radius).max(T::HALF)
-            } else {
-                sigma
-            };
+        self.st.sigma = if ratio < T::from_f64(0.1) && accepted && !tie && boundary {
+            // f fell, by far less than predicted, along a step the radius cut short:
+            // the model overstates the decrease (a kink or a ridge its fit smooths
+            // over, which no smaller σ fits better), not the direction. Shrinking σ
+            // would only shorten the next step; let it grow a little instead.
+            (sigma * T::from_f64(STRIDE)).min(self.widened_sigma(GROWTH_WIDTH))
+        } else if ratio < T::from_f64(0.1) && !tie && (self.st.lattice || !determined && !validated)
+        {
+            // Too few points to blame the scale, or f is piecewise constant at it:
+            // sample more at this σ first.
+            self.st.resample = true;
+            sigma
+        } else if ratio < T::from_f64(0.1) && !tie {
+            sigma * T::HALF
+        } else if ratio >= T::from_f64(0.7) && boundary {
+            self.widened_sigma(GROWTH_WIDTH)
+        } else if length < T::HALF * radius && validated {
+            sigma * (T::TWO * length / radius).max(T::HALF)
+        } else {
+            sigma
+        };
         if accepted {
             if ratio >= T::from_f64(0.1) {
                 // The model predicted the decrease: trust its curvature's shape.
