@@ -47,10 +47,10 @@
 //!   model's minimum of a flat piece of f). A sample lower than f(θ) on its seed
 //!   replaces θ too.
 //! * **σ is the trust radius** and follows the ratio ρ̂ of actual to predicted decrease:
-//!   ρ̂ ≥ 0.7 with a step to the boundary doubles σ; a step to the boundary that lowered
-//!   f with ρ̂ < 0.1 grows σ by 2^¼ (the model overstated the decrease — a kink or a
-//!   ridge that its fit smooths over, which a smaller σ fits no better — but not the
-//!   direction); a step shorter than half the radius
+//!   ρ̂ ≥ 0.7 with a step to the boundary doubles σ; on a deterministic objective, a step
+//!   to the boundary that lowered f with ρ̂ < 0.1 grows σ by 2^¼ (the model overstated
+//!   the decrease — a kink or a ridge that its fit smooths over, which a smaller σ fits
+//!   no better — but not the direction); a step shorter than half the radius
 //!   shrinks σ towards twice its length (at most halving it); ρ̂ < 0.1 halves σ — unless
 //!   the model rested on its prior (fewer points than it has coefficients, and at most
 //!   2n — or all but two of a full memory — within reach: then a pair is drawn at the
@@ -1148,11 +1148,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         let boundary = length >= T::from_f64(0.9) * radius;
         let determined = fitted > self.shape.coefficients(n);
-        self.st.sigma = if ratio < T::from_f64(0.1) && accepted && !tie && boundary {
+        let overstated = ratio < T::from_f64(0.1) && accepted && !tie && boundary;
+        self.st.sigma = if overstated && !self.st.noisy {
             // f fell, by far less than predicted, along a step the radius cut short:
             // the model overstates the decrease (a kink or a ridge its fit smooths
             // over, which no smaller σ fits better), not the direction. Shrinking σ
-            // would only shorten the next step; let it grow a little instead.
+            // would only shorten the next step; let it grow a little instead. (On a
+            // noisy objective so small a decrease may be the noise's.)
             (sigma * T::from_f64(STRIDE)).min(self.widened_sigma(GROWTH_WIDTH))
         } else if ratio < T::from_f64(0.1) && !tie && (self.st.lattice || !determined && !validated)
         {
