@@ -1148,21 +1148,21 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         let boundary = length >= T::from_f64(0.9) * radius;
         let determined = fitted > self.shape.coefficients(n);
-        let overstated = ratio < T::from_f64(0.1) && accepted && !tie && boundary;
-        self.st.sigma = if overstated && !self.st.noisy {
+        // The step fell short of its prediction (ρ̂ < 0.1) without being a tie.
+        let poor = ratio < T::from_f64(0.1) && !tie;
+        self.st.sigma = if poor && accepted && boundary && !self.st.noisy {
             // f fell, by far less than predicted, along a step the radius cut short:
             // the model overstates the decrease (a kink or a ridge its fit smooths
             // over, which no smaller σ fits better), not the direction. Shrinking σ
             // would only shorten the next step; let it grow a little instead. (On a
             // noisy objective so small a decrease may be the noise's.)
             (sigma * T::from_f64(STRIDE)).min(self.widened_sigma(GROWTH_WIDTH))
-        } else if ratio < T::from_f64(0.1) && !tie && (self.st.lattice || !determined && !validated)
-        {
+        } else if poor && (self.st.lattice || !determined && !validated) {
             // Too few points to blame the scale, or f is piecewise constant at it:
             // sample more at this σ first.
             self.st.resample = true;
             sigma
-        } else if ratio < T::from_f64(0.1) && !tie {
+        } else if poor {
             sigma * T::HALF
         } else if ratio >= T::from_f64(0.7) && boundary {
             self.widened_sigma(GROWTH_WIDTH)
