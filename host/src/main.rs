@@ -144,12 +144,14 @@ enum Command {
         repeats: u64,
     },
     /// Generalisation suite: Auto, CMA-ES, BOBYQA and FR22 on BBOB functions, plateaus,
-    /// integer plateaus, a flat direction and BOX2 (suite.md, suite.csv, ecdf.png).
+    /// integer plateaus, a flat direction, BOX2 and noisy functions (suite.md, suite.csv,
+    /// ecdf.png).
     Suite {
-        /// Families (comma-separated; default all): bbob, plateau, integer, flat, tasks.
+        /// Families (comma-separated; default all): bbob, plateau, integer, flat, tasks,
+        /// noisy.
         #[arg(long, value_delimiter = ',')]
         families: Vec<String>,
-        /// Dimensions to run (comma-separated; default every family's own: BBOB 2, 5, 10, 20, plateau 2, 4, 8, integer 2, 5, 10, flat 6, tasks 2). BBOB runs at any n ≥ 2, e.g. 40,100; the other families only at their own.
+        /// Dimensions to run (comma-separated; default every family's own: BBOB 2, 5, 10, 20, plateau 2, 4, 8, integer 2, 5, 10, flat 6, tasks 2, noisy 2, 5, 10). BBOB and noisy run at any n ≥ 2, e.g. 40,100; the other families only at their own.
         #[arg(long, value_delimiter = ',')]
         dims: Vec<usize>,
         /// BBOB functions (comma-separated numbers; default all): 1, 2, 6, 7, 8, 10, 13, 15.

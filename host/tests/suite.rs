@@ -191,6 +191,21 @@ fn runs_are_deterministic_and_truncated_at_the_budget() {
     }
 }
 
+/// A noisy problem's methods see noisy values, and its runs are judged on f.
+#[test]
+fn noisy_runs_are_judged_on_the_noiseless_function() {
+    let p = suite::noisy::problem(103, 4, 1, 50);
+    let x0 = p.start(suite::problem::run_seed(&p.name, 0));
+    assert!(p.is_noisy());
+    let mut counter = suite::trace::Counter::new(&p, p.budget);
+    let seen = counter.evaluate(&x0);
+    // f103's Cauchy noise adds α·1 000 = 10 to all but a few values.
+    assert_eq!(seen, p.observe(&x0));
+    assert!((seen - p.value(&x0)).abs() > 1.0);
+    let trace = counter.into_trace(0.0, 0.0, None);
+    assert_eq!(trace.events[0].f, p.value(&x0) - p.f_opt);
+}
+
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("hodr-suite-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -246,7 +261,7 @@ fn parallel_runs_give_the_same_results() {
             "suite",
             "--quick",
             "--families",
-            "integer,flat",
+            "integer,flat,noisy",
             "--methods",
             "Auto,CMA-ES",
             "--jobs",
@@ -275,7 +290,8 @@ fn parallel_runs_give_the_same_results() {
     assert_eq!(evaluations("1"), evaluations("2"));
 }
 
-/// BBOB runs at any chosen dimension ≥ 2, the other families only at their own.
+/// BBOB and its noisy variants run at any chosen dimension ≥ 2, the other families only
+/// at their own.
 #[test]
 fn chosen_dimensions_select_bbob_anywhere_and_the_rest_at_their_own() {
     let dims = [40, 2];
@@ -291,7 +307,10 @@ fn chosen_dimensions_select_bbob_anywhere_and_the_rest_at_their_own() {
         problems
             .iter()
             .filter(|p| p.n == 40)
-            .all(|p| p.family == suite::problem::Family::Bbob)
+            .all(|p| matches!(
+                p.family,
+                suite::problem::Family::Bbob | suite::problem::Family::Noisy
+            ))
     );
 }
 

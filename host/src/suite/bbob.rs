@@ -256,6 +256,7 @@ pub fn problem(id: u32, n: usize, instance: u64, budget_per_dim: usize) -> Probl
         family: Family::Bbob,
         n,
         f: Box::new(move |x| b.value(x)),
+        observe: None,
         f_opt: 0.0,
         x_opt,
         measure: Measure::Euclidean,

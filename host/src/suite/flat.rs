@@ -37,6 +37,7 @@ pub fn problem(instance: u64, budget_per_dim: usize) -> Problem {
         family: Family::Flat,
         n: DIM,
         f: Box::new(f),
+        observe: None,
         f_opt: 0.0,
         x_opt,
         measure: Measure::Leading(seen),

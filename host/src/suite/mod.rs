@@ -4,7 +4,8 @@
 //! * A [`Problem`] is one definition — f, f*, x*, the start distribution, σ₀, bounds,
 //!   budget — and says nothing about any method. Families: BBOB noiseless functions
 //!   ([`bbob`]), disc and integer plateaus ([`plateau`]), a flat direction ([`flat`]),
-//!   and the built-in BOX2 task ([`tasks`]). [`catalogue`] lists them.
+//!   the built-in BOX2 task ([`tasks`]), and the sphere and Rosenbrock's function under
+//!   BBOB's noise models ([`noisy`]). [`catalogue`] lists them.
 //! * A [`Method`] (Auto, CMA-ES, BOBYQA, FR22; [`methods`]) sees x₀, σ₀, bounds and
 //!   budget, and evaluates through one counting wrapper ([`trace`]) that records every
 //!   new best, so all are measured alike.
@@ -22,6 +23,7 @@
 pub mod bbob;
 pub mod flat;
 pub mod methods;
+pub mod noisy;
 pub mod output;
 pub mod plateau;
 pub mod plot;
@@ -276,6 +278,15 @@ pub fn catalogue(config: &Config) -> Result<Vec<Problem>> {
             Family::Tasks => {
                 if !dims.is_empty() {
                     out.push(tasks::box2(b)?);
+                }
+            }
+            Family::Noisy => {
+                for &id in &noisy::IDS {
+                    for &n in &dims {
+                        for i in instances.clone() {
+                            out.push(noisy::problem(id, n, i, b));
+                        }
+                    }
                 }
             }
         }

@@ -9,6 +9,10 @@ use super::random;
 /// threads at once.
 pub type Function = Box<dyn Fn(&[f64]) -> f64 + Send + Sync>;
 
+/// What a method observes at x, given f(x) there: f(x) perturbed by noise drawn from x
+/// (a pure function of its arguments, safe to call from several threads at once).
+pub type Observe = Box<dyn Fn(&[f64], f64) -> f64 + Send + Sync>;
+
 /// The start distribution: θ₀ as a pure function of a run seed.
 pub type StartFn = Box<dyn Fn(u64) -> Vec<f64> + Send + Sync>;
 
@@ -25,16 +29,19 @@ pub enum Family {
     Flat,
     /// Built-in rendering tasks (BOX2), [`super::tasks`].
     Tasks,
+    /// The sphere and Rosenbrock's function under BBOB's noise models, [`super::noisy`].
+    Noisy,
 }
 
 impl Family {
     /// Every family, in run order.
-    pub const ALL: [Family; 5] = [
+    pub const ALL: [Family; 6] = [
         Family::Bbob,
         Family::Plateau,
         Family::Integer,
         Family::Flat,
         Family::Tasks,
+        Family::Noisy,
     ];
 
     /// The name on the command line.
@@ -45,6 +52,7 @@ impl Family {
             Family::Integer => "integer",
             Family::Flat => "flat",
             Family::Tasks => "tasks",
+            Family::Noisy => "noisy",
         }
     }
 
@@ -55,12 +63,12 @@ impl Family {
             .find(|f| f.name().eq_ignore_ascii_case(name.trim()))
     }
 
-    /// Whether the family has problems of dimension n: any n ≥ 2 for BBOB, whose
-    /// functions are defined in every dimension; the family's own [`Family::dims`] for
-    /// the others.
+    /// Whether the family has problems of dimension n: any n ≥ 2 for BBOB and its noisy
+    /// variants, whose functions are defined in every dimension; the family's own
+    /// [`Family::dims`] for the others.
     pub fn defined_at(self, n: usize) -> bool {
         match self {
-            Family::Bbob => n >= 2,
+            Family::Bbob | Family::Noisy => n >= 2,
             _ => self.dims().contains(&n),
         }
     }
@@ -73,6 +81,7 @@ impl Family {
             Family::Integer => &[2, 5, 10],
             Family::Flat => &[super::flat::DIM],
             Family::Tasks => &[2],
+            Family::Noisy => &[2, 5, 10],
         }
     }
 }
@@ -194,8 +203,10 @@ pub struct Problem {
     pub family: Family,
     /// Dimension n.
     pub n: usize,
-    /// f.
+    /// f, noiseless: what runs are judged on.
     pub f: Function,
+    /// What a method sees instead of f(x), for a noisy problem; `None`: f itself.
+    pub observe: Option<Observe>,
     /// f* = min f, the value runs are judged against (f − f*).
     pub f_opt: f64,
     /// A minimiser x*, for the parameter error.
@@ -213,9 +224,20 @@ pub struct Problem {
 }
 
 impl Problem {
-    /// f(x).
+    /// f(x), noiseless.
     pub fn value(&self, x: &[f64]) -> f64 {
         (self.f)(x)
+    }
+
+    /// What a method sees at x: f(x), or f(x) with the problem's noise.
+    pub fn observe(&self, x: &[f64]) -> f64 {
+        let f = self.value(x);
+        self.observe.as_ref().map_or(f, |o| o(x, f))
+    }
+
+    /// Whether the problem is noisy (a method sees other values than f's).
+    pub fn is_noisy(&self) -> bool {
+        self.observe.is_some()
     }
 
     /// The parameter error of x ([`Problem::measure`]).
@@ -236,6 +258,7 @@ impl fmt::Debug for Problem {
             .field("family", &self.family)
             .field("n", &self.n)
             .field("f_opt", &self.f_opt)
+            .field("noisy", &self.is_noisy())
             .field("sigma0", &self.sigma0)
             .field("bounds", &self.bounds)
             .field("budget", &self.budget)

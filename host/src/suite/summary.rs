@@ -238,7 +238,7 @@ pub fn pairwise(
     rows: &[Row],
 ) -> Vec<PairRow> {
     let group_of = |p: &Problem| match p.family {
-        Family::Bbob => p.name.split('-').take(2).collect::<Vec<_>>().join("-"),
+        Family::Bbob | Family::Noisy => p.name.split('-').take(2).collect::<Vec<_>>().join("-"),
         f => f.to_string(),
     };
     let mut groups: Vec<String> = Family::ALL.iter().map(|f| f.to_string()).collect();

@@ -53,6 +53,7 @@ pub fn box2(budget_per_dim: usize) -> Result<Problem> {
         family: Family::Tasks,
         n,
         f: Box::new(f),
+        observe: None,
         f_opt,
         x_opt,
         measure: Measure::Euclidean,

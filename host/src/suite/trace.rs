@@ -3,9 +3,10 @@
 //!
 //! Each evaluation is numbered 1, 2, … in the order the method asks for it. The point
 //! is first clamped into the problem's bounds (a no-op for methods that stay inside);
-//! f and the parameter error are those of the clamped point. Whenever f − f* falls
-//! below the best so far, the trace records (evaluation number, f − f*, parameter
-//! error). Evaluations after the budget still return f (so a method can finish its
+//! f and the parameter error are those of the clamped point. The method sees the value
+//! [`Problem::observe`] gives (f itself unless the problem is noisy); the trace judges
+//! the noiseless f. Whenever f − f* falls below the best so far, the trace records
+//! (evaluation number, f − f*, parameter error). Evaluations after the budget still return f (so a method can finish its
 //! iteration) but are not recorded or counted.
 
 use hodr_core::{Batch, NoiseSeed, Objective};
@@ -80,9 +81,9 @@ impl Clamped<'_> {
         y
     }
 
-    /// f at x clamped into the bounds.
+    /// What the method sees at x clamped into the bounds ([`Problem::observe`]).
     pub fn value(&self, x: &[f64]) -> f64 {
-        self.0.value(&self.point(x))
+        self.0.observe(&self.point(x))
     }
 }
 
@@ -113,16 +114,22 @@ impl<'p> Counter<'p> {
         Clamped(self.problem)
     }
 
-    /// Counts one evaluation of x (unclamped, as the method asked) that gave `f`.
-    pub fn record(&mut self, x: &[f64], f: f64) {
+    /// Counts one evaluation of x (unclamped, as the method asked) that the method saw
+    /// as `seen` ([`Clamped::value`]); a noisy problem's run is judged on f there.
+    pub fn record(&mut self, x: &[f64], seen: f64) {
         if self.count >= self.budget {
             return;
         }
         self.count += 1;
+        let y = self.clamped().point(x);
+        let f = if self.problem.is_noisy() {
+            self.problem.value(&y)
+        } else {
+            seen
+        };
         let gap = f - self.problem.f_opt;
         if gap < self.best {
             self.best = gap;
-            let y = self.clamped().point(x);
             self.events.push(Event {
                 evaluation: self.count,
                 f: gap,
