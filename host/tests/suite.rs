@@ -200,7 +200,8 @@ fn noisy_runs_are_judged_on_the_noiseless_function() {
     let mut counter = suite::trace::Counter::new(&p, p.budget);
     let seen = counter.evaluate(&x0);
     // f103's Cauchy noise adds α·1 000 = 10 to all but a few values.
-    assert_eq!(seen, p.observe(&x0));
+    assert_eq!(seen, p.observe(&x0, 0));
+    assert_eq!(counter.evaluate(&x0), p.observe(&x0, 1));
     assert!((seen - p.value(&x0)).abs() > 1.0);
     let trace = counter.into_trace(0.0, 0.0, None);
     assert_eq!(trace.events[0].f, p.value(&x0) - p.f_opt);
@@ -303,15 +304,10 @@ fn chosen_dimensions_select_bbob_anywhere_and_the_rest_at_their_own() {
         .count();
     assert_eq!(bbob_40, suite::bbob::IDS.len() * config.instances);
     assert!(problems.iter().all(|p| p.n == 40 || p.n == 2));
-    assert!(
-        problems
-            .iter()
-            .filter(|p| p.n == 40)
-            .all(|p| matches!(
-                p.family,
-                suite::problem::Family::Bbob | suite::problem::Family::Noisy
-            ))
-    );
+    assert!(problems.iter().filter(|p| p.n == 40).all(|p| matches!(
+        p.family,
+        suite::problem::Family::Bbob | suite::problem::Family::Noisy
+    )));
 }
 
 /// `--functions` keeps the chosen BBOB functions, in the suite's order, and the other

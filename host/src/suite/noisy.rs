@@ -29,10 +29,10 @@
 //!
 //! f101–f106 are the report's *moderate* noise, f107–f112 its *severe* noise. The
 //! noiseless functions, instances, bounds, starts and σ₀ are those of [`super::bbob`].
-//! The noise of an evaluation is drawn from a hash of the problem's name and the bits
-//! of x, so it is a pure function of the point: runs are reproducible whatever the
-//! thread count, and two evaluations of one point agree (points a method evaluates
-//! twice are rare, and a method that re-evaluates to average gains nothing here).
+//! The noise of an evaluation is drawn from a hash of the problem's name, the bits of
+//! x and how many times the run evaluated x before ([`super::trace::Clamped`] counts),
+//! so runs are reproducible whatever the thread count, and a point evaluated again
+//! draws fresh noise, as a renderer without a seed does.
 
 use super::bbob;
 use super::problem::{Family, Problem};
@@ -143,12 +143,10 @@ pub fn problem(id: u32, n: usize, instance: u64, budget_per_dim: usize) -> Probl
     let name = format!("noisy-f{id}-n{n:02}-i{instance}");
     let salt = random::seed_of(&name, &[]);
     let noise = Noise::of(id, n);
-    let observe = move |x: &[f64], value: f64| {
+    let observe = move |x: &[f64], value: f64, repeat: u64| {
         let bits: Vec<u64> = x.iter().map(|v| v.to_bits()).collect();
-        noise.apply(
-            value,
-            random::seed_of("noise", &[salt, random::seed_of("x", &bits)]),
-        )
+        let point = random::seed_of("x", &bits);
+        noise.apply(value, random::seed_of("noise", &[salt, point, repeat]))
     };
     Problem {
         name,
@@ -192,7 +190,9 @@ mod tests {
         let base = bbob::problem(1, 4, 1, 10);
         let x = [0.5, -1.0, 2.0, 0.25];
         assert_eq!(p.value(&x), base.value(&x));
-        assert_ne!(p.observe(&x), p.value(&x));
+        assert_ne!(p.observe(&x, 0), p.value(&x));
+        assert_ne!(p.observe(&x, 0), p.observe(&x, 1));
+        assert_eq!(p.observe(&x, 1), p.observe(&x, 1));
         assert_eq!(p.x_opt, base.x_opt);
         assert_eq!(p.family, Family::Noisy);
     }

@@ -9,9 +9,10 @@ use super::random;
 /// threads at once.
 pub type Function = Box<dyn Fn(&[f64]) -> f64 + Send + Sync>;
 
-/// What a method observes at x, given f(x) there: f(x) perturbed by noise drawn from x
-/// (a pure function of its arguments, safe to call from several threads at once).
-pub type Observe = Box<dyn Fn(&[f64], f64) -> f64 + Send + Sync>;
+/// What a method observes at x, given f(x) there and how many times x was evaluated
+/// before in the run: f(x) perturbed by noise drawn from x and that count (a pure
+/// function of its arguments, safe to call from several threads at once).
+pub type Observe = Box<dyn Fn(&[f64], f64, u64) -> f64 + Send + Sync>;
 
 /// The start distribution: θ₀ as a pure function of a run seed.
 pub type StartFn = Box<dyn Fn(u64) -> Vec<f64> + Send + Sync>;
@@ -229,10 +230,11 @@ impl Problem {
         (self.f)(x)
     }
 
-    /// What a method sees at x: f(x), or f(x) with the problem's noise.
-    pub fn observe(&self, x: &[f64]) -> f64 {
+    /// What a method sees at x on its `repeat`-th evaluation there (0 for the first):
+    /// f(x), or f(x) with the problem's noise.
+    pub fn observe(&self, x: &[f64], repeat: u64) -> f64 {
         let f = self.value(x);
-        self.observe.as_ref().map_or(f, |o| o(x, f))
+        self.observe.as_ref().map_or(f, |o| o(x, f, repeat))
     }
 
     /// Whether the problem is noisy (a method sees other values than f's).

@@ -9,6 +9,9 @@
 //! (evaluation number, f − f*, parameter error). Evaluations after the budget still return f (so a method can finish its
 //! iteration) but are not recorded or counted.
 
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, PoisonError};
+
 use hodr_core::{Batch, NoiseSeed, Objective};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -67,15 +70,24 @@ impl Trace {
     }
 }
 
-/// A problem's f at points clamped into its bounds: pure and shareable between threads.
-#[derive(Clone, Copy, Debug)]
-pub struct Clamped<'p>(pub &'p Problem);
+/// Evaluations so far per point (by its bits) of a run on a noisy problem, shared by
+/// the threads that evaluate it.
+type Repeats = Arc<Mutex<HashMap<Vec<u64>, u64>>>;
+
+/// A problem's f at points clamped into its bounds, shareable between threads; on a
+/// noisy problem it counts each point's evaluations, so that a repeat draws fresh noise
+/// (two evaluations of one point within one parallel batch may then swap their draws).
+#[derive(Clone, Debug)]
+pub struct Clamped<'p> {
+    problem: &'p Problem,
+    repeats: Option<Repeats>,
+}
 
 impl Clamped<'_> {
     /// x clamped into the problem's bounds.
     pub fn point(&self, x: &[f64]) -> Vec<f64> {
         let mut y = x.to_vec();
-        if let Some(b) = &self.0.bounds {
+        if let Some(b) = &self.problem.bounds {
             b.clamp(&mut y);
         }
         y
@@ -83,13 +95,22 @@ impl Clamped<'_> {
 
     /// What the method sees at x clamped into the bounds ([`Problem::observe`]).
     pub fn value(&self, x: &[f64]) -> f64 {
-        self.0.observe(&self.point(x))
+        let y = self.point(x);
+        let repeat = self.repeats.as_ref().map_or(0, |r| {
+            let key = y.iter().map(|v| v.to_bits()).collect();
+            let mut seen = r.lock().unwrap_or_else(PoisonError::into_inner);
+            let count = seen.entry(key).or_insert(0);
+            *count += 1;
+            *count - 1
+        });
+        self.problem.observe(&y, repeat)
     }
 }
 
 /// The counting wrapper around a problem's f for one run.
 pub struct Counter<'p> {
     problem: &'p Problem,
+    repeats: Option<Repeats>,
     budget: usize,
     count: usize,
     best: f64,
@@ -101,6 +122,7 @@ impl<'p> Counter<'p> {
     pub fn new(problem: &'p Problem, budget: usize) -> Self {
         Counter {
             problem,
+            repeats: problem.is_noisy().then(Repeats::default),
             budget,
             count: 0,
             best: f64::INFINITY,
@@ -111,7 +133,10 @@ impl<'p> Counter<'p> {
     /// f without counting, for evaluation on any thread; pair each value with
     /// [`Counter::record`] in the method's order.
     pub fn clamped(&self) -> Clamped<'p> {
-        Clamped(self.problem)
+        Clamped {
+            problem: self.problem,
+            repeats: self.repeats.clone(),
+        }
     }
 
     /// Counts one evaluation of x (unclamped, as the method asked) that the method saw
