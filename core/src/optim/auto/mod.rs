@@ -40,6 +40,15 @@
 //!   seed to seed by far more than the differences between nearby θ on one seed, so
 //!   only differences within a group inform g and H, and values are compared (θ's
 //!   replacement, ties, the values' spread) only within a group.
+//! * **Unseeded noise.** An objective declared deterministic is checked: at the first
+//!   model step after each restart (until noise is found) θ is evaluated once more,
+//!   unremembered. Where the two values differ, the objective draws fresh noise at
+//!   every call — a renderer whose seed is not passed on — and a lucky draw of f(θ)
+//!   rejects every later step, which is how such a descent ends. From then on the fit
+//!   gives each point a robustness weight, Tukey's biweight of its residual (one step
+//!   of iteratively reweighted least squares per iteration), so that an outlier — a
+//!   Cauchy noise spike — loses its pull; and where θ's own draw is such an outlier,
+//!   θ is drawn again and steps are compared with the new draw.
 //! * **Step.** The model's minimiser within ‖s‖ ≤ σ√n (the `trust` module: exact for
 //!   indefinite H, so a non-PSD model steps along its negative curvature), over the
 //!   coordinates no bound holds and projected into the bounds, is evaluated. It
@@ -82,8 +91,8 @@
 //!
 //! Memory: one caller buffer of [`Auto::buffer_len`] floats, O(n² + m²) for m =
 //! [`Auto::history_len`] remembered points. Cost per iteration: O(m²n + m³) for the fit
-//! (and O(mn² + n³) for the full model's linear part and eigen-decomposition); O(n³) per
-//! n pairs for the diagonal model's sampling frames.
+//! (twice with unseeded noise), O(mn² + n³) for the full model's linear part and
+//! eigen-decomposition; O(n³) per n pairs for the diagonal model's sampling frames.
 
 mod eigen;
 mod fixed;
@@ -124,6 +133,10 @@ pub const REACH: f64 = 2.0;
 /// instead of shrinking it. A smooth f's residuals (its Taylor remainder) are a
 /// fraction of F that falls with σ, so a smooth f never reaches it for long.
 pub const ROUGH: f64 = 0.25;
+
+/// c of Tukey's biweight in units of the residuals' robust spread (1.4826 × their
+/// median absolute value): the usual 4.685, 95 % efficient for Gaussian residuals.
+const TUKEY: f64 = 4.685;
 
 /// σ/σ₀ beyond which a plateau no longer widens σ: the run keeps drawing pairs at
 /// Gaussian distances within that reach instead, since samples scattered ever wider
@@ -366,10 +379,14 @@ struct Memory<'b, T> {
     c: &'b mut [T],
     l: &'b mut [T],
     li: &'b mut [T],
+    /// Each remembered point's robustness weight in the fit, in [0, 1]: 1 unless the
+    /// objective draws unseeded noise ([`State::unseeded`]), where points the model
+    /// cannot explain (a Cauchy outlier) lose it (`Auto::reweigh`).
+    credit: &'b mut [T],
 }
 
 /// Region lengths for dimension n, in [`Memory`]'s order.
-const fn regions(n: usize) -> [usize; 37] {
+const fn regions(n: usize) -> [usize; 38] {
     let shape = Shape::for_dim(n);
     let m = history_len(n);
     let hl = shape.hessian_len(n);
@@ -418,12 +435,13 @@ const fn regions(n: usize) -> [usize; 37] {
         hl,
         hl,
         hl,
+        m,
     ]
 }
 
 /// Floats of buffer an [`Auto`] run needs in dimension n, for m = [`Auto::history_len`]
 /// points remembered:
-/// m(2n + 6) + m² + mp + p² + p + 13n + 7h + r(n + 1) + n² + 2f,
+/// m(2n + 7) + m² + mp + p² + p + 13n + 7h + r(n + 1) + n² + 2f,
 /// with, for the full model (n ≤ [`FULL_MODEL_MAX_DIM`]), h = f = n² and p = n + 1, and
 /// for the diagonal one h = n, f = 0 and p = 1; r = 2·min(n, ⌊m/2⌋) + 2 staged points.
 /// A `const fn`, so that storage can be sized at compile time ([`FixedAuto`]).
@@ -522,6 +540,7 @@ fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         c: take(),
         l: take(),
         li: take(),
+        credit: take(),
     }
 }
 
@@ -572,6 +591,15 @@ struct State<T> {
     /// compared, and fitted, only within a noise group — the points evaluated on one
     /// seed.
     noisy: bool,
+    /// θ was evaluated a second time since the run last restarted, to check that an
+    /// objective declared deterministic is (`Auto::check_determinism`); true until the
+    /// first restart.
+    checked: bool,
+    /// The check found otherwise: the objective draws fresh noise at every evaluation
+    /// though it claims to be deterministic (a renderer whose seed the caller does not
+    /// pass on). The fit then down-weighs the points it cannot explain, and θ is drawn
+    /// again where its own draw is one of them.
+    unseeded: bool,
     /// Noise groups handed out so far; a point's group is stored as this count modulo
     /// 2²⁰ (exact in `f32`; the memory never holds points that far apart in time).
     groups: u32,
@@ -704,6 +732,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 tie_scale: T::ZERO,
                 rough_scale: T::ZERO,
                 noisy: false,
+                checked: true,
+                unseeded: false,
                 groups: 0,
                 shared: None,
                 gained: false,
@@ -1071,11 +1101,43 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let Some(value) = self.st.value else {
             return Ok((AutoStep::Plateau, None));
         };
+        if !self.st.noisy && !self.st.checked {
+            self.check_determinism(objective, value, spent)?;
+        }
         let scale = self.spread(T::from_f64(2.0 * REACH));
-        let Some((noise, fitted)) = self.fit(value, scale) else {
+        let Some((noise, mut fitted)) = self.fit(value, scale) else {
             self.st.sigma = sigma * T::HALF;
             return Ok((AutoStep::Rejected, None));
         };
+        let mut value = value;
+        if self.st.unseeded {
+            // One step of iteratively reweighted least squares per iteration, warm
+            // started from the points' weights of the last. The noise level η stays the
+            // first fit's: the scatter the robust fit sets aside is still the noise a
+            // step must clear.
+            let cut = self.reweigh(value, scale);
+            let Some((_, refitted)) = self.fit(value, scale) else {
+                self.st.sigma = sigma * T::HALF;
+                return Ok((AutoStep::Rejected, None));
+            };
+            fitted = refitted;
+            // θ's own residual under the robust fit is −c. Where that makes its draw an
+            // outlier — a lucky spike that would reject every later step — θ is drawn
+            // again, and steps are judged against the new draw. (Only c depends on the
+            // value the fit was taken relative to, and c is not used below.)
+            if self.mem.beta[0].abs() >= cut && self.remaining() > 0 {
+                let n = self.theta.len();
+                self.mem.stage[..n].copy_from_slice(self.theta);
+                self.evaluate(objective, 1, spent, |_| 0)?;
+                let again = self.mem.stage_f[0];
+                let group = self.next_group();
+                self.remember(1, group);
+                if again.is_finite() {
+                    value = again;
+                    self.st.value = Some(again);
+                }
+            }
+        }
         self.save_prior(scale, sigma);
         let radius = root_n;
         let ok = self.trust_step(radius);
@@ -1183,6 +1245,92 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             Ok((AutoStep::Rejected, Some(ratio)))
         }
+    }
+
+    /// Evaluates θ once more, unremembered, on an objective declared deterministic, at
+    /// the first model step after each restart until noise is found, and sets
+    /// [`State::unseeded`] when the value differs from f(θ)'s. One evaluation, on seed 0
+    /// (a deterministic objective ignores it), so the run's random stream, and a
+    /// deterministic run's points, are unchanged.
+    fn check_determinism<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        value: T,
+        spent: &mut usize,
+    ) -> Result<(), Error> {
+        if self.remaining() == 0 {
+            return Ok(());
+        }
+        let n = self.theta.len();
+        self.st.checked = true;
+        self.mem.stage[..n].copy_from_slice(self.theta);
+        self.evaluate(objective, 1, spent, |_| 0)?;
+        let again = self.mem.stage_f[0];
+        self.st.unseeded = again.is_finite() && again != value;
+        Ok(())
+    }
+
+    /// Sets the robustness weights ([`Memory::credit`]) of the points the fit used from
+    /// their residuals rᵢ under the model just fitted: Tukey's biweight
+    /// (1 − (rᵢ/(cs))²)², zero beyond |rᵢ| = cs, with c = [`TUKEY`] and s = 1.4826 ×
+    /// the median |rᵢ| (floored at √ε of the values' spread, so that a model that
+    /// interpolates most points exactly keeps them). Points beyond the fit's reach keep
+    /// their weights. Returns the cut cs, in the fit's units (values over `scale`;
+    /// `T::MAX` when no point was within reach).
+    fn reweigh(&mut self, value: T, scale: T) -> T {
+        let n = self.theta.len();
+        let sigma = self.st.sigma;
+        let shape = self.shape;
+        let limit = T::from_f64(2.0 * REACH);
+        let root_n = T::from_usize(n).sqrt();
+        let c = self.mem.beta[0];
+        // |rᵢ| in `sw`, free until the next fit fills it again.
+        let mut used = 0;
+        for k in 0..self.st.count {
+            let x = &self.mem.xs[k * n..(k + 1) * n];
+            for ((ri, &xi), &ti) in self.mem.rs.iter_mut().zip(x).zip(self.theta.iter()) {
+                *ri = (xi - ti) / sigma;
+            }
+            metric::apply(shape, self.mem.li, self.mem.rs, self.mem.gx);
+            let u = &*self.mem.gx;
+            if norm(u) / root_n > limit {
+                continue;
+            }
+            let model = c + dot(self.mem.g, u) + shape.half_quadratic(self.mem.h, u);
+            let r = (self.mem.fs[k] - value) / scale - model;
+            // Kept in the reach cache `zs` (invalidated below) until the scale is known.
+            self.mem.zs[k] = r;
+            self.mem.sw[used] = r.abs();
+            used += 1;
+        }
+        if used == 0 {
+            return T::MAX;
+        }
+        let middle = used / 2;
+        self.mem.sw[..used].select_nth_unstable_by(middle, |a, b| {
+            a.partial_cmp(b).unwrap_or(core::cmp::Ordering::Equal)
+        });
+        let spread = T::from_f64(1.4826) * self.mem.sw[middle];
+        let cut = T::from_f64(TUKEY) * spread.max(T::EPSILON.sqrt());
+        for k in 0..self.st.count {
+            let x = &self.mem.xs[k * n..(k + 1) * n];
+            for ((ri, &xi), &ti) in self.mem.rs.iter_mut().zip(x).zip(self.theta.iter()) {
+                *ri = (xi - ti) / sigma;
+            }
+            metric::apply(shape, self.mem.li, self.mem.rs, self.mem.gx);
+            if norm(self.mem.gx) / root_n > limit {
+                continue;
+            }
+            let t = self.mem.zs[k] / cut;
+            self.mem.credit[k] = if t.abs() < T::ONE {
+                (T::ONE - t.sq()).sq()
+            } else {
+                T::ZERO
+            };
+        }
+        // `zs` held residuals: the reach cache is stale.
+        self.st.reach_key = None;
+        cut
     }
 
     /// Writes to `s` the model's minimiser within ‖s‖ ≤ `radius` over the coordinates
@@ -1451,6 +1599,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 .copy_from_slice(&self.mem.stage[row * n..(row + 1) * n]);
             self.mem.fs[slot] = f;
             self.mem.gs[slot] = group;
+            self.mem.credit[slot] = T::ONE;
             if self.reach_is_current() {
                 self.mem.zs[slot] = self.reach_of(slot);
             }
@@ -1582,7 +1731,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             if z > limit {
                 continue;
             }
-            let sw = (-(z / reach).sq() / T::from_f64(4.0)).exp();
+            let credit = self.mem.credit[k];
+            if credit <= T::ZERO {
+                continue;
+            }
+            let sw = (-(z / reach).sq() / T::from_f64(4.0)).exp() * credit.sqrt();
             let prior = dot(self.mem.g, row) + shape.half_quadratic(self.mem.h, row);
             self.mem.sw[m] = sw;
             self.mem.gid[m] = self.mem.gs[k];
@@ -1648,6 +1801,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.sigma = sigma;
         self.st.survey = true;
         self.st.has_prior = false;
+        // A run that ends its descent may have been held by noise: a lucky draw of
+        // f(θ) that no later step can beat. Check, until noise is found.
+        self.st.checked = self.st.unseeded;
     }
 
     /// Moves the sampling metric towards the shape of the prior's curvature H₀.
