@@ -177,7 +177,9 @@ def minimize(
         row) and must draw all of its randomness from the seed, equal seeds giving equal
         noise. Both halves of an antithetic pair get one seed; Auto evaluates each
         iteration's points, θ among them, on one seed, so the renderer's noise cancels
-        in their differences, and compares values only within a seed.
+        in their differences, and compares values only within a seed. Without it, a
+        ``fun`` that draws fresh noise at every call is noticed (its point is evaluated
+        a second time after each restart) and fitted robustly.
     callback : callable, optional
         ``callback(x, f)`` after every iteration with the best point so far and its
         value; returning True stops the run.
