@@ -1306,11 +1306,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if used == 0 {
             return T::MAX;
         }
-        let middle = used / 2;
-        self.mem.sw[..used].select_nth_unstable_by(middle, |a, b| {
-            a.partial_cmp(b).unwrap_or(core::cmp::Ordering::Equal)
-        });
-        let spread = T::from_f64(1.4826) * self.mem.sw[middle];
+        let spread = T::from_f64(1.4826) * lower_median(&self.mem.sw[..used]);
         let cut = T::from_f64(TUKEY) * spread.max(T::EPSILON.sqrt());
         for k in 0..self.st.count {
             let x = &self.mem.xs[k * n..(k + 1) * n];
@@ -1826,6 +1822,22 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 }
 
+/// The element of rank ⌊len/2⌋ (from 0) of `xs` in ascending order, by counting: O(len²)
+/// comparisons, where the standard library's selection would cost kilobytes of code on a
+/// microcontroller and saves nothing next to the fit's O(m³). `T::MAX` when no element
+/// has that rank (NaN among them).
+fn lower_median<T: Real>(xs: &[T]) -> T {
+    let middle = xs.len() / 2;
+    for &x in xs {
+        let below = xs.iter().filter(|&&y| y < x).count();
+        let at_most = xs.iter().filter(|&&y| y <= x).count();
+        if below <= middle && middle < at_most {
+            return x;
+        }
+    }
+    T::MAX
+}
+
 /// f ties with v: equal to within 16 ulps of v (a smooth f almost never does).
 fn ties_with<T: Real>(f: T, v: T) -> bool {
     (f - v).abs() <= T::from_f64(16.0) * T::EPSILON * v.abs()
@@ -1869,6 +1881,22 @@ fn reflect<T: Real>(mut x: T, lower: T, upper: T) -> T {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The lower median is the order statistic that a full sort puts at ⌊len/2⌋, ties and
+    /// all; a NaN among the values leaves it undefined (T::MAX).
+    #[test]
+    fn lower_median_is_the_middle_order_statistic() {
+        assert_eq!(lower_median(&[3.0, 1.0, 2.0]), 2.0);
+        assert_eq!(lower_median(&[4.0, 1.0, 3.0, 2.0]), 3.0);
+        assert_eq!(lower_median(&[5.0, 5.0, 1.0, 5.0]), 5.0);
+        assert_eq!(lower_median(&[7.0]), 7.0);
+        let mut xs = [0.0f64; 101];
+        for (k, x) in xs.iter_mut().enumerate() {
+            *x = ((k * 37) % 101) as f64;
+        }
+        assert_eq!(lower_median(&xs), 50.0);
+        assert_eq!(lower_median(&[f64::NAN, 1.0]), f64::MAX);
+    }
 
     /// The room along a line is set by the first face it meets, on either side of θ.
     #[test]
