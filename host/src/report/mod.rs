@@ -432,7 +432,8 @@ fn write_outputs(
             md,
             "## Generalisation suite\n\n\
              The optimisers on problems nobody tuned for — BBOB functions, disc and integer \
-             plateaus, a flat direction, BOX2 — each seeing x₀, σ₀, bounds and budget only \
+             plateaus, a flat direction, BOX2, noisy functions — each seeing x₀, σ₀, bounds \
+             and budget only \
              ({} configuration{}). Evaluations to targets per problem: \
              [{SUITE_DIR}/suite.md]({SUITE_DIR}/suite.md).\n",
             if config.suite == SuiteScope::Quick {
