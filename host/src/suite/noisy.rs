@@ -122,19 +122,6 @@ impl Noise {
     }
 }
 
-/// Short name of function `id`.
-pub fn function_name(id: u32) -> &'static str {
-    match id {
-        101 | 107 => "sphere-gaussian",
-        102 | 108 => "sphere-uniform",
-        103 | 109 => "sphere-cauchy",
-        104 | 110 => "rosenbrock-gaussian",
-        105 | 111 => "rosenbrock-uniform",
-        106 | 112 => "rosenbrock-cauchy",
-        _ => "unknown",
-    }
-}
-
 /// The noisy problem for function `id` (one of [`IDS`]), dimension `n`, instance
 /// `instance`: BBOB's sphere (f1) or Rosenbrock (f8) problem of that dimension and
 /// instance, observed through [`Noise::of`]`(id, n)`.

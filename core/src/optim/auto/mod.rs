@@ -1126,10 +1126,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             // again, and steps are judged against the new draw. (Only c depends on the
             // value the fit was taken relative to, and c is not used below.)
             if self.mem.beta[0].abs() >= cut && self.remaining() > 0 {
-                let n = self.theta.len();
-                self.mem.stage[..n].copy_from_slice(self.theta);
-                self.evaluate(objective, 1, spent, |_| 0)?;
-                let again = self.mem.stage_f[0];
+                let again = self.evaluate_theta_again(objective, spent)?;
                 let group = self.next_group();
                 self.remember(1, group);
                 if again.is_finite() {
@@ -1261,13 +1258,24 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if self.remaining() == 0 {
             return Ok(());
         }
-        let n = self.theta.len();
         self.st.checked = true;
-        self.mem.stage[..n].copy_from_slice(self.theta);
-        self.evaluate(objective, 1, spent, |_| 0)?;
-        let again = self.mem.stage_f[0];
+        let again = self.evaluate_theta_again(objective, spent)?;
         self.st.unseeded = again.is_finite() && again != value;
         Ok(())
+    }
+
+    /// f(θ) evaluated once more, staged in row 0 (so that [`Auto::remember`] can keep
+    /// it), on seed 0: only objectives declared deterministic are evaluated again this
+    /// way, and they ignore the seed.
+    fn evaluate_theta_again<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        spent: &mut usize,
+    ) -> Result<T, Error> {
+        let n = self.theta.len();
+        self.mem.stage[..n].copy_from_slice(self.theta);
+        self.evaluate(objective, 1, spent, |_| 0)?;
+        Ok(self.mem.stage_f[0])
     }
 
     /// Sets the robustness weights ([`Memory::credit`]) of the points the fit used from
@@ -1278,24 +1286,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// their weights. Returns the cut cs, in the fit's units (values over `scale`;
     /// `T::MAX` when no point was within reach).
     fn reweigh(&mut self, value: T, scale: T) -> T {
-        let n = self.theta.len();
-        let sigma = self.st.sigma;
         let shape = self.shape;
         let limit = T::from_f64(2.0 * REACH);
-        let root_n = T::from_usize(n).sqrt();
         let c = self.mem.beta[0];
         // |rᵢ| in `sw`, free until the next fit fills it again.
         let mut used = 0;
         for k in 0..self.st.count {
-            let x = &self.mem.xs[k * n..(k + 1) * n];
-            for ((ri, &xi), &ti) in self.mem.rs.iter_mut().zip(x).zip(self.theta.iter()) {
-                *ri = (xi - ti) / sigma;
-            }
-            metric::apply(shape, self.mem.li, self.mem.rs, self.mem.gx);
-            let u = &*self.mem.gx;
-            if norm(u) / root_n > limit {
+            if self.offset_of(k) > limit {
                 continue;
             }
+            let u = &*self.mem.gx;
             let model = c + dot(self.mem.g, u) + shape.half_quadratic(self.mem.h, u);
             let r = (self.mem.fs[k] - value) / scale - model;
             // Kept in the reach cache `zs` (invalidated below) until the scale is known.
@@ -1309,12 +1309,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let spread = T::from_f64(1.4826) * lower_median(&self.mem.sw[..used]);
         let cut = T::from_f64(TUKEY) * spread.max(T::EPSILON.sqrt());
         for k in 0..self.st.count {
-            let x = &self.mem.xs[k * n..(k + 1) * n];
-            for ((ri, &xi), &ti) in self.mem.rs.iter_mut().zip(x).zip(self.theta.iter()) {
-                *ri = (xi - ti) / sigma;
-            }
-            metric::apply(shape, self.mem.li, self.mem.rs, self.mem.gx);
-            if norm(self.mem.gx) / root_n > limit {
+            if self.offset_of(k) > limit {
                 continue;
             }
             let t = self.mem.zs[k] / cut;
@@ -1327,6 +1322,18 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // `zs` held residuals: the reach cache is stale.
         self.st.reach_key = None;
         cut
+    }
+
+    /// Writes remembered point k's standardised offset u = L⁻¹(x − θ)/σ to `gx` (as the
+    /// fit computes it) and returns its reach ‖u‖/√n.
+    fn offset_of(&mut self, k: usize) -> T {
+        let n = self.theta.len();
+        let x = &self.mem.xs[k * n..(k + 1) * n];
+        for ((ri, &xi), &ti) in self.mem.rs.iter_mut().zip(x).zip(self.theta.iter()) {
+            *ri = (xi - ti) / self.st.sigma;
+        }
+        metric::apply(self.shape, self.mem.li, self.mem.rs, self.mem.gx);
+        norm(self.mem.gx) / T::from_usize(n).sqrt()
     }
 
     /// Writes to `s` the model's minimiser within ‖s‖ ≤ `radius` over the coordinates
