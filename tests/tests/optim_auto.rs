@@ -360,7 +360,7 @@ impl Objective<f64> for SeedLevel {
 fn convergence_rates_hold() {
     let seeds = 40;
     // Rosenbrock in 5-D from (−1.5, …), to f < 1e-8 within 2 000 evaluations.
-    // Measured: 351 of 400. Bound: P(X < 28 | p = 0.8775, N = 40) = 6.7e-4.
+    // Measured: 357 of 400. Bound: P(X < 29 | p = 0.8925, N = 40) = 7.4e-4.
     let solved = (0..seeds)
         .filter(|&seed| {
             let mut f = |x: &[f64]| {
@@ -372,24 +372,18 @@ fn convergence_rates_hold() {
             v.is_some_and(|v| v < 1e-8)
         })
         .count();
-    assert!(solved >= 28, "Rosenbrock-5: {solved} of {seeds}");
+    assert!(solved >= 29, "Rosenbrock-5: {solved} of {seeds}");
     // An attractive sector (BBOB f06's shape): (Σ (sᵢzᵢ)²)^0.9 with z = ΛH(x − x*), H a
     // Householder reflection, Λ of condition 10, and sᵢ = 100 where zᵢ > 0: the
     // curvature jumps 10⁴-fold across every hyperplane zᵢ = 0 through x*. In 5-D from
     // (3, …), to f < 1e-8 within 4 000 evaluations. With σ halved after steps whose
-    // decrease the model overstated (before 1841090), about 78 of 100. Measured: 356 of 400.
-    // Bound: P(X < 29 | p = 0.89, N = 40) = 9.0e-4.
+    // decrease the model overstated (before 1841090), about 78 of 100; with the metric
+    // learnt only from steps the model predicted, 355 of 400. Measured: 381 of 400.
+    // Bound: P(X < 33 | p = 0.9525, N = 40) = 5.1e-4.
     let sector = |x: &[f64]| {
-        let n = x.len();
-        let d: Vec<f64> = (0..n).map(|i| x[i] - 0.1 * (i as f64 + 1.0)).collect();
-        let v: Vec<f64> = (1..=n).map(|i| i as f64).collect();
-        let vd = v.iter().zip(&d).map(|(a, b)| a * b).sum::<f64>()
-            / v.iter().map(|a| a * a).sum::<f64>();
-        (0..n)
-            .map(|i| {
-                let z = (d[i] - 2.0 * v[i] * vd) * 10f64.powf(i as f64 / (n as f64 - 1.0));
-                (if z > 0.0 { 100.0 * z } else { z }).powi(2)
-            })
+        rotated(x)
+            .iter()
+            .map(|&z| (if z > 0.0 { 100.0 * z } else { z }).powi(2))
             .sum::<f64>()
             .powf(0.9)
     };
@@ -399,10 +393,24 @@ fn convergence_rates_hold() {
             v.is_some_and(|v| v < 1e-8)
         })
         .count();
-    assert!(solved >= 29, "attractive sector: {solved} of {seeds}");
+    assert!(solved >= 33, "attractive sector: {solved} of {seeds}");
+    // A sharp ridge (BBOB f13's shape, a cone as an L1 loss makes): z₁² + 100‖z₂..ₙ‖ with
+    // z as for the sector, in 5-D from (3, …), to f < 1e-8 within 5 000 evaluations.
+    // With the metric learnt only from steps the model predicted, 104 of 400.
+    // Measured: 202 of 400. Bound: P(X < 11 | p = 0.505, N = 40) = 9.0e-4.
+    let ridge = |x: &[f64]| {
+        let z = rotated(x);
+        z[0] * z[0] + 100.0 * z[1..].iter().map(|v| v * v).sum::<f64>().sqrt()
+    };
+    let solved = (0..seeds)
+        .filter(|&seed| {
+            let (_, v, _) = minimise(&mut |x: &[f64]| ridge(x), &[3.0; 5], 1.0, None, 5000, seed);
+            v.is_some_and(|v| v < 1e-8)
+        })
+        .count();
+    assert!(solved >= 11, "sharp ridge: {solved} of {seeds}");
     // A rounded 2-D quadratic (an integer plateau) to its exact minimum within 300.
-    // Measured: 400 of 400. Bound: P(X < 38 | p = 0.99875, N = 40) = 1.9e-5 (p one
-    // half-failure short of 1).
+    // Measured: 398 of 400. Bound: P(X < 37 | p = 0.995, N = 40) = 4.9e-5.
     let solved = (0..seeds)
         .filter(|&seed| {
             let mut f =
@@ -411,7 +419,7 @@ fn convergence_rates_hold() {
             v == Some(0.0)
         })
         .count();
-    assert!(solved >= 38, "rounded quadratic: {solved} of {seeds}");
+    assert!(solved >= 37, "rounded quadratic: {solved} of {seeds}");
     // Two wells: a shallow one (f = 0.5) at the start, the deep one (f = 0) 6σ₀ away,
     // to f < 1e-8 within 1 000 evaluations; only restarts at widening σ leave the
     // first (with `restarts` 0: 0 of 400; restarts back at σ₀ after every gain, before
@@ -449,7 +457,7 @@ fn convergence_rates_hold() {
     // samples clamped into the box instead of mirrored, and plateaus read only from
     // unanimous ties, 35 of 400; with σ free to fall back to where the samples tied
     // (so that it cycled between the pixels' scale and the next), 293 of 400.
-    // Measured: 387 of 400. Bound: P(X < 34 | p = 0.9675, N = 40) = 2.8e-4.
+    // Measured: 384 of 400. Bound: P(X < 34 | p = 0.96, N = 40) = 9.5e-4.
     let inside = |c: &[f64], px: f64, py: f64| (px - c[0]).powi(2) + (py - c[1]).powi(2) < 36.0;
     let (lower, upper) = ([0.0, 0.0], [64.0, 64.0]);
     let solved = (0..seeds)
@@ -500,17 +508,31 @@ fn convergence_rates_hold() {
     // case above, to ‖θ − θ*‖ < 0.01 within 1 500 evaluations.
     // Sparse Cauchy outliers on a constant offset, q + 1 + 𝟙{U < 0.2}·C: a lucky draw
     // of f(θ) rejected every later step before Auto checked for undeclared noise (10 of
-    // 400). Measured: 231 of 400. Bound: P(X < 13 | p = 0.5775, N = 40) = 3.6e-4.
+    // 400). Measured: 248 of 400. Bound: P(X < 15 | p = 0.62, N = 40) = 4.9e-4.
     let solved = (0..seeds)
         .filter(|&seed| unseeded_noise_solved(seed, UnseededNoise::Cauchy))
         .count();
-    assert!(solved >= 13, "Cauchy outliers: {solved} of {seeds}");
+    assert!(solved >= 15, "Cauchy outliers: {solved} of {seeds}");
     // Multiplicative noise q·exp(N/2), which vanishes at the optimum: 397 of 400 before
-    // the check. Measured: 363 of 400. Bound: P(X < 30 | p = 0.9075, N = 40) = 7.7e-4.
+    // the check. Measured: 352 of 400. Bound: P(X < 28 | p = 0.88, N = 40) = 5.5e-4.
     let solved = (0..seeds)
         .filter(|&seed| unseeded_noise_solved(seed, UnseededNoise::LogNormal))
         .count();
-    assert!(solved >= 30, "multiplicative noise: {solved} of {seeds}");
+    assert!(solved >= 28, "multiplicative noise: {solved} of {seeds}");
+}
+
+/// z = ΛH(x − x*) for BBOB-like test functions: x*ᵢ = 0.1(i + 1), H the Householder
+/// reflection along v = (1, 2, …, n) (H = I − 2vvᵀ/vᵀv), Λ = diag(10^(i/(n − 1))) of
+/// condition 10.
+fn rotated(x: &[f64]) -> Vec<f64> {
+    let n = x.len();
+    let d: Vec<f64> = (0..n).map(|i| x[i] - 0.1 * (i as f64 + 1.0)).collect();
+    let v: Vec<f64> = (1..=n).map(|i| i as f64).collect();
+    let vd =
+        v.iter().zip(&d).map(|(a, b)| a * b).sum::<f64>() / v.iter().map(|a| a * a).sum::<f64>();
+    (0..n)
+        .map(|i| (d[i] - 2.0 * v[i] * vd) * 10f64.powf(i as f64 / (n as f64 - 1.0)))
+        .collect()
 }
 
 /// The noise of [`unseeded_noise_solved`].

@@ -144,8 +144,10 @@ pub struct Scratch<'a, T> {
 }
 
 /// Moves C towards the shape of the curvature `h` (the model's Hessian of the same
-/// shape, in parameter units, any scale) and refreshes L and L⁻¹. Leaves everything
+/// shape, in parameter units, any scale) by `weight` × [`rate`] (weight in (0, 1]: how
+/// far the caller trusts this curvature) and refreshes L and L⁻¹. Leaves everything
 /// unchanged when `h` has no finite, non-zero curvature.
+#[allow(clippy::too_many_arguments)]
 pub fn update<T: Real>(
     shape: Shape,
     c: &mut [T],
@@ -153,13 +155,14 @@ pub fn update<T: Real>(
     li: &mut [T],
     h: &[T],
     n: usize,
+    weight: f64,
     scratch: Scratch<'_, T>,
 ) {
     let len = shape.hessian_len(n);
     if h[..len].iter().any(|x| !x.is_finite()) {
         return;
     }
-    let rate = T::from_f64(rate(n));
+    let rate = T::from_f64(rate(n) * weight);
     if shape == Shape::Diagonal {
         let Some(Targets { top, low, mean }) = Targets::of(n, |i| h[i]) else {
             return;
@@ -296,7 +299,7 @@ mod tests {
                 v: &mut v,
                 w: &mut w,
             };
-            update(Shape::Full, &mut c, &mut l, &mut li, &h, n, s);
+            update(Shape::Full, &mut c, &mut l, &mut li, &h, n, 1.0, s);
         }
         // LᵀHL ∝ I once C ∝ H⁻¹.
         let mut tmp = [0.0; 4];
@@ -326,7 +329,7 @@ mod tests {
                 v: &mut [],
                 w: &mut [],
             };
-            update(Shape::Diagonal, &mut c, &mut l, &mut li, &h, n, s);
+            update(Shape::Diagonal, &mut c, &mut l, &mut li, &h, n, 1.0, s);
         }
         // LᵀHL ∝ I by magnitude once C ∝ |H|⁻¹.
         let mut out = [0.0; 4];

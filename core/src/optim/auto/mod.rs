@@ -30,7 +30,12 @@
 //! * **Metric.** Samples, reach and the trust region live in whitened coordinates
 //!   u = L⁻¹(x − θ)/σ, C = LLᵀ a shape (det C = 1) that moves towards |H|⁻¹ after each
 //!   step the model predicted (the `metric` module), as CMA-ES's covariance follows its
-//!   population: ill-conditioned valleys look round. C has the model's shape: full for
+//!   population: ill-conditioned valleys look round. On a deterministic objective a
+//!   model its points determine (more of them than coefficients, fitted within
+//!   [`SMOOTH`], off a lattice) moves C too, at [`DETERMINED_METRIC_WEIGHT`] of the
+//!   rate, whatever its step did: on a sharp ridge (a cone, as an L1 image loss makes)
+//!   no quadratic predicts f's steps, yet the smoothed curvature across the ridge is
+//!   what stretches C along it. C has the model's shape: full for
 //!   n ≤ [`FULL_MODEL_MAX_DIM`], diagonal above (per-coordinate scales).
 //! * **Noise.** A stochastic objective ([`Objective::deterministic`] false) — a Monte
 //!   Carlo render — is evaluated on common random numbers: an iteration's samples, θ
@@ -134,6 +139,11 @@ pub const REACH: f64 = 2.0;
 /// fraction of F that falls with σ, so a smooth f never reaches it for long.
 pub const ROUGH: f64 = 0.25;
 
+/// A fit whose residual scatter η is within this fraction of the spread F of the values
+/// it fits describes f closely enough that its curvature may shape the sampling metric
+/// without a step to confirm it ([`DETERMINED_METRIC_WEIGHT`]).
+pub const SMOOTH: f64 = 0.1;
+
 /// c of Tukey's biweight in units of the residuals' robust spread (1.4826 × their
 /// median absolute value): the usual 4.685, 95 % efficient for Gaussian residuals.
 const TUKEY: f64 = 4.685;
@@ -162,6 +172,13 @@ const RESTART_SCALES: u32 = 5;
 
 /// σ/σ₀ beyond which a confirmed step to the trust boundary no longer widens σ.
 const GROWTH_WIDTH: f64 = 1_048_576.0;
+
+/// The fraction of the metric's rate at which a model moves it when its points
+/// determine it (more fitted points than coefficients, residual scatter within
+/// [`SMOOTH`], no samples tied since f(θ) last fell) but its step did not confirm it
+/// (ρ̂ < 0.1 or rejected), on a deterministic objective. A confirmed step moves it at
+/// the full rate.
+const DETERMINED_METRIC_WEIGHT: f64 = 0.3;
 
 /// Points evaluated per noise-seed chunk of one batch (a stack array of seeds).
 const CHUNK: usize = 64;
@@ -1230,11 +1247,24 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             sigma
         };
+        if accepted && ratio >= T::from_f64(0.1) {
+            // The model predicted the decrease: trust its curvature's shape.
+            self.learn_metric(1.0);
+        } else if determined
+            && !self.st.noisy
+            && !self.st.unseeded
+            && !self.st.lattice
+            && self.st.tie_scale <= T::ZERO
+            && noise <= T::from_f64(SMOOTH)
+        {
+            // The points determine the curvature, and fit it closely, though the step
+            // did not confirm it: a cone's or a kink's smoothed curvature is what the
+            // metric needs even where the quadratic mispredicts f's steps. (Not where
+            // samples have tied since f last fell: on a lattice the fitted curvature is
+            // the steps', not f's.)
+            self.learn_metric(DETERMINED_METRIC_WEIGHT);
+        }
         if accepted {
-            if ratio >= T::from_f64(0.1) {
-                // The model predicted the decrease: trust its curvature's shape.
-                self.learn_metric();
-            }
             self.theta.copy_from_slice(&self.mem.stage[..n]);
             self.st.value = Some(trial);
             self.st.gained |= trial < reference;
@@ -1809,8 +1839,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.checked = self.st.unseeded;
     }
 
-    /// Moves the sampling metric towards the shape of the prior's curvature H₀.
-    fn learn_metric(&mut self) {
+    /// Moves the sampling metric towards the shape of the prior's curvature H₀ by
+    /// `weight` of the metric's rate.
+    fn learn_metric(&mut self, weight: f64) {
         let n = self.theta.len();
         self.st.metric_changes = self.st.metric_changes.wrapping_add(1);
         metric::update(
@@ -1820,6 +1851,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.mem.li,
             self.mem.h0,
             n,
+            weight,
             metric::Scratch {
                 a: self.mem.a,
                 v: self.mem.v,
