@@ -178,7 +178,7 @@ const GROWTH_WIDTH: f64 = 1_048_576.0;
 /// [`SMOOTH`], no samples tied since f(θ) last fell) but its step did not confirm it
 /// (ρ̂ < 0.1 or rejected), on a deterministic objective. A confirmed step moves it at
 /// the full rate.
-const DETERMINED_METRIC_WEIGHT: f64 = 0.3;
+pub const DETERMINED_METRIC_WEIGHT: f64 = 0.3;
 
 /// Points evaluated per noise-seed chunk of one batch (a stack array of seeds).
 const CHUNK: usize = 64;
