@@ -32,7 +32,7 @@
 //!   step the model predicted (the `metric` module), as CMA-ES's covariance follows its
 //!   population: ill-conditioned valleys look round. On a deterministic objective a
 //!   model its points determine (more of them than coefficients, fitted within
-//!   [`SMOOTH`], off a lattice) moves C too, at [`DETERMINED_METRIC_WEIGHT`] of the
+//!   [`SMOOTH`], off a lattice, θ off the box's faces) moves C too, at [`DETERMINED_METRIC_WEIGHT`] of the
 //!   rate, whatever its step did: on a sharp ridge (a cone, as an L1 image loss makes)
 //!   no quadratic predicts f's steps, yet the smoothed curvature across the ridge is
 //!   what stretches C along it. C has the model's shape: full for
@@ -175,9 +175,9 @@ const GROWTH_WIDTH: f64 = 1_048_576.0;
 
 /// The fraction of the metric's rate at which a model moves it when its points
 /// determine it (more fitted points than coefficients, residual scatter within
-/// [`SMOOTH`], no samples tied since f(θ) last fell) but its step did not confirm it
-/// (ρ̂ < 0.1 or rejected), on a deterministic objective. A confirmed step moves it at
-/// the full rate.
+/// [`SMOOTH`], no samples tied since f(θ) last fell, θ on no face of the box) but its
+/// step did not confirm it (ρ̂ < 0.1 or rejected), on a deterministic objective. A
+/// confirmed step moves it at the full rate.
 pub const DETERMINED_METRIC_WEIGHT: f64 = 0.3;
 
 /// Points evaluated per noise-seed chunk of one batch (a stack array of seeds).
@@ -1256,12 +1256,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             && !self.st.lattice
             && self.st.tie_scale <= T::ZERO
             && noise <= T::from_f64(SMOOTH)
+            && !self.on_face()
         {
             // The points determine the curvature, and fit it closely, though the step
             // did not confirm it: a cone's or a kink's smoothed curvature is what the
             // metric needs even where the quadratic mispredicts f's steps. (Not where
             // samples have tied since f last fell: on a lattice the fitted curvature is
-            // the steps', not f's.)
+            // the steps', not f's. Nor with θ on a face of the box: samples mirrored
+            // there make f look flat across the face, C would stretch along its normal,
+            // and steps along that axis are cut off by the bound.)
             self.learn_metric(DETERMINED_METRIC_WEIGHT);
         }
         if accepted {
@@ -1837,6 +1840,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // A run that ends its descent may have been held by noise: a lucky draw of
         // f(θ) that no later step can beat. Check, until noise is found.
         self.st.checked = self.st.unseeded;
+    }
+
+    /// θ lies on a face of the box: some coordinate at its lower or upper bound.
+    fn on_face(&self) -> bool {
+        self.theta
+            .iter()
+            .zip(self.mem.lower.iter().zip(self.mem.upper.iter()))
+            .any(|(&t, (&lo, &hi))| t <= lo || t >= hi)
     }
 
     /// Moves the sampling metric towards the shape of the prior's curvature H₀ by
