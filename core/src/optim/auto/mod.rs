@@ -32,11 +32,12 @@
 //!   step the model predicted (the `metric` module), as CMA-ES's covariance follows its
 //!   population: ill-conditioned valleys look round. On a deterministic objective a
 //!   model its points determine (more of them than coefficients, fitted within
-//!   [`SMOOTH`], off a lattice, θ off the box's faces) moves C too, at [`DETERMINED_METRIC_WEIGHT`] of the
-//!   rate, whatever its step did: on a sharp ridge (a cone, as an L1 image loss makes)
-//!   no quadratic predicts f's steps, yet the smoothed curvature across the ridge is
-//!   what stretches C along it. C has the model's shape: full for
-//!   n ≤ [`FULL_MODEL_MAX_DIM`], diagonal above (per-coordinate scales).
+//!   [`SMOOTH`], off a lattice, θ off the box's faces) moves C too, at
+//!   [`DETERMINED_METRIC_WEIGHT`] of the rate, whatever its step did: on a sharp ridge
+//!   (a cone, as an L1 image loss makes) no quadratic predicts f's steps, yet the
+//!   smoothed curvature across the ridge is what stretches C along it. C has the
+//!   model's shape: full for n ≤ [`FULL_MODEL_MAX_DIM`], diagonal above (per-coordinate
+//!   scales).
 //! * **Noise.** A stochastic objective ([`Objective::deterministic`] false) — a Monte
 //!   Carlo render — is evaluated on common random numbers: an iteration's samples, θ
 //!   beside them and its trial point share one seed (where it draws no samples, θ and
