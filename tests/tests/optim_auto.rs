@@ -361,17 +361,12 @@ fn convergence_rates_hold() {
     let seeds = 40;
     // Rosenbrock in 5-D from (−1.5, …), to f < 1e-8 within 2 000 evaluations.
     // Measured: 357 of 400. Bound: P(X < 29 | p = 0.8925, N = 40) = 7.4e-4.
-    let solved = (0..seeds)
-        .filter(|&seed| {
-            let mut f = |x: &[f64]| {
-                (0..x.len() - 1)
-                    .map(|i| 100.0 * (x[i] * x[i] - x[i + 1]).powi(2) + (1.0 - x[i]).powi(2))
-                    .sum::<f64>()
-            };
-            let (_, v, _) = minimise(&mut f, &[-1.5; 5], 1.0, None, 2000, seed);
-            v.is_some_and(|v| v < 1e-8)
-        })
-        .count();
+    let rosenbrock = |x: &[f64]| {
+        (0..x.len() - 1)
+            .map(|i| 100.0 * (x[i] * x[i] - x[i + 1]).powi(2) + (1.0 - x[i]).powi(2))
+            .sum::<f64>()
+    };
+    let solved = runs_below_1e8(rosenbrock, &[-1.5; 5], 2000, seeds);
     assert!(solved >= 29, "Rosenbrock-5: {solved} of {seeds}");
     // An attractive sector (BBOB f06's shape): (Σ (sᵢzᵢ)²)^0.9 with z = ΛH(x − x*), H a
     // Householder reflection, Λ of condition 10, and sᵢ = 100 where zᵢ > 0: the
@@ -387,12 +382,7 @@ fn convergence_rates_hold() {
             .sum::<f64>()
             .powf(0.9)
     };
-    let solved = (0..seeds)
-        .filter(|&seed| {
-            let (_, v, _) = minimise(&mut |x: &[f64]| sector(x), &[3.0; 5], 1.0, None, 4000, seed);
-            v.is_some_and(|v| v < 1e-8)
-        })
-        .count();
+    let solved = runs_below_1e8(sector, &[3.0; 5], 4000, seeds);
     assert!(solved >= 33, "attractive sector: {solved} of {seeds}");
     // A sharp ridge (BBOB f13's shape, a cone as an L1 loss makes): z₁² + 100‖z₂..ₙ‖ with
     // z as for the sector, in 5-D from (3, …), to f < 1e-8 within 5 000 evaluations.
@@ -402,12 +392,7 @@ fn convergence_rates_hold() {
         let z = rotated(x);
         z[0] * z[0] + 100.0 * z[1..].iter().map(|v| v * v).sum::<f64>().sqrt()
     };
-    let solved = (0..seeds)
-        .filter(|&seed| {
-            let (_, v, _) = minimise(&mut |x: &[f64]| ridge(x), &[3.0; 5], 1.0, None, 5000, seed);
-            v.is_some_and(|v| v < 1e-8)
-        })
-        .count();
+    let solved = runs_below_1e8(ridge, &[3.0; 5], 5000, seeds);
     assert!(solved >= 11, "sharp ridge: {solved} of {seeds}");
     // A rounded 2-D quadratic (an integer plateau) to its exact minimum within 300.
     // Measured: 398 of 400. Bound: P(X < 37 | p = 0.995, N = 40) = 4.9e-5.
@@ -519,6 +504,17 @@ fn convergence_rates_hold() {
         .filter(|&seed| unseeded_noise_solved(seed, UnseededNoise::LogNormal))
         .count();
     assert!(solved >= 28, "multiplicative noise: {solved} of {seeds}");
+}
+
+/// How many runs of Auto on `f` from `x0` (σ₀ = 1, no bounds, `budget` evaluations), one
+/// per seed in 0..`seeds`, reach f < 1e-8.
+fn runs_below_1e8(f: impl Fn(&[f64]) -> f64, x0: &[f64], budget: usize, seeds: u64) -> usize {
+    (0..seeds)
+        .filter(|&seed| {
+            let (_, v, _) = minimise(&mut |x: &[f64]| f(x), x0, 1.0, None, budget, seed);
+            v.is_some_and(|v| v < 1e-8)
+        })
+        .count()
 }
 
 /// z = ΛH(x − x*) for BBOB-like test functions: x*ᵢ = 0.1(i + 1), H the Householder
