@@ -310,29 +310,37 @@ fn chosen_dimensions_select_bbob_anywhere_and_the_rest_at_their_own() {
     )));
 }
 
-/// `--functions` keeps the chosen BBOB functions, in the suite's order, and the other
-/// families whole.
+/// `--functions` keeps the chosen BBOB and noisy functions, in the suite's order, and the
+/// other families whole; a BBOB or noisy family none of whose functions is listed runs
+/// none.
 #[test]
-fn chosen_functions_select_bbob_problems() {
-    let config = Config::from_args(&[], &[], &[], None, None, true, "unused".into())
-        .unwrap()
-        .with_functions(&[10, 2])
-        .unwrap();
-    let problems = suite::catalogue(&config).unwrap();
-    let bbob: Vec<&str> = problems
-        .iter()
-        .filter(|p| p.family == suite::problem::Family::Bbob)
-        .map(|p| &p.name[..8])
-        .collect();
-    assert!(!bbob.is_empty());
-    let first_f10 = bbob.iter().position(|n| *n == "bbob-f10").unwrap();
-    assert!(bbob[..first_f10].iter().all(|n| *n == "bbob-f02"));
-    assert!(bbob[first_f10..].iter().all(|n| *n == "bbob-f10"));
-    assert!(
-        problems
+fn chosen_functions_select_bbob_and_noisy_problems() {
+    use suite::problem::Family;
+    let all = Config::from_args(&[], &[], &[], None, None, true, "unused".into()).unwrap();
+    let names = |config: &Config, family: Family| -> Vec<String> {
+        suite::catalogue(config)
+            .unwrap()
             .iter()
-            .any(|p| p.family == suite::problem::Family::Plateau)
-    );
+            .filter(|p| p.family == family)
+            .map(|p| p.name.split("-n").next().unwrap().to_string())
+            .collect()
+    };
+    let bbob_only = all.clone().with_functions(&[10, 2]).unwrap();
+    let bbob = names(&bbob_only, Family::Bbob);
+    assert!(!bbob.is_empty());
+    let first_f10 = bbob.iter().position(|n| n == "bbob-f10").unwrap();
+    assert!(bbob[..first_f10].iter().all(|n| n == "bbob-f02"));
+    assert!(bbob[first_f10..].iter().all(|n| n == "bbob-f10"));
+    assert!(!names(&bbob_only, Family::Plateau).is_empty());
+    assert!(names(&bbob_only, Family::Noisy).is_empty());
+
+    let mixed = all.with_functions(&[109, 13, 104]).unwrap();
+    assert!(names(&mixed, Family::Bbob).iter().all(|n| n == "bbob-f13"));
+    let noisy = names(&mixed, Family::Noisy);
+    let first_f109 = noisy.iter().position(|n| n == "noisy-f109").unwrap();
+    assert!(first_f109 > 0);
+    assert!(noisy[..first_f109].iter().all(|n| n == "noisy-f104"));
+    assert!(noisy[first_f109..].iter().all(|n| n == "noisy-f109"));
 }
 
 #[test]
@@ -347,6 +355,7 @@ fn bad_suite_arguments_fail_with_one_line() {
         (&["suite", "--seeds", "many"][..], "many"),
         (&["suite", "--jobs", "0"][..], "jobs"),
         (&["suite", "--functions", "3"][..], "function 3"),
+        (&["suite", "--functions", "113"][..], "function 113"),
         (
             &["suite", "--functions", "2,2"][..],
             "function 2 listed twice",
@@ -354,6 +363,10 @@ fn bad_suite_arguments_fail_with_one_line() {
         (
             &["suite", "--families", "plateau", "--functions", "2"][..],
             "bbob",
+        ),
+        (
+            &["suite", "--families", "bbob", "--functions", "2,104"][..],
+            "function 104 belongs to the noisy family",
         ),
     ] {
         let out = hodr(args);

@@ -70,7 +70,8 @@ pub struct Config {
     /// `None`: every family's own (with `quick`, those up to [`QUICK_MAX_DIM`], and the
     /// flat problem).
     pub dims: Option<Vec<usize>>,
-    /// BBOB functions to run, in [`bbob::IDS`] order; `None`: all of them.
+    /// BBOB and noisy functions to run, in [`bbob::IDS`] then [`noisy::IDS`] order;
+    /// `None`: all of them.
     pub functions: Option<Vec<u32>>,
     /// Methods, in [`Method::ALL`] order.
     pub methods: Vec<Method>,
@@ -103,29 +104,47 @@ impl Config {
         Ok(self)
     }
 
-    /// Runs only the BBOB functions `ids` (e.g. 2 and 10); empty: all of them.
+    /// Runs only the functions `ids` of the BBOB family ([`bbob::IDS`], e.g. 2 and 10)
+    /// and of the noisy family ([`noisy::IDS`], e.g. 104); the other families run whole.
+    /// A selected BBOB or noisy family none of whose functions is listed runs none.
+    /// Empty: all of them.
     ///
     /// # Errors
     /// A one-line message naming the culprit: a function the suite does not define, one
-    /// listed twice, or functions chosen without the BBOB family.
+    /// listed twice, or one whose family (bbob for 1–15, noisy for 101–112) is not
+    /// selected.
     pub fn with_functions(mut self, ids: &[u32]) -> Result<Config> {
         if ids.is_empty() {
             self.functions = None;
             return Ok(self);
         }
-        if !self.families.contains(&Family::Bbob) {
-            bail!("--functions selects BBOB functions, but the bbob family is not selected");
-        }
         for (k, id) in ids.iter().enumerate() {
-            if !bbob::IDS.contains(id) {
-                bail!("unknown BBOB function {id} (the suite has {:?})", bbob::IDS);
+            let family = if bbob::IDS.contains(id) {
+                Family::Bbob
+            } else if noisy::IDS.contains(id) {
+                Family::Noisy
+            } else {
+                bail!(
+                    "unknown function {id} (bbob has {:?}, noisy has {:?})",
+                    bbob::IDS,
+                    noisy::IDS
+                );
+            };
+            if !self.families.contains(&family) {
+                bail!("function {id} belongs to the {family} family, which is not selected");
             }
             if ids[..k].contains(id) {
-                bail!("BBOB function {id} listed twice");
+                bail!("function {id} listed twice");
             }
         }
-        self.functions = Some(bbob::IDS.into_iter().filter(|i| ids.contains(i)).collect());
+        let order = bbob::IDS.into_iter().chain(noisy::IDS);
+        self.functions = Some(order.filter(|i| ids.contains(i)).collect());
         Ok(self)
+    }
+
+    /// Whether function `id` of the BBOB or noisy family runs.
+    fn runs_function(&self, id: u32) -> bool {
+        self.functions.as_ref().is_none_or(|f| f.contains(&id))
     }
 
     /// The configuration of the command line's arguments: empty lists mean "all";
@@ -245,8 +264,7 @@ pub fn catalogue(config: &Config) -> Result<Vec<Problem>> {
         let dims = config.dims_of(family);
         match family {
             Family::Bbob => {
-                let ids = config.functions.as_deref().unwrap_or(&bbob::IDS);
-                for &id in ids {
+                for id in bbob::IDS.into_iter().filter(|&i| config.runs_function(i)) {
                     for &n in &dims {
                         for i in instances.clone() {
                             out.push(bbob::problem(id, n, i, b));
@@ -281,7 +299,7 @@ pub fn catalogue(config: &Config) -> Result<Vec<Problem>> {
                 }
             }
             Family::Noisy => {
-                for &id in &noisy::IDS {
+                for id in noisy::IDS.into_iter().filter(|&i| config.runs_function(i)) {
                     for &n in &dims {
                         for i in instances.clone() {
                             out.push(noisy::problem(id, n, i, b));
