@@ -53,8 +53,11 @@
 //!   rejects every later step, which is how such a descent ends. From then on the fit
 //!   gives each point a robustness weight, Tukey's biweight of its residual (one step
 //!   of iteratively reweighted least squares per iteration), so that an outlier — a
-//!   Cauchy noise spike — loses its pull; and where θ's own draw is such an outlier,
-//!   θ is drawn again and steps are compared with the new draw.
+//!   Cauchy noise spike — loses its pull; where θ's own draw is such an outlier, θ is
+//!   drawn again; and after a rejected trial, where θ's draw lies below the robust
+//!   fit, θ is drawn again beside the next one (until [`THETA_DRAWS`] draws), trials
+//!   being compared with the median of θ's draws, so that a draw from the noise's low
+//!   tail cannot hold θ by itself.
 //! * **Step.** The model's minimiser within ‖s‖ ≤ σ√n (the `trust` module: exact for
 //!   indefinite H, so a non-PSD model steps along its negative curvature), over the
 //!   coordinates no bound holds and projected into the bounds, is evaluated. It
@@ -180,6 +183,12 @@ const GROWTH_WIDTH: f64 = 1_048_576.0;
 /// step did not confirm it (ρ̂ < 0.1 or rejected), on a deterministic objective. A
 /// confirmed step moves it at the full rate.
 pub const DETERMINED_METRIC_WEIGHT: f64 = 0.3;
+
+/// Draws of f(θ) an unseeded objective's trials are compared with, at most: after a
+/// rejected trial, where θ's draw lies below the robust fit's value at θ, θ is drawn
+/// again beside the next trial until the memory holds this many, and trials must beat
+/// their median (the larger of two).
+pub const THETA_DRAWS: usize = 2;
 
 /// Points evaluated per noise-seed chunk of one batch (a stack array of seeds).
 const CHUNK: usize = 64;
@@ -618,6 +627,10 @@ struct State<T> {
     /// pass on). The fit then down-weighs the points it cannot explain, and θ is drawn
     /// again where its own draw is one of them.
     unseeded: bool,
+    /// The last trial, on an unseeded objective, was rejected: where the robust fit
+    /// also puts f(θ)'s draw below the model, that draw may be a lucky one, and the
+    /// next trial's comparison draws θ again (up to [`THETA_DRAWS`] draws).
+    doubted: bool,
     /// Noise groups handed out so far; a point's group is stored as this count modulo
     /// 2²⁰ (exact in `f32`; the memory never holds points that far apart in time).
     groups: u32,
@@ -752,6 +765,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 noisy: false,
                 checked: true,
                 unseeded: false,
+                doubted: false,
                 groups: 0,
                 shared: None,
                 gained: false,
@@ -1128,6 +1142,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             return Ok((AutoStep::Rejected, None));
         };
         let mut value = value;
+        // θ's draw lies below the robust model's value at θ: it may be a lucky one.
+        let mut lucky = false;
         if self.st.unseeded {
             // One step of iteratively reweighted least squares per iteration, warm
             // started from the points' weights of the last. The noise level η stays the
@@ -1139,6 +1155,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 return Ok((AutoStep::Rejected, None));
             };
             fitted = refitted;
+            lucky = self.mem.beta[0] > T::ZERO;
             // θ's own residual under the robust fit is −c. Where that makes its draw an
             // outlier — a lucky spike that would reject every later step — θ is drawn
             // again, and steps are judged against the new draw. (Only c depends on the
@@ -1185,7 +1202,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         // A noisy objective's trial is compared with f(θ) on common noise: the seed on
         // which this iteration measured f(θ), or a fresh one on which θ is evaluated too.
-        let compare = self.st.noisy && self.st.shared.is_none();
+        // An unseeded objective's θ is drawn again beside the trial after a rejection,
+        // where its draw lies below the robust fit, until it has THETA_DRAWS draws.
+        let redraw = lucky && self.st.doubted && self.draws_at_theta() < THETA_DRAWS;
+        let compare = self.st.noisy && self.st.shared.is_none() || redraw;
         let rows = if compare { 2 } else { 1 };
         if self.remaining() < rows {
             return Ok((AutoStep::OutOfBudget, None));
@@ -1200,8 +1220,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         };
         self.evaluate(objective, rows, spent, |_| seed)?;
         let trial = self.mem.stage_f[0];
-        let reference = if compare { self.mem.stage_f[1] } else { value };
+        let mut reference = if compare { self.mem.stage_f[1] } else { value };
         self.remember(rows, group);
+        if self.st.unseeded {
+            // The trial must beat the median of θ's draws (the larger of two), which one
+            // lucky draw — the low tail of the noise — cannot set.
+            if let Some(median) = self.median_at_theta() {
+                reference = median;
+            }
+        }
         if compare && reference.is_finite() {
             self.st.value = Some(reference);
         }
@@ -1268,6 +1295,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             // and steps along that axis are cut off by the bound.)
             self.learn_metric(DETERMINED_METRIC_WEIGHT);
         }
+        self.st.doubted = self.st.unseeded && !accepted;
         if accepted {
             self.theta.copy_from_slice(&self.mem.stage[..n]);
             self.st.value = Some(trial);
@@ -1841,6 +1869,28 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // A run that ends its descent may have been held by noise: a lucky draw of
         // f(θ) that no later step can beat. Check, until noise is found.
         self.st.checked = self.st.unseeded;
+    }
+
+    /// How many draws of f at θ (points equal to θ) the memory holds.
+    fn draws_at_theta(&self) -> usize {
+        let n = self.theta.len();
+        (0..self.st.count)
+            .filter(|&k| self.mem.xs[k * n..(k + 1) * n] == *self.theta)
+            .count()
+    }
+
+    /// The median (by [`lower_median`]: the larger of two) of the draws of f at θ the
+    /// memory holds, with `sw` as scratch; `None` when it holds none.
+    fn median_at_theta(&mut self) -> Option<T> {
+        let n = self.theta.len();
+        let mut draws = 0;
+        for k in 0..self.st.count {
+            if self.mem.xs[k * n..(k + 1) * n] == *self.theta {
+                self.mem.sw[draws] = self.mem.fs[k];
+                draws += 1;
+            }
+        }
+        (draws > 0).then(|| lower_median(&self.mem.sw[..draws]))
     }
 
     /// θ lies on a face of the box: some coordinate at its lower or upper bound.
