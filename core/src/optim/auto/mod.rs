@@ -73,8 +73,10 @@
 //!   the model rested on its prior (fewer points than it has coefficients, and at most
 //!   2n — or all but two of a full memory — within reach: then a pair is drawn at the
 //!   same σ first), or the fit finds f rough at this scale (residual scatter above
-//!   [`ROUGH`] of the values' spread) and the trial lies within twice that scatter (then
-//!   σ doubles, as on a plateau).
+//!   [`ROUGH`] of the values' spread) and the trial lies within twice that scatter, or
+//!   the objective is unseeded and both the trial's shortfall and the step's promise
+//!   lie within twice the noise's scale (the median |f − f′| over pairs of repeated
+//!   draws at one point): then σ doubles, as on a plateau.
 //! * **Plateaus.** Where most of an iteration's samples tie with f(θ) (or, where it
 //!   drew none, every remembered value within reach does), σ doubles (up to
 //!   [`PLATEAU_WIDTH`]·σ₀) and an exploring pair is drawn at a Gaussian distance σ‖t‖,
@@ -1242,10 +1244,21 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // rounded function).
         let accepted = trial.is_finite() && reference.is_finite() && trial <= reference;
         let tie = accepted && trial == reference;
-        if !accepted && noise > T::from_f64(ROUGH) && trial - reference <= T::TWO * noise * scale {
+        // On an unseeded objective, a trial rejected by less than twice the noise's
+        // scale, whose step promised no more than that, was judged by the noise.
+        let judged_by_noise = self.st.unseeded && !accepted && {
+            let level = T::TWO * self.repeat_spread().unwrap_or(T::ZERO);
+            trial - reference <= level && predicted * scale <= level
+        };
+        if judged_by_noise
+            || !accepted
+                && noise > T::from_f64(ROUGH)
+                && trial - reference <= T::TWO * noise * scale
+        {
             // f is rough at this scale — the fit leaves scatter comparable to the values'
-            // spread — and the trial is no worse than that scatter: look wider, where
-            // the smoothed function has a slope to see.
+            // spread, or the step's promise is within the noise — and the trial is no
+            // worse than that scatter: look wider, where the smoothed function has a
+            // slope to see.
             self.st.rough_scale = self.st.rough_scale.max(sigma);
             self.st.sigma = self.widened_sigma(PLATEAU_WIDTH);
             return Ok((AutoStep::Plateau, Some(ratio)));
@@ -1869,6 +1882,26 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // A run that ends its descent may have been held by noise: a lucky draw of
         // f(θ) that no later step can beat. Check, until noise is found.
         self.st.checked = self.st.unseeded;
+    }
+
+    /// The unseeded noise's scale: the median |f − f′| over pairs of remembered draws at
+    /// one point (θ's, and earlier θ's), about its standard deviation for Gaussian
+    /// noise and zero where most draws are exact (sparse outliers), with `sw` as scratch;
+    /// `None` when the memory holds fewer than three such pairs (the median of two is
+    /// their larger, which one outlier sets). O(m²n) for m remembered points.
+    fn repeat_spread(&mut self) -> Option<T> {
+        let n = self.theta.len();
+        let mut pairs = 0;
+        for a in 0..self.st.count {
+            let xa = &self.mem.xs[a * n..(a + 1) * n];
+            for b in 0..a {
+                if pairs < self.mem.sw.len() && *xa == self.mem.xs[b * n..(b + 1) * n] {
+                    self.mem.sw[pairs] = (self.mem.fs[a] - self.mem.fs[b]).abs();
+                    pairs += 1;
+                }
+            }
+        }
+        (pairs >= 3).then(|| lower_median(&self.mem.sw[..pairs]))
     }
 
     /// How many draws of f at θ (points equal to θ) the memory holds.
