@@ -102,7 +102,7 @@
 //!
 //! Memory: one caller buffer of [`Auto::buffer_len`] floats, O(n² + m²) for m =
 //! [`Auto::history_len`] remembered points. Cost per iteration: O(m²n + m³) for the fit
-//! (twice with unseeded noise), O(mn² + n³) for the full model's linear part and
+//! (twice with unseeded noise, and O(m²n) more for the noise's scale after a rejection), O(mn² + n³) for the full model's linear part and
 //! eigen-decomposition; O(n³) per n pairs for the diagonal model's sampling frames.
 
 mod eigen;
@@ -1227,8 +1227,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if self.st.unseeded {
             // The trial must beat the median of θ's draws (the larger of two), which one
             // lucky draw — the low tail of the noise — cannot set.
-            if let Some(median) = self.median_at_theta() {
-                reference = median;
+            let draws = self.draws_at_theta();
+            if draws > 0 {
+                reference = lower_median(&self.mem.sw[..draws]);
             }
         }
         if compare && reference.is_finite() {
@@ -1904,17 +1905,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         (pairs >= 3).then(|| lower_median(&self.mem.sw[..pairs]))
     }
 
-    /// How many draws of f at θ (points equal to θ) the memory holds.
-    fn draws_at_theta(&self) -> usize {
-        let n = self.theta.len();
-        (0..self.st.count)
-            .filter(|&k| self.mem.xs[k * n..(k + 1) * n] == *self.theta)
-            .count()
-    }
-
-    /// The median (by [`lower_median`]: the larger of two) of the draws of f at θ the
-    /// memory holds, with `sw` as scratch; `None` when it holds none.
-    fn median_at_theta(&mut self) -> Option<T> {
+    /// Copies the draws of f at θ the memory holds (its points equal to θ) to `sw`, the
+    /// fit's scratch, and returns how many there are.
+    fn draws_at_theta(&mut self) -> usize {
         let n = self.theta.len();
         let mut draws = 0;
         for k in 0..self.st.count {
@@ -1923,7 +1916,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 draws += 1;
             }
         }
-        (draws > 0).then(|| lower_median(&self.mem.sw[..draws]))
+        draws
     }
 
     /// θ lies on a face of the box: some coordinate at its lower or upper bound.
