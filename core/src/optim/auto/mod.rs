@@ -102,8 +102,9 @@
 //!
 //! Memory: one caller buffer of [`Auto::buffer_len`] floats, O(n² + m²) for m =
 //! [`Auto::history_len`] remembered points. Cost per iteration: O(m²n + m³) for the fit
-//! (twice with unseeded noise, and O(m²n) more for the noise's scale after a rejection), O(mn² + n³) for the full model's linear part and
-//! eigen-decomposition; O(n³) per n pairs for the diagonal model's sampling frames.
+//! (twice with unseeded noise, and O(m²n) more for the noise's scale after a
+//! rejection), O(mn² + n³) for the full model's linear part and eigen-decomposition;
+//! O(n³) per n pairs for the diagonal model's sampling frames.
 
 mod eigen;
 mod fixed;
