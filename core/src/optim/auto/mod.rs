@@ -1272,7 +1272,6 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             // slope to see.
             self.st.rough_scale = self.st.rough_scale.max(sigma);
             self.st.sigma = self.widened_sigma(PLATEAU_WIDTH);
-            self.st.doubted = self.st.unseeded;
             return Ok((AutoStep::Plateau, Some(ratio)));
         }
         let boundary = length >= T::from_f64(0.9) * radius;
