@@ -628,3 +628,36 @@ fn cancellation_stops_within_one_batch_and_keeps_theta() {
         "the run goes on after a cancellation"
     );
 }
+
+/// f = ‖Dz‖² + (0.1 − x₀) in 20-D, z as in [`rotated`] and D = diag(10^(2i/19))
+/// (condition 10⁶ with Λ), in the box [−5, 5]²⁰ but x₀ ≤ 0.1: its minimum f = 0 is
+/// x* = (0.1, 0.2, …) on the face x₀ = 0.1, where f's slope (−1 along x₀) pushes out of
+/// the box. The ill-conditioned valley leads θ close to the face, where trial steps cross
+/// it; a step cut off there by the projection into the box is no longer the model's
+/// minimiser, and σ used to shrink while θ crept towards the face.
+fn face_solved(seed: u64) -> bool {
+    let n = 20;
+    let lower = vec![-5.0; n];
+    let mut upper = vec![5.0; n];
+    upper[0] = 0.1;
+    let mut f = |x: &[f64]| {
+        let valley: f64 = rotated(x)
+            .iter()
+            .enumerate()
+            .map(|(i, v)| (v * 10f64.powf(2.0 * i as f64 / (n as f64 - 1.0))).powi(2))
+            .sum();
+        valley + (0.1 - x[0])
+    };
+    let (_, v, _) = minimise(&mut f, &[-3.0; 20], 1.0, Some((&lower, &upper)), 5000, seed);
+    v.is_some_and(|v| v < 1e-8)
+}
+
+/// A minimum on a face of the box is reached within 5 000 evaluations ([`face_solved`]).
+/// With steps projected into the box as they were (before the held coordinates of the
+/// trust step), 36 of 100 seeds. Measured: 100 of 100.
+/// Bound: P(X < 18 | p = 0.995, N = 20) = 1.3e-4.
+#[test]
+fn a_minimum_on_a_face_is_reached() {
+    let solved = (0..20).filter(|&seed| face_solved(seed)).count();
+    assert!(solved >= 18, "{solved} of 20");
+}

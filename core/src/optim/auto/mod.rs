@@ -59,8 +59,9 @@
 //!   being compared with the median of θ's draws, so that a draw from the noise's low
 //!   tail cannot hold θ by itself.
 //! * **Step.** The model's minimiser within ‖s‖ ≤ σ√n (the `trust` module: exact for
-//!   indefinite H, so a non-PSD model steps along its negative curvature), over the
-//!   coordinates no bound holds and projected into the bounds, is evaluated. It
+//!   indefinite H, so a non-PSD model steps along its negative curvature) is evaluated;
+//!   where it would leave the box, the coordinates it carries out are held on the
+//!   bounds they cross and the model is minimised again over the rest of the region. It
 //!   replaces θ when f is no higher there on common noise (a tie moves to the smoothed
 //!   model's minimum of a flat piece of f). A sample lower than f(θ) on its seed
 //!   replaces θ too.
@@ -121,7 +122,7 @@ use rand_core::Rng;
 
 use crate::error::Error;
 use crate::objective::{Batch, NoiseSeed, Objective};
-use crate::optim::vector::{distance, dot, norm};
+use crate::optim::vector::{axpy, distance, dot, norm};
 use crate::real::Real;
 use crate::sample::normal;
 use model::Shape;
@@ -1422,76 +1423,214 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         norm(self.mem.gx) / T::from_usize(n).sqrt()
     }
 
-    /// Writes to `s` the model's minimiser within ‖s‖ ≤ `radius` over the coordinates
-    /// not held by a bound: a coordinate at its lower (upper) bound whose model slope is
-    /// positive (negative) stays put, so that the step spends its length where it can
-    /// move. False when the model is not finite.
+    /// Writes to `s` the model's minimiser within ‖s‖ ≤ `radius` over the steps that
+    /// stay in the box along the coordinates whose bounds they would cross: the
+    /// unconstrained minimiser first; while it would carry a coordinate out of the box,
+    /// that coordinate is held on the bound it crosses and the model is minimised again
+    /// over the steps that keep every held coordinate there ([`Auto::held_step`]; at
+    /// most n rounds). Without that, the projection into the box cuts such a step off
+    /// where it is no longer the model's minimiser — often a step uphill — and where θ
+    /// lies close to a face σ shrinks while θ creeps towards it. The held coordinates'
+    /// moves are kept in the first two rows of `stage` (the trial point overwrites them).
+    /// False when the model is not finite.
     fn trust_step(&mut self, radius: T) -> bool {
         let n = self.theta.len();
-        let shape = self.shape;
+        let sigma = self.st.sigma;
         let m = &mut self.mem;
-        // The model in parameter directions v = (x − θ)/σ: g_v = L⁻ᵀg, H_v = L⁻ᵀHL⁻¹.
-        metric::apply_transposed(shape, m.li, m.g, m.gx);
-        let theta = &*self.theta;
-        let held = |i: usize, gx: &[T]| {
-            (theta[i] <= m.lower[i] && gx[i] > T::ZERO)
-                || (theta[i] >= m.upper[i] && gx[i] < T::ZERO)
-        };
-        let free = (0..n).filter(|&i| !held(i, m.gx)).count();
-        if free == n {
-            return trust::solve(
-                shape,
-                m.g,
-                m.h,
-                radius,
-                trust::Scratch {
-                    a: m.a,
-                    v: m.v,
-                    gamma: m.gamma,
-                    lambda: m.lambda,
-                },
-                m.s,
-            );
-        }
-        m.s.fill(T::ZERO);
-        if free == 0 {
-            return true;
-        }
-        // Some coordinates sit on a bound they are pushed against: step in parameter
-        // directions over the others, within the metric's longest axis.
-        metric::congruence(shape, m.li, m.h, n, m.a, m.hx);
-        let reach = radius * metric::longest_axis(shape, m.l, n);
-        let gx: &[T] = m.gx;
-        for (a, i) in (0..n).filter(|&i| !held(i, gx)).enumerate() {
-            m.rg[a] = gx[i];
-            match shape {
-                Shape::Full => {
-                    for (b, j) in (0..n).filter(|&j| !held(j, gx)).enumerate() {
-                        m.rh[a * free + b] = m.hx[i * n + j];
-                    }
-                }
-                Shape::Diagonal => m.rh[a] = m.hx[i],
-            }
-        }
-        let ok = trust::solve(
-            shape,
-            &m.rg[..free],
-            &m.rh[..shape.hessian_len(free)],
-            reach,
+        if !trust::solve(
+            self.shape,
+            m.g,
+            m.h,
+            radius,
             trust::Scratch {
                 a: m.a,
                 v: m.v,
                 gamma: m.gamma,
                 lambda: m.lambda,
             },
-            &mut m.rs[..free],
-        );
-        // Scatter the step to v, then to u = L⁻¹v.
-        m.hx[..n].fill(T::ZERO);
-        for (a, i) in (0..n).filter(|&i| !held(i, gx)).enumerate() {
-            m.hx[i] = m.rs[a];
+            m.s,
+        ) {
+            return false;
         }
-        metric::apply(shape, m.li, &m.hx[..n], m.s);
+        // stage[n + i] is 1 where coordinate i is held, stage[i] its move over σ.
+        m.stage[n..2 * n].fill(T::ZERO);
+        for _ in 0..n {
+            let m = &mut self.mem;
+            metric::apply(self.shape, m.l, m.s, m.gx);
+            let (moves, held) = m.stage[..2 * n].split_at_mut(n);
+            let mut crossed = false;
+            for i in 0..n {
+                let x = self.theta[i] + sigma * m.gx[i];
+                let bound = if x < m.lower[i] {
+                    m.lower[i]
+                } else if x > m.upper[i] {
+                    m.upper[i]
+                } else {
+                    continue;
+                };
+                if held[i] == T::ZERO {
+                    held[i] = T::ONE;
+                    moves[i] = (bound - self.theta[i]) / sigma;
+                    crossed = true;
+                }
+            }
+            if !crossed {
+                break;
+            }
+            if !self.held_step(radius) {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// Writes to `s` the model's minimiser within ‖s‖ ≤ `radius` over the steps that
+    /// move each held coordinate i (stage[n + i] = 1) by σ·stage[i]: with k held, the
+    /// constraint Au = b for the k rows of L that belong to them. With Q an orthonormal
+    /// basis of A's rows (A = RQ, R lower triangular, by Gram–Schmidt) and Z one of the
+    /// directions orthogonal to them, u = u₀ + Zᵀw with u₀ = Qᵀy, Ry = b, the smallest
+    /// step that meets the constraint; since u₀ ⊥ Z, ‖u‖² = ‖u₀‖² + ‖w‖², and w solves
+    /// the trust-region problem for the slope Z(g + Hu₀) and curvature ZHZᵀ within
+    /// √(radius² − ‖u₀‖²) (u₀ scaled back to the radius where it alone leaves the
+    /// region). A diagonal metric maps coordinates to coordinates, so there Q and Z are
+    /// unit vectors. Uses `hx` for the basis (Q's k rows, then Z's n − k) and `rh` for R,
+    /// then for ZHZᵀ. False when the model is not finite.
+    fn held_step(&mut self, radius: T) -> bool {
+        let n = self.theta.len();
+        let shape = self.shape;
+        let m = &mut self.mem;
+        let (moves, held) = m.stage[..2 * n].split_at(n);
+        let is_held = |i: usize| held[i] != T::ZERO;
+        let k = (0..n).filter(|&i| is_held(i)).count();
+        let free = n - k;
+        let (basis, l, u0) = (&mut *m.hx, &*m.l, &mut *m.s);
+        match shape {
+            Shape::Full => {
+                for (row, i) in (0..n).filter(|&i| is_held(i)).enumerate() {
+                    basis[row * n..(row + 1) * n].copy_from_slice(&l[i * n..(i + 1) * n]);
+                    m.rh[row * k..(row + 1) * k].fill(T::ZERO);
+                    // Gram–Schmidt, twice, against the rows before it.
+                    for _ in 0..2 {
+                        for p in 0..row {
+                            let (done, rest) = basis.split_at_mut(row * n);
+                            let r = dot(&rest[..n], &done[p * n..(p + 1) * n]);
+                            axpy(-r, &done[p * n..(p + 1) * n], &mut rest[..n]);
+                            m.rh[row * k + p] += r;
+                        }
+                    }
+                    let length = norm(&basis[row * n..(row + 1) * n]);
+                    if length <= T::ZERO || !length.is_finite() {
+                        return false;
+                    }
+                    for x in basis[row * n..(row + 1) * n].iter_mut() {
+                        *x /= length;
+                    }
+                    m.rh[row * k + row] = length;
+                    // Ry = b by forward substitution, y in `rg`.
+                    let sum = (0..row).fold(T::ZERO, |s, p| s + m.rh[row * k + p] * m.rg[p]);
+                    m.rg[row] = (moves[i] - sum) / length;
+                }
+                // Complete the basis with the unit vectors least covered by it so far.
+                for row in k..n {
+                    let mut best = (0, -T::ONE);
+                    for j in 0..n {
+                        let covered = (0..row).fold(T::ZERO, |s, p| s + basis[p * n + j].sq());
+                        if T::ONE - covered > best.1 {
+                            best = (j, T::ONE - covered);
+                        }
+                    }
+                    let (done, rest) = basis.split_at_mut(row * n);
+                    let q = &mut rest[..n];
+                    q.fill(T::ZERO);
+                    q[best.0] = T::ONE;
+                    for _ in 0..2 {
+                        for p in 0..row {
+                            let r = dot(q, &done[p * n..(p + 1) * n]);
+                            axpy(-r, &done[p * n..(p + 1) * n], q);
+                        }
+                    }
+                    let length = norm(q);
+                    for x in q.iter_mut() {
+                        *x /= length;
+                    }
+                }
+                u0.fill(T::ZERO);
+                for row in 0..k {
+                    axpy(m.rg[row], &basis[row * n..(row + 1) * n], u0);
+                }
+            }
+            Shape::Diagonal => {
+                for i in 0..n {
+                    u0[i] = if is_held(i) { moves[i] / l[i] } else { T::ZERO };
+                }
+            }
+        }
+        let reach = norm(u0);
+        if reach >= radius {
+            // The held moves alone leave the region: go as far towards them as it allows.
+            for x in u0.iter_mut() {
+                *x = *x * radius / reach;
+            }
+            return true;
+        }
+        let inner = (radius.sq() - reach.sq()).sqrt();
+        // The reduced model over w: slope Z(g + Hu₀), curvature ZHZᵀ.
+        shape.apply(m.h, u0, m.gamma);
+        for (gi, &x) in m.gamma.iter_mut().zip(m.g.iter()) {
+            *gi += x;
+        }
+        match shape {
+            Shape::Full => {
+                // ZH into `a` (rows of n), then ZHZᵀ into `rh`.
+                for a in 0..free {
+                    let z = &basis[(k + a) * n..(k + a + 1) * n];
+                    m.rg[a] = dot(z, m.gamma);
+                    shape.apply(m.h, z, &mut m.a[a * n..(a + 1) * n]);
+                }
+                for a in 0..free {
+                    for b in 0..free {
+                        m.rh[a * free + b] = dot(
+                            &m.a[a * n..(a + 1) * n],
+                            &basis[(k + b) * n..(k + b + 1) * n],
+                        );
+                    }
+                }
+            }
+            Shape::Diagonal => {
+                for (a, i) in (0..n).filter(|&i| !is_held(i)).enumerate() {
+                    m.rg[a] = m.gamma[i];
+                    m.rh[a] = m.h[i];
+                }
+            }
+        }
+        let ok = free == 0
+            || trust::solve(
+                shape,
+                &m.rg[..free],
+                &m.rh[..shape.hessian_len(free)],
+                inner,
+                trust::Scratch {
+                    a: m.a,
+                    v: m.v,
+                    gamma: m.gamma,
+                    lambda: m.lambda,
+                },
+                &mut m.rs[..free],
+            );
+        if ok {
+            match shape {
+                Shape::Full => {
+                    for a in 0..free {
+                        axpy(m.rs[a], &basis[(k + a) * n..(k + a + 1) * n], u0);
+                    }
+                }
+                Shape::Diagonal => {
+                    for (a, i) in (0..n).filter(|&i| !is_held(i)).enumerate() {
+                        u0[i] = m.rs[a];
+                    }
+                }
+            }
+        }
         ok
     }
 
