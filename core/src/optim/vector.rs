@@ -49,6 +49,34 @@ pub(crate) fn axpy<T: Real>(a: T, x: &[T], y: &mut [T]) {
     }
 }
 
+/// Removes from row `k` of the row-major `rows` (rows of `n`) its components along the
+/// k rows before it, which must be orthonormal: Gram–Schmidt, `passes` times (a second
+/// pass restores the orthogonality rounding loses where the row nearly lies in their
+/// span), adding each coefficient along row p to `coefficients[p]` when given. Returns
+/// the length of what remains; the row is not normalised.
+#[cfg(feature = "auto")]
+pub(crate) fn orthogonalise<T: Real>(
+    rows: &mut [T],
+    k: usize,
+    n: usize,
+    passes: usize,
+    mut coefficients: Option<&mut [T]>,
+) -> T {
+    let (done, rest) = rows.split_at_mut(k * n);
+    let row = &mut rest[..n];
+    for _ in 0..passes {
+        for p in 0..k {
+            let b = &done[p * n..(p + 1) * n];
+            let c = dot(row, b);
+            axpy(-c, b, row);
+            if let Some(sums) = coefficients.as_deref_mut() {
+                sums[p] += c;
+            }
+        }
+    }
+    norm(row)
+}
+
 /// ‖x − y‖₂.
 pub(crate) fn distance<T: Real>(x: &[T], y: &[T]) -> T {
     let big = x

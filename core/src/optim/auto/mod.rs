@@ -122,7 +122,7 @@ use rand_core::Rng;
 
 use crate::error::Error;
 use crate::objective::{Batch, NoiseSeed, Objective};
-use crate::optim::vector::{axpy, distance, dot, norm};
+use crate::optim::vector::{axpy, distance, dot, norm, orthogonalise};
 use crate::real::Real;
 use crate::sample::normal;
 use model::Shape;
@@ -1509,16 +1509,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 for (row, i) in (0..n).filter(|&i| is_held(i)).enumerate() {
                     basis[row * n..(row + 1) * n].copy_from_slice(&l[i * n..(i + 1) * n]);
                     m.rh[row * k..(row + 1) * k].fill(T::ZERO);
-                    // Gram–Schmidt, twice, against the rows before it.
-                    for _ in 0..2 {
-                        for p in 0..row {
-                            let (done, rest) = basis.split_at_mut(row * n);
-                            let r = dot(&rest[..n], &done[p * n..(p + 1) * n]);
-                            axpy(-r, &done[p * n..(p + 1) * n], &mut rest[..n]);
-                            m.rh[row * k + p] += r;
-                        }
-                    }
-                    let length = norm(&basis[row * n..(row + 1) * n]);
+                    let r_row = Some(&mut m.rh[row * k..row * k + row]);
+                    let length = orthogonalise(basis, row, n, 2, r_row);
                     if length <= T::ZERO || !length.is_finite() {
                         return false;
                     }
@@ -1539,18 +1531,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                             best = (j, T::ONE - covered);
                         }
                     }
-                    let (done, rest) = basis.split_at_mut(row * n);
-                    let q = &mut rest[..n];
+                    let q = &mut basis[row * n..(row + 1) * n];
                     q.fill(T::ZERO);
                     q[best.0] = T::ONE;
-                    for _ in 0..2 {
-                        for p in 0..row {
-                            let r = dot(q, &done[p * n..(p + 1) * n]);
-                            axpy(-r, &done[p * n..(p + 1) * n], q);
-                        }
-                    }
-                    let length = norm(q);
-                    for x in q.iter_mut() {
+                    let length = orthogonalise(basis, row, n, 2, None);
+                    for x in basis[row * n..(row + 1) * n].iter_mut() {
                         *x /= length;
                     }
                 }
@@ -1730,18 +1715,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                         self.mem.frame[k * n + i] =
                             normal::quantile(T::uniform_open(&mut self.rng));
                     }
-                    let (done, row) = self.mem.frame.split_at_mut(k * n);
-                    let row = &mut row[..n];
-                    for j in 0..k {
-                        let b = &done[j * n..(j + 1) * n];
-                        let p = dot(row, b);
-                        for i in 0..n {
-                            row[i] -= p * b[i];
-                        }
-                    }
-                    let len = norm(row);
+                    let len = orthogonalise(self.mem.frame, k, n, 1, None);
                     if len > T::from_f64(1e-3) {
-                        for x in row.iter_mut() {
+                        for x in self.mem.frame[k * n..(k + 1) * n].iter_mut() {
                             *x /= len;
                         }
                         break;
