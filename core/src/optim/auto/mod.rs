@@ -85,12 +85,13 @@
 //!   the slope. A smooth f never ties, so where some samples tie (a lattice, a
 //!   staircase) f is piecewise constant at σ: a failed step there draws another pair at
 //!   the same σ instead of shrinking it below the steps' width (as it does after the
-//!   samples moved θ to a lower point, where they still make progress at this σ). Until f(θ) falls, σ
-//!   does not shrink back to a scale where the samples tied, nor, once some have, after
-//!   a step whose model was blind (it saw no decrease, or f rose by more than it
-//!   predicted) to one where the model was blind before: the iteration draws another
-//!   pair instead, and a blind one widens σ, so that a plateau seen through a
-//!   rasteriser's pixel jitter is searched ever wider rather than between two scales.
+//!   samples moved θ to a lower point, where they still make progress at this σ).
+//!   Until f(θ) falls, σ does not shrink back to a scale where the samples tied, nor,
+//!   once some have, after a step whose model was blind (it saw no decrease, or f rose
+//!   by more than it predicted) to one where the model was blind before: the iteration
+//!   draws another pair instead, and a blind one widens σ, so that a plateau seen
+//!   through a rasteriser's pixel jitter is searched ever wider rather than between two
+//!   scales.
 //! * **Anytime.** Nothing depends on a budget: the first k evaluations of a run are the
 //!   same whatever its [`AutoOptions::max_evaluations`], which only stops it (never
 //!   exceeded, even inside an iteration). When σ falls below
@@ -395,16 +396,17 @@ struct Memory<'b, T> {
     tmp: &'b mut [T],
     /// Orthonormal sampling frame (columns as rows of n).
     frame: &'b mut [T],
-    /// Points of the current batch and their values.
+    /// Points of the current batch and their values. While the trust step is solved,
+    /// its first two rows hold the held coordinates' moves and flags (`trust_step`).
     stage: &'b mut [T],
     stage_f: &'b mut [T],
-    /// The trust step over the coordinates no bound holds: their gradient, Hessian
-    /// and step.
+    /// The trust step with coordinates held on bounds (`held_step`): the reduced
+    /// problem's slope (first R's solution y), curvature (first R) and step w.
     rg: &'b mut [T],
     rh: &'b mut [T],
     rs: &'b mut [T],
-    /// The model's gradient and Hessian in parameter directions (bounded steps); `gx`
-    /// then holds the trial step Ls.
+    /// `gx` holds the trial step Ls (parameter directions, over σ) and other n-vectors
+    /// of the iteration; `hx` the held step's orthonormal basis (Q's rows, then Z's).
     gx: &'b mut [T],
     hx: &'b mut [T],
     /// The sampling metric C = LLᵀ, L and L⁻¹, of the model's shape (see `metric`).
@@ -1485,7 +1487,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Writes to `s` the model's minimiser within ‖s‖ ≤ `radius` over the steps that
-    /// move each held coordinate i (stage[n + i] = 1) by σ·stage[i]: with k held, the
+    /// move each held coordinate i (`stage[n + i]` = 1) by σ·`stage[i]`: with k held, the
     /// constraint Au = b for the k rows of L that belong to them. With Q an orthonormal
     /// basis of A's rows (A = RQ, R lower triangular, by Gram–Schmidt) and Z one of the
     /// directions orthogonal to them, u = u₀ + Zᵀw with u₀ = Qᵀy, Ry = b, the smallest
