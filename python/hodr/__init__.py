@@ -26,7 +26,7 @@ batch), returning k values. An exception it raises propagates unchanged; Ctrl-C
 
 from __future__ import annotations
 
-from typing import Any, Callable, Optional, Sequence, Tuple
+from typing import Any, Callable, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -119,6 +119,26 @@ def _vector(name: str, value: Any) -> list:
     return array.tolist()
 
 
+def _scales(sigma0: Any, n: int) -> list:
+    """sigma0 as n scales: a real number for every coordinate, or one per coordinate;
+    TypeError/ValueError naming it. The extension checks that each is finite and > 0."""
+    try:
+        array = np.asarray(sigma0, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(
+            f"sigma0 must be a real number or a sequence of them, got {type(sigma0).__name__}"
+        ) from None
+    if array.ndim == 0:
+        if not (np.isfinite(array) and array > 0):
+            raise ValueError(f"sigma0 must be finite and > 0, got {float(array)}")
+        return [float(array)] * n
+    if array.ndim != 1 or len(array) != n:
+        raise ValueError(
+            f"sigma0 must be one scale or {n} (one per coordinate), got shape {array.shape}"
+        )
+    return array.tolist()
+
+
 def _count(name: str, value: Any, minimum: int) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
         raise TypeError(f"{name} must be an int, got {type(value).__name__}")
@@ -130,7 +150,7 @@ def _count(name: str, value: Any, minimum: int) -> int:
 def minimize(
     fun: Callable[[np.ndarray], float],
     x0: Sequence[float],
-    sigma0: float,
+    sigma0: Union[float, Sequence[float]],
     *,
     bounds: Any = None,
     budget: Optional[int] = None,
@@ -155,8 +175,12 @@ def minimize(
         worse than any value.
     x0 : array_like, shape (n,)
         The start.
-    sigma0 : float
-        The scale: how far the parameters must move to make a difference (> 0).
+    sigma0 : float or array_like, shape (n,)
+        The scale: how far the parameters must move to make a difference (> 0); one
+        per coordinate where they differ (parameters in different units), as pycma's
+        ``CMA_stds``. With bounds, a coordinate's scale is cut to a quarter of its
+        range where that is narrower. Auto's sigma (``history["sigma"]``) is then the
+        scales' geometric mean, its metric stretched along each coordinate by its share.
     bounds : optional
         n ``(low, high)`` pairs as in scipy (None for an open side), one ``(low, high)``
         pair of scalars for every coordinate, or an object with ``lb`` and ``ub`` (a
@@ -201,10 +225,7 @@ def minimize(
     if not isinstance(method, str) or method.lower() not in METHODS:
         raise ValueError(f"unknown method {method!r} (methods: {', '.join(METHODS)})")
     x0 = _vector("x0", x0)
-    try:
-        sigma0 = float(sigma0)
-    except (TypeError, ValueError):
-        raise TypeError(f"sigma0 must be a real number, got {type(sigma0).__name__}") from None
+    sigma0 = _scales(sigma0, len(x0))
     if budget is not None:
         budget = _count("budget", budget, 1)
     seed = _count("seed", seed, 0)
@@ -252,7 +273,7 @@ class Optimizer:
     def __init__(
         self,
         x0: Sequence[float],
-        sigma0: float,
+        sigma0: Union[float, Sequence[float]],
         *,
         bounds: Any = None,
         budget: Optional[int] = None,
@@ -260,10 +281,7 @@ class Optimizer:
         noisy: bool = False,
     ) -> None:
         x0 = _vector("x0", x0)
-        try:
-            sigma0 = float(sigma0)
-        except (TypeError, ValueError):
-            raise TypeError(f"sigma0 must be a real number, got {type(sigma0).__name__}") from None
+        sigma0 = _scales(sigma0, len(x0))
         if budget is not None:
             budget = _count("budget", budget, 1)
         self._run = _hodr.AskTell(

@@ -7,7 +7,7 @@ import numpy as np
 def minimize_auto(
     fun: Callable[..., Any],
     x0: list[float],
-    sigma0: float,
+    sigma0: list[float],
     bounds: Optional[Tuple[list[float], list[float]]],
     budget: Optional[int],
     seed: int,
@@ -30,7 +30,8 @@ def hvp(
 
 class AskTell:
     def __init__(
-        self, x0: list[float], sigma0: float, bounds: Optional[Tuple[list[float], list[float]]],
+        self, x0: list[float], sigma0: list[float],
+        bounds: Optional[Tuple[list[float], list[float]]],
         budget: Optional[int], seed: int, noisy: bool,
     ) -> None: ...
     def ask(self) -> np.ndarray: ...

@@ -160,7 +160,7 @@ impl AskTell {
     #[pyo3(signature = (x0, sigma0, bounds, budget, seed, noisy))]
     fn new(
         x0: Vec<f64>,
-        sigma0: f64,
+        sigma0: Vec<f64>,
         bounds: Option<(Vec<f64>, Vec<f64>)>,
         budget: Option<usize>,
         seed: u64,

@@ -185,10 +185,11 @@ pub(crate) fn positive(name: &str, sigma: f64) -> PyResult<f64> {
     }
 }
 
-/// A problem statement for Auto, checked: x₀, σ₀, bounds, budget and seed.
+/// A problem statement for Auto, checked: x₀, σ₀ (one scale per coordinate), bounds,
+/// budget and seed.
 pub(crate) struct Problem {
     x0: Vec<f64>,
-    sigma0: f64,
+    sigma0: Vec<f64>,
     bounds: Option<(Vec<f64>, Vec<f64>)>,
     options: AutoOptions<f64>,
     seed: u64,
@@ -198,14 +199,22 @@ impl Problem {
     /// Checks the arguments, naming the culprit in a `ValueError`.
     pub(crate) fn new(
         x0: Vec<f64>,
-        sigma0: f64,
+        sigma0: Vec<f64>,
         bounds: Option<(Vec<f64>, Vec<f64>)>,
         budget: Option<usize>,
         seed: u64,
     ) -> PyResult<Problem> {
         let x0 = finite_vector("x0", x0)?;
-        let sigma0 = positive("sigma0", sigma0)?;
         let n = x0.len();
+        if sigma0.len() != n {
+            return Err(PyValueError::new_err(format!(
+                "sigma0 must be one scale or {n} (one per coordinate), got {}",
+                sigma0.len()
+            )));
+        }
+        for (i, &s) in sigma0.iter().enumerate() {
+            positive(&format!("sigma0[{i}]"), s)?;
+        }
         let mut options = AutoOptions::default();
         if let Some(budget) = budget {
             options = options
@@ -262,7 +271,9 @@ impl Problem {
         buffer: &'b mut [f64],
     ) -> Result<Auto<'b, f64, Xoshiro256PlusPlus>, Error> {
         let rng = Xoshiro256PlusPlus::seed_from_u64(self.seed);
-        let auto = Auto::new(theta, self.sigma0, buffer, rng)?.with_options(self.options);
+        let auto = Auto::new(theta, self.sigma0[0], buffer, rng)?
+            .with_options(self.options)
+            .with_scales(&self.sigma0)?;
         match &self.bounds {
             Some((lower, upper)) => auto.with_bounds(lower, upper),
             None => Ok(auto),
@@ -279,7 +290,7 @@ fn minimize_auto<'py>(
     py: Python<'py>,
     fun: Bound<'py, PyAny>,
     x0: Vec<f64>,
-    sigma0: f64,
+    sigma0: Vec<f64>,
     bounds: Option<(Vec<f64>, Vec<f64>)>,
     budget: Option<usize>,
     seed: u64,

@@ -114,6 +114,25 @@ def test_batches_give_the_same_run():
     assert np.array_equal(g1, g2)
 
 
+def test_sigma0_per_coordinate_states_the_units():
+    # A staircase over a quadratic in a position (scale 100), a colour (0.1) and a fine
+    # offset (0.001): one scale per coordinate makes it round from the first survey.
+    def f(x):
+        z = ((x[0] - 600.0) / 100.0, (x[1] - 0.7) / 0.1, (x[2] + 3.0) / 0.001)
+        return np.floor((z[0] ** 2 + z[1] ** 2 + z[2] ** 2 + 0.9 * z[0] * z[1]) * 20.0) / 20.0
+
+    x0 = [100.0, 0.2, -3.003]
+    solved = sum(
+        hodr.minimize(f, x0, [100.0, 0.1, 0.001], budget=30, seed=s).fun <= 0.0 for s in range(10)
+    )
+    assert solved >= 9  # measured 400 of 400 seeds in the Rust library's test
+    # Equal scales are one sigma0: the same run, point for point.
+    x0 = [2.0, 2.0, -1.0]
+    same = [hodr.minimize(quadratic, x0, s, budget=60, seed=4) for s in (0.5, [0.5] * 3)]
+    assert np.array_equal(same[0].x, same[1].x) and same[0].nfev == same[1].nfev
+    assert np.array_equal(same[0].history["sigma"], same[1].history["sigma"])
+
+
 def test_bounds_are_respected_in_every_form():
     outside = []
 
@@ -211,6 +230,9 @@ def test_nan_values_count_as_worse_than_any_value():
         (lambda: hodr.minimize(quadratic, X, 0.0), ValueError, "sigma0"),
         (lambda: hodr.minimize(quadratic, X, float("inf")), ValueError, "sigma0"),
         (lambda: hodr.minimize(quadratic, X, "big"), TypeError, "sigma0"),
+        (lambda: hodr.minimize(quadratic, X, [1.0, 2.0]), ValueError, "sigma0"),
+        (lambda: hodr.minimize(quadratic, X, [1.0, 0.0, 1.0]), ValueError, "sigma0[1]"),
+        (lambda: hodr.Optimizer(X, [1.0, 1.0, -2.0]), ValueError, "sigma0[2]"),
         (lambda: hodr.minimize(quadratic, X, 1.0, budget=0), ValueError, "budget"),
         (lambda: hodr.minimize(quadratic, X, 1.0, budget=2.5), TypeError, "budget"),
         (lambda: hodr.minimize(quadratic, X, 1.0, seed=-1), ValueError, "seed"),

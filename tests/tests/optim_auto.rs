@@ -184,6 +184,21 @@ fn bad_input_is_a_typed_error() {
     let auto = Auto::new(&mut theta, 1.0, &mut buffer, rng()).unwrap();
     let e = auto.with_bounds(&[1.0, 0.0], &[0.0, 1.0]).unwrap_err();
     assert_eq!(e, Error::InvalidSetting { name: "bounds" });
+    for scales in [
+        [1.0, 0.0],
+        [1.0, -1.0],
+        [f64::NAN, 1.0],
+        [1.0, f64::INFINITY],
+    ] {
+        let mut theta = [0.0, 0.0];
+        let auto = Auto::new(&mut theta, 1.0, &mut buffer, rng()).unwrap();
+        let e = auto.with_scales(&scales).unwrap_err();
+        assert_eq!(e, Error::InvalidSetting { name: "scales" });
+    }
+    let mut theta = [0.0, 0.0];
+    let auto = Auto::new(&mut theta, 1.0, &mut buffer, rng()).unwrap();
+    let e = auto.with_scales(&[1.0]).unwrap_err();
+    assert!(matches!(e, Error::DimensionMismatch { .. }));
     assert!(AutoOptions::<f64>::default().with_tolerance(0.0).is_err());
     assert!(AutoOptions::<f64>::default().with_patience(0).is_err());
     assert!(
@@ -659,5 +674,93 @@ fn face_solved(seed: u64) -> bool {
 #[test]
 fn a_minimum_on_a_face_is_reached() {
     let solved = (0..20).filter(|&seed| face_solved(seed)).count();
+    assert!(solved >= 18, "{solved} of 20");
+}
+
+/// Each coordinate's scale starts the run: σ₀ is their geometric mean, after each is cut
+/// to a quarter of its side of the box; equal scales are σ₀ itself, and the run is the
+/// one [`Auto::new`]'s common σ₀ gives, evaluation for evaluation.
+#[test]
+fn per_coordinate_scales_set_sigma0() {
+    let n = 5;
+    let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)];
+    let rng = || Xoshiro256PlusPlus::seed_from_u64(0);
+    let (lower, upper) = ([0.0, 0.0, 0.0, 0.0, -5.0], [1.0, 3.0, 7.0, 15.0, 5.0]);
+    let cut = [0.25, 0.75, 1.75, 2.0, 2.0];
+    let mean = cut.iter().map(|s: &f64| s.ln()).sum::<f64>() / 5.0;
+    for bounds_first in [false, true] {
+        let mut theta = [0.5; 5];
+        let mut auto = Auto::new(&mut theta, 1.0, &mut buffer, rng()).unwrap();
+        if bounds_first {
+            auto = auto.with_bounds(&lower, &upper).unwrap();
+        }
+        auto = auto.with_scales(&[2.0; 5]).unwrap();
+        if !bounds_first {
+            auto = auto.with_bounds(&lower, &upper).unwrap();
+        }
+        let sigma = auto.sigma();
+        assert!(
+            (sigma.ln() - mean).abs() < 1e-12,
+            "{sigma} against {}",
+            mean.exp()
+        );
+    }
+    let log = |scales: Option<&[f64]>| {
+        let mut points: Vec<Vec<f64>> = Vec::new();
+        let mut f = |x: &[f64]| {
+            points.push(x.to_vec());
+            x.iter().map(|v| (v * 3.0).floor()).sum::<f64>().abs()
+        };
+        let mut theta = vec![1.3; n];
+        let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)];
+        let options = AutoOptions::default().with_max_evaluations(300).unwrap();
+        let mut auto = Auto::new(&mut theta, 0.7, &mut buffer, rng())
+            .unwrap()
+            .with_options(options);
+        if let Some(scales) = scales {
+            auto = auto.with_scales(scales).unwrap();
+        }
+        assert_eq!(auto.sigma(), 0.7);
+        auto.run(&mut f, |_, _| {}).unwrap();
+        points
+    };
+    assert_eq!(log(None), log(Some(&[0.7; 5])));
+}
+
+/// Whether f reaches its minimum 0 within 30 evaluations on a staircase over a
+/// correlated quadratic in three units — a position (scale 100), a colour (scale 0.1)
+/// and a fine offset (scale 0.001) — from 5, 5 and 3 scales away, the scales stated
+/// with [`Auto::with_scales`].
+fn mixed_units_solved(seed: u64) -> bool {
+    let mut f = |x: &[f64]| {
+        let z = [
+            (x[0] - 600.0) / 100.0,
+            (x[1] - 0.7) / 0.1,
+            (x[2] + 3.0) / 0.001,
+        ];
+        let q = z[0] * z[0] + z[1] * z[1] + z[2] * z[2] + 0.9 * z[0] * z[1];
+        (q * 20.0).floor() / 20.0
+    };
+    let mut theta = vec![100.0, 0.2, -3.003];
+    let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(3)];
+    let options = AutoOptions::default().with_max_evaluations(30).unwrap();
+    let rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    let mut auto = Auto::new(&mut theta, 1.0, &mut buffer, rng)
+        .unwrap()
+        .with_options(options)
+        .with_scales(&[100.0, 0.1, 0.001])
+        .unwrap();
+    auto.run(&mut f, |_, _| {}).unwrap();
+    auto.value().is_some_and(|v| v <= 0.0)
+}
+
+/// Parameters in different units: stated per coordinate, the scales make the staircase of
+/// [`mixed_units_solved`] look round from the first survey, which finds its minimum
+/// within 30 evaluations; one common σ₀ of 100, 0.1 or 0.001 does so in 204, 218 and 0
+/// of 400 seeds (the metric has to learn the units first). Measured with the scales: 400
+/// of 400. Bound: P(X < 18 | p = 0.9925, N = 20) = 4.8e-4.
+#[test]
+fn per_coordinate_scales_state_the_units() {
+    let solved = (0..20).filter(|&seed| mixed_units_solved(seed)).count();
     assert!(solved >= 18, "{solved} of 20");
 }

@@ -94,7 +94,7 @@ mod tests {
                 + m * p
                 + p * p
                 + p
-                + 13 * n
+                + 14 * n
                 + 7 * h
                 + r * (n + 1)
                 + n * n

@@ -35,17 +35,29 @@ pub fn floor<T: Real>() -> T {
     T::EPSILON.sqrt() * T::EPSILON.sqrt().sqrt()
 }
 
-/// Sets C, L and L⁻¹ (each of [`Shape::hessian_len`] floats) to the identity: no shape
-/// learnt.
-pub fn reset<T: Real>(shape: Shape, c: &mut [T], l: &mut [T], li: &mut [T], n: usize) {
-    for m in [c, l, li] {
+/// Sets C = diag(r²), L = diag(r) and L⁻¹ = diag(1/r) (each of [`Shape::hessian_len`]
+/// floats): a shape that stretches coordinate i by rᵢ. The caller keeps Πᵢ rᵢ = 1
+/// (det C = 1), so that σ alone carries the scale; r = 1 is no shape learnt.
+pub fn axes<T: Real>(shape: Shape, r: &[T], c: &mut [T], l: &mut [T], li: &mut [T]) {
+    let n = r.len();
+    for (m, power) in [(c, 2), (l, 1), (li, -1)] {
+        let entry = |x: T| match power {
+            2 => x * x,
+            1 => x,
+            _ => T::ONE / x,
+        };
         match shape {
             Shape::Full => {
-                for (k, x) in m.iter_mut().enumerate() {
-                    *x = if k % (n + 1) == 0 { T::ONE } else { T::ZERO };
+                m.fill(T::ZERO);
+                for (i, &x) in r.iter().enumerate() {
+                    m[i * (n + 1)] = entry(x);
                 }
             }
-            Shape::Diagonal => m.fill(T::ONE),
+            Shape::Diagonal => {
+                for (o, &x) in m.iter_mut().zip(r) {
+                    *o = entry(x);
+                }
+            }
         }
     }
 }
@@ -312,7 +324,7 @@ mod tests {
         let n = 4;
         let h = [1e4, 1.0, -100.0, 0.01];
         let (mut c, mut l, mut li) = ([0.0; 4], [0.0; 4], [0.0; 4]);
-        reset(Shape::Diagonal, &mut c, &mut l, &mut li, n);
+        axes(Shape::Diagonal, &[1.0; 4], &mut c, &mut l, &mut li);
         for _ in 0..400 {
             let s = Scratch {
                 a: &mut [],

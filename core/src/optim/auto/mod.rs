@@ -1,6 +1,7 @@
 //! `Auto`: hodr's default optimiser. It needs a start x₀ and a scale σ₀ — the distance
-//! over which the parameters matter, as CMA-ES asks for — and optionally box bounds;
-//! nothing else.
+//! over which the parameters matter, as CMA-ES asks for; one per coordinate
+//! ([`Auto::with_scales`]) where they come in different units — and optionally box
+//! bounds; nothing else.
 //!
 //! Auto is a trust-region method on a smoothed quadratic model that remembers its
 //! evaluations:
@@ -417,10 +418,13 @@ struct Memory<'b, T> {
     /// objective draws unseeded noise ([`State::unseeded`]), where points the model
     /// cannot explain (a Cauchy outlier) lose it (`Auto::reweigh`).
     credit: &'b mut [T],
+    /// The scale each coordinate was given ([`Auto::new`]'s σ₀ or
+    /// [`Auto::with_scales`]), from which `Auto::shape_scales` sets σ₀ and C.
+    scale: &'b mut [T],
 }
 
 /// Region lengths for dimension n, in [`Memory`]'s order.
-const fn regions(n: usize) -> [usize; 38] {
+const fn regions(n: usize) -> [usize; 39] {
     let shape = Shape::for_dim(n);
     let m = history_len(n);
     let hl = shape.hessian_len(n);
@@ -470,12 +474,13 @@ const fn regions(n: usize) -> [usize; 38] {
         hl,
         hl,
         m,
+        n,
     ]
 }
 
 /// Floats of buffer an [`Auto`] run needs in dimension n, for m = [`Auto::history_len`]
 /// points remembered:
-/// m(2n + 7) + m² + mp + p² + p + 13n + 7h + r(n + 1) + n² + 2f,
+/// m(2n + 7) + m² + mp + p² + p + 14n + 7h + r(n + 1) + n² + 2f,
 /// with, for the full model (n ≤ [`FULL_MODEL_MAX_DIM`]), h = f = n² and p = n + 1, and
 /// for the diagonal one h = n, f = 0 and p = 1; r = 2·min(n, ⌊m/2⌋) + 2 staged points.
 /// A `const fn`, so that storage can be sized at compile time ([`FixedAuto`]).
@@ -575,6 +580,7 @@ fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         l: take(),
         li: take(),
         credit: take(),
+        scale: take(),
     }
 }
 
@@ -743,7 +749,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let mem = carve(buffer, n);
         mem.lower.fill(-T::MAX);
         mem.upper.fill(T::MAX);
-        metric::reset(Shape::for_dim(n), mem.c, mem.l, mem.li, n);
+        mem.scale.fill(sigma0);
+        mem.tmp.fill(T::ONE);
+        metric::axes(Shape::for_dim(n), mem.tmp, mem.c, mem.l, mem.li);
         Ok(Auto {
             theta,
             mem,
@@ -785,7 +793,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Keeps every evaluated point within lower ≤ x ≤ upper (x₀ is projected into the
-    /// box). Call before the first [`Auto::step`].
+    /// box). A coordinate's scale (σ₀, or its own from [`Auto::with_scales`]) is cut to
+    /// a quarter of its side of the box where that is narrower: wider samples would only
+    /// fold back into the box (`Auto::shape_scales`). Call before the first
+    /// [`Auto::step`].
     ///
     /// # Errors
     /// [`Error::DimensionMismatch`] for bounds of the wrong length,
@@ -816,7 +827,75 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             this.theta[i] = this.theta[i].max(this.mem.lower[i]).min(this.mem.upper[i]);
         }
         this.st.bounded = true;
+        this.shape_scales();
         Ok(this)
+    }
+
+    /// Gives each coordinate its own scale σ₀ᵢ > 0, the distance over which it matters,
+    /// in place of [`Auto::new`]'s common σ₀: for parameters in different units (a
+    /// position in pixels beside a colour in [0, 1]), as pycma's `CMA_stds` does. The
+    /// run starts with σ₀ the scales' geometric mean and its metric stretched by
+    /// σ₀ᵢ/σ₀ along coordinate i, a shape the metric then learns from as it learns from
+    /// any other (`Auto::shape_scales`). Call before the first [`Auto::step`], in either
+    /// order with [`Auto::with_bounds`].
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] for scales of the wrong length,
+    /// [`Error::InvalidSetting`] (`scales`) for a scale not finite and positive.
+    pub fn with_scales(mut self, scales: &[T]) -> Result<Self, Error> {
+        let n = self.theta.len();
+        if scales.len() != n {
+            return Err(Error::DimensionMismatch {
+                expected: n,
+                found: scales.len(),
+            });
+        }
+        if !scales.iter().all(|&s| s.is_finite() && s > T::ZERO) {
+            return Err(Error::InvalidSetting { name: "scales" });
+        }
+        self.mem.scale.copy_from_slice(scales);
+        self.shape_scales();
+        Ok(self)
+    }
+
+    /// Sets σ₀ (and σ) and the initial metric from the coordinates' scales: sᵢ is the
+    /// scale coordinate i was given, cut to a quarter of its side of the box where that
+    /// is narrower (pycma's advice for σ₀: about a quarter of the search interval) and
+    /// held to at least √[`metric::floor`] of the largest sᵢ, which keeps C within what
+    /// T whitens; σ₀ is the sᵢ's geometric mean and C = diag((sᵢ/σ₀)²). Equal sᵢ give
+    /// σ₀ = sᵢ exactly and C = I.
+    fn shape_scales(&mut self) {
+        let m = &mut self.mem;
+        let n = m.scale.len();
+        for i in 0..n {
+            let width = m.upper[i] - m.lower[i];
+            let quarter = T::HALF * T::HALF * width;
+            m.tmp[i] = if width > T::ZERO && width.is_finite() {
+                m.scale[i].min(quarter)
+            } else {
+                m.scale[i]
+            };
+        }
+        let largest = m.tmp.iter().fold(T::ZERO, |a, &s| a.max(s));
+        let least = largest * metric::floor::<T>().sqrt();
+        let first = m.tmp[0].max(least);
+        let sigma0 = if m.tmp.iter().all(|&s| s.max(least) == first) {
+            m.tmp.fill(T::ONE);
+            first
+        } else {
+            for s in m.tmp.iter_mut() {
+                *s = s.max(least);
+            }
+            let mean_log = m.tmp.iter().fold(T::ZERO, |a, &s| a + s.ln()) / T::from_usize(n);
+            let sigma0 = mean_log.exp();
+            for s in m.tmp.iter_mut() {
+                *s /= sigma0;
+            }
+            sigma0
+        };
+        metric::axes(self.shape, m.tmp, m.c, m.l, m.li);
+        self.st.sigma = sigma0;
+        self.st.sigma0 = sigma0;
     }
 
     /// Replaces the options (see [`AutoOptions`]).
