@@ -139,6 +139,38 @@ def _scales(sigma0: Any, n: int) -> list:
     return array.tolist()
 
 
+OPTIONS = ("tolerance", "patience", "restarts", "non_finite")
+
+
+def _settings(options: Any) -> tuple:
+    """(tolerance, patience, restarts, non_finite) from the ``options`` mapping, each
+    None where it is not given; TypeError/ValueError naming the key. The extension
+    checks the ranges."""
+    if options is None:
+        return (None, None, None, None)
+    if not hasattr(options, "items"):
+        raise TypeError(f"options must be a dict, got {type(options).__name__}")
+    unknown = [k for k in options if k not in OPTIONS]
+    if unknown:
+        raise ValueError(f"unknown option {unknown[0]!r} (options: {', '.join(OPTIONS)})")
+    tolerance = options.get("tolerance")
+    if tolerance is not None:
+        try:
+            tolerance = float(tolerance)
+        except (TypeError, ValueError):
+            raise TypeError("options['tolerance'] must be a real number") from None
+    patience = options.get("patience")
+    if patience is not None:
+        patience = _count("options['patience']", patience, 1)
+    restarts = options.get("restarts")
+    if restarts is not None:
+        restarts = _count("options['restarts']", restarts, 0)
+    non_finite = options.get("non_finite")
+    if non_finite is not None and not isinstance(non_finite, str):
+        raise TypeError("options['non_finite'] must be 'worst' or 'error'")
+    return (tolerance, patience, restarts, non_finite)
+
+
 def _count(name: str, value: Any, minimum: int) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
         raise TypeError(f"{name} must be an int, got {type(value).__name__}")
@@ -159,6 +191,7 @@ def minimize(
     batch: bool = False,
     noisy: bool = False,
     callback: Optional[Callable[[np.ndarray, float], Any]] = None,
+    options: Optional[dict] = None,
 ) -> OptimizeResult:
     """Minimise ``fun`` from ``x0`` with hodr's default optimiser, Auto.
 
@@ -207,6 +240,14 @@ def minimize(
     callback : callable, optional
         ``callback(x, f)`` after every iteration with the best point so far and its
         value; returning True stops the run.
+    options : dict, optional
+        Auto's options; none is needed. ``tolerance`` (float > 0): converged once sigma
+        falls below tolerance * sigma0 (default 1e-9, or 1e-4 with ``noisy``);
+        ``patience`` (int >= 1): iterations without a lower value before a restart
+        (default 20 + 10n); ``restarts`` (int >= 0): restarts in a row without a gain
+        before the run ends (default 8); ``non_finite``: ``"worst"`` (default: NaN or
+        inf counts as worse than any value) or ``"error"`` (raise ValueError, whose
+        ``result`` attribute holds the run so far).
 
     Returns
     -------
@@ -216,6 +257,8 @@ def minimize(
     ------
     TypeError, ValueError
         For bad arguments, naming the argument.
+        With ``options={"non_finite": "error"}``, ValueError when ``fun`` returns NaN
+        or inf; its ``result`` attribute holds the run so far.
     KeyboardInterrupt
         On Ctrl-C, within one batch of evaluations; its ``result`` attribute holds the
         run so far (status 4).
@@ -231,14 +274,15 @@ def minimize(
     seed = _count("seed", seed, 0)
     if callback is not None and not callable(callback):
         raise TypeError("callback must be callable")
+    settings = _settings(options)
     try:
         raw = _hodr.minimize_auto(
             fun, x0, sigma0, _bounds(bounds, len(x0)), budget, seed, bool(batch), bool(noisy),
-            callback,
+            callback, settings,
         )
-    except KeyboardInterrupt as interrupt:
-        if isinstance(getattr(interrupt, "result", None), dict):
-            interrupt.result = _result(interrupt.result)
+    except (KeyboardInterrupt, ValueError) as stopped:
+        if isinstance(getattr(stopped, "result", None), dict):
+            stopped.result = _result(stopped.result)
         raise
     return _result(raw)
 
@@ -279,13 +323,15 @@ class Optimizer:
         budget: Optional[int] = None,
         seed: int = 0,
         noisy: bool = False,
+        options: Optional[dict] = None,
     ) -> None:
         x0 = _vector("x0", x0)
         sigma0 = _scales(sigma0, len(x0))
         if budget is not None:
             budget = _count("budget", budget, 1)
         self._run = _hodr.AskTell(
-            x0, sigma0, _bounds(bounds, len(x0)), budget, _count("seed", seed, 0), bool(noisy)
+            x0, sigma0, _bounds(bounds, len(x0)), budget, _count("seed", seed, 0), bool(noisy),
+            _settings(options),
         )
 
     def ask(self) -> np.ndarray:

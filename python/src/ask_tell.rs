@@ -11,14 +11,14 @@ use std::sync::mpsc::{Receiver, RecvError, Sender, channel};
 use std::thread::JoinHandle;
 
 use hodr_core::optim::AutoTermination;
-use hodr_core::{Batch, NoiseSeed, Objective};
+use hodr_core::{Batch, Error, NoiseSeed, Objective};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::{End, Problem, result_dict};
+use crate::{End, Problem, Settings, core_error, result_dict};
 
 /// What the Auto thread says.
 enum FromAuto {
@@ -37,8 +37,17 @@ enum FromAuto {
         evaluations: usize,
         iterations: usize,
         /// Why the run failed, if it did.
-        error: Option<String>,
+        error: Option<Error>,
     },
+}
+
+/// Why an ask/tell run failed.
+enum Failure {
+    /// Auto returned an error (a non-finite value under `options['non_finite'] =
+    /// 'error'`, or arguments it refused).
+    Core(Error),
+    /// The optimiser's thread ended without saying why.
+    Lost,
 }
 
 /// The Auto thread's objective: batches out, values back.
@@ -105,7 +114,7 @@ pub struct AskTell {
     best: (Vec<f64>, f64),
     history: (Vec<u64>, Vec<f64>, Vec<f64>),
     done: Option<(Option<AutoTermination>, usize, usize)>,
-    error: Option<String>,
+    error: Option<Failure>,
 }
 
 impl AskTell {
@@ -140,14 +149,14 @@ impl AskTell {
                     error,
                 }) => {
                     self.done = Some((termination, evaluations, iterations));
-                    self.error = error;
+                    self.error = error.map(Failure::Core);
                     if let Some(thread) = self.thread.take() {
                         let _ = thread.join();
                     }
                 }
                 Err(_) => {
                     self.done = Some((None, 0, 0));
-                    self.error = Some("the optimiser's thread ended unexpectedly".into());
+                    self.error = Some(Failure::Lost);
                 }
             }
         }
@@ -157,7 +166,7 @@ impl AskTell {
 #[pymethods]
 impl AskTell {
     #[new]
-    #[pyo3(signature = (x0, sigma0, bounds, budget, seed, noisy))]
+    #[pyo3(signature = (x0, sigma0, bounds, budget, seed, noisy, settings))]
     fn new(
         x0: Vec<f64>,
         sigma0: Vec<f64>,
@@ -165,8 +174,9 @@ impl AskTell {
         budget: Option<usize>,
         seed: u64,
         noisy: bool,
+        settings: Settings,
     ) -> PyResult<Self> {
-        let problem = Problem::new(x0, sigma0, bounds, budget, seed)?;
+        let problem = Problem::new(x0, sigma0, bounds, budget, seed, settings)?;
         let n = problem.dim();
         let best = (problem.memory().0, f64::NAN);
         let (to_caller, from_auto) = channel();
@@ -199,7 +209,7 @@ impl AskTell {
                             Ok(None) => break,
                             Err(e) => {
                                 if !objective.closed {
-                                    error = Some(e.to_string());
+                                    error = Some(e);
                                 }
                                 break;
                             }
@@ -208,7 +218,7 @@ impl AskTell {
                     (auto.termination(), auto.evaluations(), auto.iteration())
                 }
                 Err(e) => {
-                    error = Some(e.to_string());
+                    error = Some(e);
                     (None, 0, 0)
                 }
             };
@@ -291,7 +301,10 @@ impl AskTell {
         }
         self.advance(py);
         match &self.error {
-            Some(e) => Err(PyRuntimeError::new_err(e.clone())),
+            Some(Failure::Core(e)) => Err(core_error(*e)),
+            Some(Failure::Lost) => Err(PyRuntimeError::new_err(
+                "the optimiser's thread ended unexpectedly",
+            )),
             None => Ok(self.done.is_some()),
         }
     }

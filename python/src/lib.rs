@@ -10,7 +10,7 @@
 //! the callable, or a pending KeyboardInterrupt, is kept, ends the work at the next batch
 //! ([`Objective::cancelled`]) and is raised again unchanged to the caller.
 
-use hodr_core::optim::{Auto, AutoOptions, AutoTermination};
+use hodr_core::optim::{Auto, AutoOptions, AutoTermination, NonFinite};
 use hodr_core::{
     Batch, Error, Estimator, GradientMethod, HessianMethod, HvpMethod, NoiseSeed, Objective,
     Workspace,
@@ -153,7 +153,8 @@ pub(crate) fn core_error(error: Error) -> PyErr {
         | Error::NoSamples
         | Error::DimensionMismatch { .. }
         | Error::NonFiniteInput { .. }
-        | Error::InvalidSetting { .. } => PyValueError::new_err(error.to_string()),
+        | Error::InvalidSetting { .. }
+        | Error::NonFiniteObjective { .. } => PyValueError::new_err(error.to_string()),
         other => PyRuntimeError::new_err(other.to_string()),
     }
 }
@@ -185,6 +186,40 @@ pub(crate) fn positive(name: &str, sigma: f64) -> PyResult<f64> {
     }
 }
 
+/// Auto's options from Python's `options` dict, its keys checked by the Python half:
+/// (tolerance, patience, restarts, non_finite), each `None` for the default.
+pub(crate) type Settings = (Option<f64>, Option<usize>, Option<usize>, Option<String>);
+
+/// The options `settings` asks for, or a `ValueError` naming the one out of range.
+fn apply_settings(settings: Settings, mut options: AutoOptions<f64>) -> PyResult<AutoOptions<f64>> {
+    let (tolerance, patience, restarts, non_finite) = settings;
+    if let Some(t) = tolerance {
+        options = options.with_tolerance(t).map_err(|_| {
+            PyValueError::new_err(format!(
+                "options['tolerance'] must be finite and > 0, got {t}"
+            ))
+        })?;
+    }
+    if let Some(p) = patience {
+        options = options
+            .with_patience(p)
+            .map_err(|_| PyValueError::new_err("options['patience'] must be at least 1"))?;
+    }
+    if let Some(r) = restarts {
+        options = options.with_restarts(r);
+    }
+    match non_finite.as_deref() {
+        None | Some("worst") => {}
+        Some("error") => options = options.with_non_finite(NonFinite::Error),
+        Some(other) => {
+            return Err(PyValueError::new_err(format!(
+                "options['non_finite'] must be 'worst' or 'error', got {other:?}"
+            )));
+        }
+    }
+    Ok(options)
+}
+
 /// A problem statement for Auto, checked: x₀, σ₀ (one scale per coordinate), bounds,
 /// budget and seed.
 pub(crate) struct Problem {
@@ -203,6 +238,7 @@ impl Problem {
         bounds: Option<(Vec<f64>, Vec<f64>)>,
         budget: Option<usize>,
         seed: u64,
+        settings: Settings,
     ) -> PyResult<Problem> {
         let x0 = finite_vector("x0", x0)?;
         let n = x0.len();
@@ -215,7 +251,7 @@ impl Problem {
         for (i, &s) in sigma0.iter().enumerate() {
             positive(&format!("sigma0[{i}]"), s)?;
         }
-        let mut options = AutoOptions::default();
+        let mut options = apply_settings(settings, AutoOptions::default())?;
         if let Some(budget) = budget {
             options = options
                 .with_max_evaluations(budget)
@@ -284,7 +320,7 @@ impl Problem {
 /// Minimises `fun` with Auto; returns the result's fields as a dict (the Python half
 /// makes it an `OptimizeResult`).
 #[pyfunction]
-#[pyo3(signature = (fun, x0, sigma0, bounds, budget, seed, batch, noisy, callback))]
+#[pyo3(signature = (fun, x0, sigma0, bounds, budget, seed, batch, noisy, callback, settings))]
 #[allow(clippy::too_many_arguments)]
 fn minimize_auto<'py>(
     py: Python<'py>,
@@ -297,13 +333,15 @@ fn minimize_auto<'py>(
     batch: bool,
     noisy: bool,
     callback: Option<Bound<'py, PyAny>>,
+    settings: Settings,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let problem = Problem::new(x0, sigma0, bounds, budget, seed)?;
+    let problem = Problem::new(x0, sigma0, bounds, budget, seed, settings)?;
     let mut objective = PyObjective::new(fun, batch, noisy)?;
     let (mut theta, mut buffer) = problem.memory();
     let mut auto = problem.auto(&mut theta, &mut buffer).map_err(core_error)?;
     let callback = callback.map(Bound::unbind);
     let (mut nfev, mut best, mut sigma) = (Vec::new(), Vec::new(), Vec::new());
+    let mut non_finite = false;
     // The run holds no GIL; the objective and the callback attach for their calls.
     let end = py.detach(|| -> PyResult<End> {
         loop {
@@ -324,7 +362,10 @@ fn minimize_auto<'py>(
                     }
                 }
                 Ok(None) => return Ok(End::Auto(auto.termination())),
-                Err(error) => return Err(objective.error_or(error)),
+                Err(error) => {
+                    non_finite = matches!(error, Error::NonFiniteObjective { .. });
+                    return Err(objective.error_or(error));
+                }
             }
         }
     });
@@ -342,8 +383,9 @@ fn minimize_auto<'py>(
     match end {
         Ok(_) => Ok(result),
         Err(error) => {
-            // A Ctrl-C carries the run so far, for the Python half to hand back.
-            if error.is_instance_of::<PyKeyboardInterrupt>(py) {
+            // A Ctrl-C, or a non-finite value under options['non_finite'] = 'error',
+            // carries the run so far, for the Python half to hand back.
+            if error.is_instance_of::<PyKeyboardInterrupt>(py) || non_finite {
                 error.value(py).setattr("result", result)?;
             }
             Err(error)

@@ -220,6 +220,34 @@ def test_nan_values_count_as_worse_than_any_value():
     assert np.linalg.norm(res.x - 1.0) < 1e-4
 
 
+def test_nan_values_are_an_error_when_asked_and_the_run_is_kept():
+    f = lambda x: float("nan") if x[0] < 0 else float(np.sum((x - 1.0) ** 2))
+    with pytest.raises(ValueError, match="non-finite") as info:
+        hodr.minimize(f, [0.2, 0.2], 1.0, options={"non_finite": "error"})
+    kept = info.value.result
+    assert isinstance(kept, hodr.OptimizeResult) and kept.nfev > 0
+    assert np.all(kept.x >= 0.0)  # theta is never moved onto a non-finite value
+    opt = hodr.Optimizer([0.2, 0.2], 1.0, options={"non_finite": "error"})
+    with pytest.raises(ValueError, match="non-finite"):
+        while not opt.stop():
+            opt.tell([f(x) for x in opt.ask()])
+    assert opt.result.nfev > 0
+
+
+def test_options_change_the_run():
+    x0 = [2.0, 2.0, -1.0]
+    default = hodr.minimize(quadratic, x0, 1.0, seed=2)
+    assert default.success
+    # Without restarts the run ends at its first convergence; with a coarse tolerance,
+    # sooner still.
+    no_restarts = hodr.minimize(quadratic, x0, 1.0, seed=2, options={"restarts": 0})
+    coarse = hodr.minimize(quadratic, x0, 1.0, seed=2, options={"restarts": 0, "tolerance": 1e-3})
+    assert coarse.nfev < no_restarts.nfev < default.nfev
+    assert no_restarts.fun < 1e-12
+    patient = hodr.minimize(quadratic, x0, 1.0, seed=2, options={"patience": 1, "restarts": 0})
+    assert patient.nfev < default.nfev
+
+
 @pytest.mark.parametrize(
     "call, error, culprit",
     [
@@ -241,6 +269,13 @@ def test_nan_values_count_as_worse_than_any_value():
         (lambda: hodr.minimize(quadratic, X, 1.0, bounds=[(1.0, 0.0)] * 3), ValueError, "bounds[0]"),
         (lambda: hodr.minimize(quadratic, X, 1.0, bounds=([1.0] * 3, [0.0] * 3)), ValueError, "pairs"),
         (lambda: hodr.minimize(quadratic, X, 1.0, callback=3), TypeError, "callback"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, options={"tol": 1e-3}), ValueError, "'tol'"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, options=[1]), TypeError, "options"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, options={"tolerance": 0.0}), ValueError, "tolerance"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, options={"patience": 0}), ValueError, "patience"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, options={"restarts": 1.5}), TypeError, "restarts"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, options={"non_finite": "skip"}), ValueError, "non_finite"),
+        (lambda: hodr.Optimizer(X, 1.0, options={"patience": -2}), ValueError, "patience"),
         (lambda: hodr.minimize(3, X, 1.0), TypeError, "fun"),
         (lambda: hodr.minimize(lambda x: "a", X, 1.0), TypeError, ""),
         (lambda: hodr.minimize(lambda X: [1.0], X, 1.0, batch=True), ValueError, "batch"),
