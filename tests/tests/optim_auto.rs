@@ -821,3 +821,57 @@ fn per_coordinate_scales_state_the_units() {
     let solved = (0..20).filter(|&seed| mixed_units_solved(seed)).count();
     assert!(solved >= 18, "{solved} of 20");
 }
+
+/// Continuation moves θ, the search centre, above the best point (`AutoStep::Continued`);
+/// the best point stays what [`Auto::theta`] and [`Auto::value`] report at every
+/// iteration, and what the caller's θ holds once the run is dropped. On a 2-D Rastrigin
+/// function, whose restarts at wide σ follow the smoothed bowl past its wells.
+#[test]
+fn continuation_keeps_the_best_point() {
+    let rastrigin = |x: &[f64]| {
+        x.iter()
+            .map(|v| {
+                let z = v - 0.7;
+                z * z + 10.0 * (1.0 - (std::f64::consts::TAU * z).cos())
+            })
+            .sum::<f64>()
+    };
+    let mut continued = 0;
+    for seed in 0..10 {
+        let mut lowest = f64::INFINITY;
+        let mut f = |x: &[f64]| {
+            let v = rastrigin(x);
+            lowest = lowest.min(v);
+            v
+        };
+        let mut theta = [3.3, -2.4];
+        let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(2)];
+        let options = AutoOptions::default().with_max_evaluations(1500).unwrap();
+        let rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+        let mut auto = Auto::new(&mut theta, 1.0, &mut buffer, rng)
+            .unwrap()
+            .with_options(options)
+            .with_bounds(&[-5.0, -5.0], &[5.0, 5.0])
+            .unwrap();
+        let mut reports = Vec::new();
+        while let Some(r) = auto.step(&mut f).unwrap() {
+            reports.push((r.kind, auto.value(), rastrigin(auto.theta())));
+        }
+        let best = auto.value().unwrap();
+        drop(auto);
+        assert_eq!(
+            rastrigin(&theta),
+            best,
+            "seed {seed}: θ holds the best point"
+        );
+        for (kind, value, at_theta) in reports {
+            continued += usize::from(kind == AutoStep::Continued);
+            assert_eq!(value, Some(at_theta), "seed {seed}: value() is f(theta())");
+        }
+        assert_eq!(
+            best, lowest,
+            "seed {seed}: the best point is the lowest evaluated"
+        );
+    }
+    assert!(continued > 0, "no continuation move in 10 runs");
+}

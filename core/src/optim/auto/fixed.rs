@@ -94,7 +94,7 @@ mod tests {
                 + m * p
                 + p * p
                 + p
-                + 14 * n
+                + 15 * n
                 + 7 * h
                 + r * (n + 1)
                 + n * n

@@ -103,6 +103,15 @@
 //!   held it; a gain does not send the next restart back to σ₀, since on a lattice of
 //!   small steps some gain is always found there); after [`AutoOptions::restarts`]
 //!   restarts in a row without a gain it ends, converged or stagnated.
+//! * **Continuation.** At such a restart, while σ > [`CONTINUATION_SCALE`]·σ₀, a
+//!   rejected trial whose step ends inside the trust region still moves θ, now the
+//!   search centre, and halves σ ([`AutoStep::Continued`]): the model fitted at a wide
+//!   σ is that of the smoothed objective, whose minimum lies past a local minimum's
+//!   wells, a lattice's cells or a second valley, and θ follows it down as σ shrinks,
+//!   as the paper's annealed σ does. A minimum on the region's boundary is the model
+//!   extrapolating (a cone's), so no move. The best point is kept: [`Auto::theta`]
+//!   returns it, and the next restart, the run's end and dropping the run put it back
+//!   into θ. Deterministic objectives only (a noisy trial is judged on common noise).
 //!
 //! Memory: one caller buffer of [`Auto::buffer_len`] floats, O(n² + m²) for m =
 //! [`Auto::history_len`] remembered points. Cost per iteration: O(m²n + m³) for the fit
@@ -139,6 +148,10 @@ pub const FULL_MODEL_MAX_DIM: usize = 20;
 /// one; with fewer points than the model's coefficients the fit corrects the model
 /// carried from earlier iterations along the directions of the recent points.
 pub const MAX_MEMORY: usize = 128;
+
+/// σ/σ₀ above which a restart follows the smoothed model past a rejected trial
+/// ([`AutoStep::Continued`]).
+pub const CONTINUATION_SCALE: f64 = 1.5;
 
 /// ρ: the kernel's reach in units of σ√n (the distance of a fresh sample). Points with
 /// z ≤ ρ count as nearby; points with z ≤ 2ρ are fitted, with weight exp(−½(z/ρ)²) ≥ e⁻².
@@ -332,6 +345,10 @@ pub enum AutoStep {
     Accepted,
     /// The trial point was no better; θ stayed.
     Rejected,
+    /// The trial point was no better, but the run's search centre moved there: after a
+    /// restart, at a scale above σ₀'s, where the model's minimum lies inside the trust
+    /// region (continuation on the smoothed objective). The best point is kept.
+    Continued,
     /// The budget ran out before the iteration could compare a step.
     OutOfBudget,
 }
@@ -421,10 +438,13 @@ struct Memory<'b, T> {
     /// The scale each coordinate was given ([`Auto::new`]'s σ₀ or
     /// [`Auto::with_scales`]), from which `Auto::shape_scales` sets σ₀ and C.
     scale: &'b mut [T],
+    /// The best point while a continuation move has left θ, the search centre, above it
+    /// ([`State::best_value`]).
+    best: &'b mut [T],
 }
 
 /// Region lengths for dimension n, in [`Memory`]'s order.
-const fn regions(n: usize) -> [usize; 39] {
+const fn regions(n: usize) -> [usize; 40] {
     let shape = Shape::for_dim(n);
     let m = history_len(n);
     let hl = shape.hessian_len(n);
@@ -475,12 +495,13 @@ const fn regions(n: usize) -> [usize; 39] {
         hl,
         m,
         n,
+        n,
     ]
 }
 
 /// Floats of buffer an [`Auto`] run needs in dimension n, for m = [`Auto::history_len`]
 /// points remembered:
-/// m(2n + 7) + m² + mp + p² + p + 14n + 7h + r(n + 1) + n² + 2f,
+/// m(2n + 7) + m² + mp + p² + p + 15n + 7h + r(n + 1) + n² + 2f,
 /// with, for the full model (n ≤ [`FULL_MODEL_MAX_DIM`]), h = f = n² and p = n + 1, and
 /// for the diagonal one h = n, f = 0 and p = 1; r = 2·min(n, ⌊m/2⌋) + 2 staged points.
 /// A `const fn`, so that storage can be sized at compile time ([`FixedAuto`]).
@@ -581,6 +602,7 @@ fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         li: take(),
         credit: take(),
         scale: take(),
+        best: take(),
     }
 }
 
@@ -656,6 +678,10 @@ struct State<T> {
     finished: Option<AutoTermination>,
     /// Changes of the sampling metric so far.
     metric_changes: u32,
+    /// f at [`Memory::best`], the best point, while a continuation move
+    /// ([`AutoStep::Continued`]) has left θ above it; `None` otherwise (θ is the best
+    /// point).
+    best_value: Option<T>,
     /// (σ, `metric_changes`) for which [`Memory::zs`] holds the remembered points' z
     /// (with θ = [`Memory::zt`]); `None` before it is first filled.
     reach_key: Option<(T, u32)>,
@@ -682,13 +708,40 @@ struct State<T> {
 /// println!("{end} after {} evaluations at {:?}", auto.evaluations(), auto.theta());
 /// # Ok::<(), hodr_core::Error>(())
 /// ```
-pub struct Auto<'b, T, R> {
+pub struct Auto<'b, T: Real, R> {
     theta: &'b mut [T],
     mem: Memory<'b, T>,
     rng: R,
     options: AutoOptions<T>,
     shape: Shape,
     st: State<T>,
+}
+
+/// θ (the caller's slice) holds the best point once the run is dropped, wherever its
+/// search centre was.
+impl<T: Real, R> Drop for Auto<'_, T, R> {
+    fn drop(&mut self) {
+        self.restore_best();
+    }
+}
+
+impl<T: Real, R> Auto<'_, T, R> {
+    /// Clears the continuation's record once θ is below the best point again.
+    fn keep_best(&mut self) {
+        if let (Some(b), Some(v)) = (self.st.best_value, self.st.value) {
+            if v < b {
+                self.st.best_value = None;
+            }
+        }
+    }
+
+    /// Moves θ back to the best point a continuation move left.
+    fn restore_best(&mut self) {
+        if let Some(b) = self.st.best_value.take() {
+            self.theta.copy_from_slice(self.mem.best);
+            self.st.value = Some(b);
+        }
+    }
 }
 
 impl<T: Real, R> fmt::Debug for Auto<'_, T, R> {
@@ -787,6 +840,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 gained: false,
                 finished: None,
                 metric_changes: 0,
+                best_value: None,
                 reach_key: None,
             },
         })
@@ -906,12 +960,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
 
     /// The best point found so far (x₀ before the first step).
     pub fn theta(&self) -> &[T] {
-        self.theta
+        if self.st.best_value.is_some() {
+            self.mem.best
+        } else {
+            self.theta
+        }
     }
 
     /// f at [`Auto::theta`], once evaluated and finite.
     pub fn value(&self) -> Option<T> {
-        self.st.value
+        self.st.best_value.or(self.st.value)
     }
 
     /// σ for the next iteration.
@@ -964,6 +1022,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         if self.remaining() == 0 {
             self.st.finished = Some(AutoTermination::MaxEvaluations);
+            self.restore_best();
             return Ok(None);
         }
         let n = self.theta.len();
@@ -1021,13 +1080,17 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             None
         };
+        self.keep_best();
+        if termination.is_some() {
+            self.restore_best();
+        }
         self.st.finished = termination;
         Ok(Some(AutoReport {
             iteration: self.st.iteration,
             evaluations: self.st.evaluations,
             sigma,
             next_sigma: self.st.sigma,
-            value: self.st.value,
+            value: self.value(),
             step_length,
             ratio,
             kind,
@@ -1337,6 +1400,29 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // rounded function).
         let accepted = trial.is_finite() && reference.is_finite() && trial <= reference;
         let tie = accepted && trial == reference;
+        if !accepted
+            && trial.is_finite()
+            && self.st.cycle > 0
+            && sigma > T::from_f64(CONTINUATION_SCALE) * self.st.sigma0
+            && length < T::from_f64(0.9) * radius
+            && !self.st.noisy
+            && !self.st.unseeded
+        {
+            // Continuation: a restart at a scale above σ₀'s fits the smoothed objective,
+            // whose minimum inside the trust region is where the search should go on
+            // even where f itself is higher there (a local minimum's wells, a lattice's
+            // cells, Rosenbrock's other valley). The centre moves, σ halves on the way
+            // down, and the best point is kept (`Auto::restore_best`). A minimum on the
+            // region's boundary is the model extrapolating: no move.
+            if self.st.best_value.is_none() {
+                self.st.best_value = Some(reference);
+                self.mem.best.copy_from_slice(self.theta);
+            }
+            self.theta.copy_from_slice(&self.mem.stage[..n]);
+            self.st.value = Some(trial);
+            self.st.sigma = sigma * T::HALF;
+            return Ok((AutoStep::Continued, Some(ratio)));
+        }
         // On an unseeded objective, a trial rejected by less than twice the noise's
         // scale, whose step promised no more than that, was judged by the noise.
         let judged_by_noise = self.st.unseeded && !accepted && {
@@ -2080,6 +2166,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// The metric is kept: it is a shape, not a scale, and the shape that a narrow valley
     /// or ridge taught is what the next descent along it needs.
     fn restart(&mut self, sigma: T) {
+        self.restore_best();
         self.forget_scales();
         self.st.may_restart = false;
         self.st.stale = 0;
