@@ -824,7 +824,7 @@ fn per_coordinate_scales_state_the_units() {
 
 /// Continuation moves θ, the search centre, above the best point (`AutoStep::Continued`);
 /// the best point stays what [`Auto::theta`] and [`Auto::value`] report at every
-/// iteration, and what the caller's θ holds once the run is dropped. On a 2-D Rastrigin
+/// iteration, and what the caller's θ holds once the run has ended. On a 2-D Rastrigin
 /// function, whose restarts at wide σ follow the smoothed bowl past its wells.
 #[test]
 fn continuation_keeps_the_best_point() {
@@ -858,7 +858,6 @@ fn continuation_keeps_the_best_point() {
             reports.push((r.kind, auto.value(), rastrigin(auto.theta())));
         }
         let best = auto.value().unwrap();
-        drop(auto);
         assert_eq!(
             rastrigin(&theta),
             best,

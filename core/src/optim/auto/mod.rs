@@ -110,8 +110,8 @@
 //!   wells, a lattice's cells or a second valley, and θ follows it down as σ shrinks,
 //!   as the paper's annealed σ does. A minimum on the region's boundary is the model
 //!   extrapolating (a cone's), so no move. The best point is kept: [`Auto::theta`]
-//!   returns it, and the next restart, the run's end and dropping the run put it back
-//!   into θ. Deterministic objectives only (a noisy trial is judged on common noise).
+//!   returns it, and the next restart and the run's end put it back into θ.
+//!   Deterministic objectives only (a noisy trial is judged on common noise).
 //!
 //! Memory: one caller buffer of [`Auto::buffer_len`] floats, O(n² + m²) for m =
 //! [`Auto::history_len`] remembered points. Cost per iteration: O(m²n + m³) for the fit
@@ -708,21 +708,13 @@ struct State<T> {
 /// println!("{end} after {} evaluations at {:?}", auto.evaluations(), auto.theta());
 /// # Ok::<(), hodr_core::Error>(())
 /// ```
-pub struct Auto<'b, T: Real, R> {
+pub struct Auto<'b, T, R> {
     theta: &'b mut [T],
     mem: Memory<'b, T>,
     rng: R,
     options: AutoOptions<T>,
     shape: Shape,
     st: State<T>,
-}
-
-/// θ (the caller's slice) holds the best point once the run is dropped, wherever its
-/// search centre was.
-impl<T: Real, R> Drop for Auto<'_, T, R> {
-    fn drop(&mut self) {
-        self.restore_best();
-    }
 }
 
 impl<T: Real, R> Auto<'_, T, R> {
