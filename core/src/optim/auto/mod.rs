@@ -717,25 +717,6 @@ pub struct Auto<'b, T, R> {
     st: State<T>,
 }
 
-impl<T: Real, R> Auto<'_, T, R> {
-    /// Clears the continuation's record once θ is below the best point again.
-    fn keep_best(&mut self) {
-        if let (Some(b), Some(v)) = (self.st.best_value, self.st.value) {
-            if v < b {
-                self.st.best_value = None;
-            }
-        }
-    }
-
-    /// Moves θ back to the best point a continuation move left.
-    fn restore_best(&mut self) {
-        if let Some(b) = self.st.best_value.take() {
-            self.theta.copy_from_slice(self.mem.best);
-            self.st.value = Some(b);
-        }
-    }
-}
-
 impl<T: Real, R> fmt::Debug for Auto<'_, T, R> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_struct("Auto")
@@ -924,14 +905,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         let largest = m.tmp.iter().fold(T::ZERO, |a, &s| a.max(s));
         let least = largest * metric::floor::<T>().sqrt();
-        let first = m.tmp[0].max(least);
-        let sigma0 = if m.tmp.iter().all(|&s| s.max(least) == first) {
+        for s in m.tmp.iter_mut() {
+            *s = s.max(least);
+        }
+        let first = m.tmp[0];
+        let sigma0 = if m.tmp.iter().all(|&s| s == first) {
             m.tmp.fill(T::ONE);
             first
         } else {
-            for s in m.tmp.iter_mut() {
-                *s = s.max(least);
-            }
             let mean_log = m.tmp.iter().fold(T::ZERO, |a, &s| a + s.ln()) / T::from_usize(n);
             let sigma0 = mean_log.exp();
             for s in m.tmp.iter_mut() {
@@ -2157,6 +2138,23 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// sampling metric, but without the model learnt at the scale the run had shrunk to.
     /// The metric is kept: it is a shape, not a scale, and the shape that a narrow valley
     /// or ridge taught is what the next descent along it needs.
+    /// Clears the continuation's record once θ is below the best point again.
+    fn keep_best(&mut self) {
+        if let (Some(b), Some(v)) = (self.st.best_value, self.st.value) {
+            if v < b {
+                self.st.best_value = None;
+            }
+        }
+    }
+
+    /// Moves θ back to the best point a continuation move left.
+    fn restore_best(&mut self) {
+        if let Some(b) = self.st.best_value.take() {
+            self.theta.copy_from_slice(self.mem.best);
+            self.st.value = Some(b);
+        }
+    }
+
     fn restart(&mut self, sigma: T) {
         self.restore_best();
         self.forget_scales();
