@@ -110,7 +110,9 @@
 //!   wells, a lattice's cells or a second valley, and θ follows it down as σ shrinks,
 //!   as the paper's annealed σ does. A minimum on the region's boundary is the model
 //!   extrapolating (a cone's), so no move. The best point is kept: [`Auto::theta`]
-//!   returns it, and the next restart and the run's end put it back into θ.
+//!   returns it, and the next restart and the run's end put it back into θ. The centre's
+//!   descent from above the best point keeps the run from stagnating but is not a gain
+//!   of the run: only a value below the best point's lets the restarts go on.
 //!   Deterministic objectives only (a noisy trial is judged on common noise).
 //!
 //! Memory: one caller buffer of [`Auto::buffer_len`] floats, O(n² + m²) for m =
@@ -1019,7 +1021,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.hold_sigma(sigma, kind, ratio);
         if self.st.gained {
             self.st.stale = 0;
-            self.st.may_restart = true;
+            self.st.may_restart |= self.below_best();
         } else {
             self.st.stale += 1;
         }
@@ -2134,16 +2136,22 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.has_prior = true;
     }
 
-    /// Starts over from the best point at `sigma` with the memory of points and the
-    /// sampling metric, but without the model learnt at the scale the run had shrunk to.
-    /// The metric is kept: it is a shape, not a scale, and the shape that a narrow valley
-    /// or ridge taught is what the next descent along it needs.
+    /// Whether f(θ) is below the best point's value, or θ is the best point. A gain made
+    /// by a centre that a continuation move left above the best point resets the
+    /// staleness count (the centre is still descending) but earns no further restart:
+    /// it is no progress of the run.
+    fn below_best(&self) -> bool {
+        match (self.st.best_value, self.st.value) {
+            (Some(b), Some(v)) => v < b,
+            (Some(_), None) => false,
+            (None, _) => true,
+        }
+    }
+
     /// Clears the continuation's record once θ is below the best point again.
     fn keep_best(&mut self) {
-        if let (Some(b), Some(v)) = (self.st.best_value, self.st.value) {
-            if v < b {
-                self.st.best_value = None;
-            }
+        if self.st.best_value.is_some() && self.below_best() {
+            self.st.best_value = None;
         }
     }
 
@@ -2155,6 +2163,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
     }
 
+    /// Starts over from the best point at `sigma` with the memory of points and the
+    /// sampling metric, but without the model learnt at the scale the run had shrunk to.
+    /// The metric is kept: it is a shape, not a scale, and the shape that a narrow valley
+    /// or ridge taught is what the next descent along it needs.
     fn restart(&mut self, sigma: T) {
         self.restore_best();
         self.forget_scales();
