@@ -10,7 +10,8 @@ with COCO's standard observer, then COCO's own post-processing (cocopp) compares
     python python/bench/coco_bbob.py --solver bobyqa --dims 2,3,5,10 --budget 1000
     python -m cocopp -o ppdata exdata/bbob-hodr* exdata/bbob-cma* exdata/bbob-bobyqa*
 
-`--suite bbob-mixint` runs the mixed-integer suite (integer variables: plateaus) in its
+`--functions 17,18` (or a range, `10-14`) runs a subset of the suite's functions, as
+COCO numbers them. `--suite bbob-mixint` runs the mixed-integer suite (integer variables: plateaus) in its
 own dimensions (5, 10, 20, ...), where the solvers see the same continuous box and the
 suite rounds the integer coordinates.
 
@@ -79,9 +80,13 @@ def main():
     parser.add_argument("--dims", default="2,3,5,10")
     parser.add_argument("--budget", type=int, default=1000, help="evaluations per dimension")
     parser.add_argument("--instances", default="1-15")
+    parser.add_argument("--functions", default="1-24",
+                        help="function indices, e.g. 17,18 or 10-14 (default: all)")
     args = parser.parse_args()
     solve = SOLVERS[args.solver]
-    suite = cocoex.Suite(args.suite, "", f"dimensions:{args.dims} instance_indices:{args.instances}")
+    options = (f"function_indices:{args.functions} dimensions:{args.dims} "
+               f"instance_indices:{args.instances}")
+    suite = cocoex.Suite(args.suite, "", options)
     folder = f"{args.suite}-{args.solver}"
     observer = cocoex.Observer(args.suite, f"result_folder: {folder} algorithm_name: {args.solver}")
     rng = np.random.default_rng(0)
