@@ -248,65 +248,49 @@ fn extreme_scales_stay_finite_and_converge() {
     }
 }
 
-/// Parameters of magnitude 1e8 (f64): the optimum is found to the precision the
-/// magnitude allows.
 /// Per-coordinate scales 24 decades apart, and a box side far narrower than its scale,
 /// in f64 and f32: finite results and no increase of f (the scales are held within what
 /// the metric can whiten).
 #[test]
 fn extreme_per_coordinate_scales_stay_finite() {
-    let scales = [1e-12, 1.0, 1e12];
-    let (lower, upper) = ([-5.0, -5.0, 0.5], [5.0, 5.0, 0.5 + 1e-9]);
     for bounded in [false, true] {
-        let mut f = sphere(0.3, 1.0);
-        let start = [2.0, -1.0, 0.5];
-        let f0 = f(&start);
-        let mut theta = start.to_vec();
-        let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(3)];
-        let options = AutoOptions::default().with_max_evaluations(2000).unwrap();
-        let rng = Xoshiro256PlusPlus::seed_from_u64(3);
-        let mut auto = Auto::new(&mut theta, 1.0, &mut buffer, rng)
-            .unwrap()
-            .with_options(options)
-            .with_scales(&scales)
-            .unwrap();
-        if bounded {
-            auto = auto.with_bounds(&lower, &upper).unwrap();
-        }
-        assert!(auto.sigma().is_finite() && auto.sigma() > 0.0);
-        auto.run(&mut f, |_, _| {}).unwrap();
-        assert!(
-            auto.theta().iter().all(|v| v.is_finite()),
-            "{:?}",
-            auto.theta()
-        );
-        assert!(auto.value().unwrap() <= f0);
-
-        let mut g = |x: &[f32]| x.iter().map(|v| (v - 0.3) * (v - 0.3)).sum::<f32>();
-        let mut theta = [2.0f32, -1.0, 0.5];
-        let mut buffer = vec![0.0f32; Auto::<f32, Xoshiro256PlusPlus>::buffer_len(3)];
-        let options = AutoOptions::default().with_max_evaluations(2000).unwrap();
-        let rng = Xoshiro256PlusPlus::seed_from_u64(3);
-        let mut auto = Auto::new(&mut theta, 1.0f32, &mut buffer, rng)
-            .unwrap()
-            .with_options(options)
-            .with_scales(&[1e-12f32, 1.0, 1e12])
-            .unwrap();
-        if bounded {
-            auto = auto
-                .with_bounds(&[-5.0f32, -5.0, 0.5], &[5.0, 5.0, 0.5 + 1e-6])
-                .unwrap();
-        }
-        auto.run(&mut g, |_, _| {}).unwrap();
-        assert!(
-            auto.theta().iter().all(|v| v.is_finite()),
-            "{:?}",
-            auto.theta()
-        );
-        assert!(auto.value().unwrap() <= g(&[2.0, -1.0, 0.5]));
+        extreme_scales_run::<f64>(bounded.then_some(1e-9));
+        extreme_scales_run::<f32>(bounded.then_some(1e-6));
     }
 }
 
+/// One run of [`extreme_per_coordinate_scales_stay_finite`] in precision T, the third
+/// coordinate boxed to a side of `side` when given.
+fn extreme_scales_run<T: Real>(side: Option<f64>) {
+    let t = T::from_f64;
+    let mut f = |x: &[T]| x.iter().fold(T::ZERO, |s, &v| s + (v - t(0.3)).sq());
+    let start = [t(2.0), t(-1.0), t(0.5)];
+    let f0 = f(&start);
+    let mut theta = start;
+    let mut buffer = vec![T::ZERO; Auto::<T, Xoshiro256PlusPlus>::buffer_len(3)];
+    let options = AutoOptions::default().with_max_evaluations(2000).unwrap();
+    let rng = Xoshiro256PlusPlus::seed_from_u64(3);
+    let mut auto = Auto::new(&mut theta, T::ONE, &mut buffer, rng)
+        .unwrap()
+        .with_options(options)
+        .with_scales(&[t(1e-12), T::ONE, t(1e12)])
+        .unwrap();
+    if let Some(side) = side {
+        let (lower, upper) = ([t(-5.0), t(-5.0), t(0.5)], [t(5.0), t(5.0), t(0.5 + side)]);
+        auto = auto.with_bounds(&lower, &upper).unwrap();
+    }
+    assert!(auto.sigma().is_finite() && auto.sigma() > T::ZERO);
+    auto.run(&mut f, |_, _| {}).unwrap();
+    assert!(
+        auto.theta().iter().all(|v| v.is_finite()),
+        "{:?}",
+        auto.theta()
+    );
+    assert!(auto.value().unwrap() <= f0);
+}
+
+/// Parameters of magnitude 1e8 (f64): the optimum is found to the precision the
+/// magnitude allows.
 #[test]
 fn huge_parameters() {
     let c = 1e8;
