@@ -550,19 +550,26 @@ fn convergence_rates_hold() {
     // Sparse Cauchy outliers on a constant offset, q + 1 + 𝟙{U < 0.2}·C: a lucky draw
     // of f(θ) rejected every later step before Auto checked for undeclared noise (10 of
     // 400), and often still when a single draw of θ set the bar (248 of 400, before θ
-    // was drawn again after rejections). Measured: 373 of 400. Bound:
-    // P(X < 31 | p = 0.9325, N = 40) = 2.5e-4.
+    // was drawn again after rejections; 373 before the check drew θ a third time).
+    // Measured: 362 of 400. Bound: P(X < 30 | p = 0.905, N = 40) = 9.6e-4.
     let solved = (0..seeds)
         .filter(|&seed| unseeded_noise_solved(seed, UnseededNoise::Cauchy))
         .count();
-    assert!(solved >= 31, "Cauchy outliers: {solved} of {seeds}");
+    assert!(solved >= 30, "Cauchy outliers: {solved} of {seeds}");
     // Multiplicative noise q·exp(N/2), which vanishes at the optimum: 397 of 400 before
-    // the check, 352 before θ was drawn again after rejections. Measured: 338 of 400.
-    // Bound: P(X < 26 | p = 0.845, N = 40) = 5.9e-4.
+    // the check, 352 before θ was drawn again after rejections, 338 before a rejection
+    // within the noise kept σ. Measured: 373 of 400. Bound:
+    // P(X < 31 | p = 0.9325, N = 40) = 2.5e-4.
     let solved = (0..seeds)
         .filter(|&seed| unseeded_noise_solved(seed, UnseededNoise::LogNormal))
         .count();
-    assert!(solved >= 26, "multiplicative noise: {solved} of {seeds}");
+    assert!(solved >= 31, "multiplicative noise: {solved} of {seeds}");
+    // Rosenbrock's valley at n = 5 under 1 % multiplicative noise, to f < 1e-8 within
+    // 5 000 evaluations: 2 of 200 while every rejection halved σ (the steps shrank until
+    // each comparison was the noise's), 164 of 200 since a rejection within twice the
+    // noise's scale keeps σ. Bound: P(X < 25 | p = 0.82, N = 40) = 9.3e-4.
+    let solved = (0..seeds).filter(|&seed| noisy_valley_solved(seed)).count();
+    assert!(solved >= 25, "noisy valley: {solved} of {seeds}");
 }
 
 /// How many runs of Auto on `f` from `x0` (σ₀ = 1, no bounds, `budget` evaluations), one
@@ -628,6 +635,27 @@ fn unseeded_noise_solved(seed: u64, noise: UnseededNoise) -> bool {
     };
     let (theta, _, _) = minimise(&mut f, &[4.0, -2.0, 3.0], 1.0, None, 1500, seed);
     theta.iter().map(|v| (v - 1.0).powi(2)).sum::<f64>().sqrt() < 0.01
+}
+
+/// Whether Auto brings Rosenbrock's function at n = 5, observed as f·exp(0.01·N) with N
+/// a standard normal drawn afresh at every call, from 0 to f < 1e-8 (its noiseless value
+/// at the best point) within 5 000 evaluations (run seed `seed`).
+fn noisy_valley_solved(seed: u64) -> bool {
+    use rand_xoshiro::rand_core::Rng;
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(2_000_000 + seed);
+    let mut unit = move || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+    let rosenbrock = |x: &[f64]| -> f64 {
+        x.windows(2)
+            .map(|w| 100.0 * (w[1] - w[0] * w[0]).powi(2) + (1.0 - w[0]).powi(2))
+            .sum()
+    };
+    let mut f = |x: &[f64]| {
+        let (b, c) = (unit(), unit());
+        let normal = (-2.0 * (b + 1e-300).ln()).sqrt() * (std::f64::consts::TAU * c).cos();
+        rosenbrock(x) * (0.01 * normal).exp()
+    };
+    let (theta, _, _) = minimise(&mut f, &[0.0; 5], 1.0, None, 5000, seed);
+    rosenbrock(&theta) < 1e-8
 }
 
 /// A cancelling objective stops Auto within one batch, θ keeps the best point so far,

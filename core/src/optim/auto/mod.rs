@@ -73,8 +73,10 @@
 //!   no better — but not the direction); a step shorter than half the radius
 //!   shrinks σ towards twice its length (at most halving it); ρ̂ < 0.1 halves σ — unless
 //!   the model rested on its prior (fewer points than it has coefficients, and at most
-//!   2n — or all but two of a full memory — within reach: then a pair is drawn at the
-//!   same σ first), or the fit finds f rough at this scale (residual scatter above
+//!   2n — or all but two of a full memory — within reach — or, on an unseeded
+//!   objective whose draws never agree exactly, the trial fell short by less than twice
+//!   the noise's scale (below): then a pair is drawn at the same σ first), or the fit
+//!   finds f rough at this scale (residual scatter above
 //!   [`ROUGH`] of the values' spread) and the trial lies within twice that scatter, or
 //!   the objective is unseeded and both the trial's shortfall and the step's promise
 //!   lie within twice the noise's scale (the median |f − f′| over pairs of repeated
@@ -665,6 +667,10 @@ struct State<T> {
     /// pass on). The fit then down-weighs the points it cannot explain, and θ is drawn
     /// again where its own draw is one of them.
     unseeded: bool,
+    /// The check's draws of f(θ) — three, once the second differed from the first — all
+    /// differ: the noise touches every draw (a Monte Carlo estimate), not a few of them
+    /// (sparse outliers on exact values, where two of three draws mostly agree).
+    dense: bool,
     /// The last trial, on an unseeded objective, was rejected: where the robust fit
     /// also puts f(θ)'s draw below the model, that draw may be a lucky one, and the
     /// next trial's comparison draws θ again (up to [`THETA_DRAWS`] draws).
@@ -809,6 +815,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 noisy: false,
                 checked: true,
                 unseeded: false,
+                dense: false,
                 doubted: false,
                 groups: 0,
                 shared: None,
@@ -1421,6 +1428,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let determined = fitted > self.shape.coefficients(n);
         // The step fell short of its prediction (ρ̂ < 0.1) without being a tie.
         let poor = ratio < T::from_f64(0.1) && !tie;
+        // On an unseeded objective whose every draw is noisy, a trial rejected by less
+        // than twice the noise's scale was rejected by the noise as much as by the
+        // model: halving σ on its word shrinks the steps until every comparison is a
+        // coin toss. The model needs more points at this scale instead.
+        let noise_rejected = poor
+            && !accepted
+            && self.st.unseeded
+            && self
+                .dense_noise_scale()
+                .is_some_and(|s| trial - reference <= T::TWO * s);
         self.st.sigma = if poor && accepted && boundary && !self.st.noisy {
             // f fell, by far less than predicted, along a step the radius cut short:
             // the model overstates the decrease (a kink or a ridge its fit smooths
@@ -1428,9 +1445,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             // would only shorten the next step; let it grow a little instead. (On a
             // noisy objective so small a decrease may be the noise's.)
             (sigma * T::from_f64(STRIDE)).min(self.widened_sigma(GROWTH_WIDTH))
-        } else if poor && (self.st.lattice || !determined && !validated) {
-            // Too few points to blame the scale, or f is piecewise constant at it:
-            // sample more at this σ first.
+        } else if poor && (noise_rejected || self.st.lattice || !determined && !validated) {
+            // Too few points to blame the scale, f is piecewise constant at it, or the
+            // noise rejected the trial: sample more at this σ first.
             self.st.resample = true;
             sigma
         } else if poor {
@@ -1475,9 +1492,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
 
     /// Evaluates θ once more, unremembered, on an objective declared deterministic, at
     /// the first model step after each restart until noise is found, and sets
-    /// [`State::unseeded`] when the value differs from f(θ)'s. One evaluation, on seed 0
-    /// (a deterministic objective ignores it), so the run's random stream, and a
-    /// deterministic run's points, are unchanged.
+    /// [`State::unseeded`] when the value differs from f(θ)'s; then a third time, to
+    /// tell dense noise from sparse outliers ([`State::dense`]). One evaluation on a
+    /// deterministic objective, on seed 0 (which it ignores), so the run's random
+    /// stream, and a deterministic run's points, are unchanged.
     fn check_determinism<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,
@@ -1490,6 +1508,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.checked = true;
         let again = self.evaluate_theta_again(objective, spent)?;
         self.st.unseeded = again.is_finite() && again != value;
+        if self.st.unseeded && self.remaining() > 0 {
+            let third = self.evaluate_theta_again(objective, spent)?;
+            self.st.dense = third != value && third != again;
+        }
         Ok(())
     }
 
@@ -2186,6 +2208,25 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// `None` when the memory holds fewer than three such pairs (the median of two is
     /// their larger, which one outlier sets). O(m²n) for m remembered points.
     fn repeat_spread(&mut self) -> Option<T> {
+        let pairs = self.repeat_differences();
+        (pairs >= 3).then(|| lower_median(&self.mem.sw[..pairs]))
+    }
+
+    /// The scale of unseeded noise that every draw carries: [`Auto::repeat_spread`]
+    /// where the check found the noise dense and no two remembered draws at one point
+    /// agree exactly, `None` otherwise. Sparse outliers (most draws exact) have no such
+    /// scale: their pairs' median is zero, or an outlier's where θ was drawn again
+    /// because its draw was one, and a trial's shortfall measured against it says
+    /// nothing of the step. O(m²n).
+    fn dense_noise_scale(&mut self) -> Option<T> {
+        let pairs = self.repeat_differences();
+        let exact = self.mem.sw[..pairs].contains(&T::ZERO);
+        (self.st.dense && pairs >= 3 && !exact).then(|| lower_median(&self.mem.sw[..pairs]))
+    }
+
+    /// Writes |f − f′| for every pair of remembered draws at one point to `sw` (as many
+    /// as it holds) and returns how many it wrote.
+    fn repeat_differences(&mut self) -> usize {
         let n = self.theta.len();
         let mut pairs = 0;
         for a in 0..self.st.count {
@@ -2197,7 +2238,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 }
             }
         }
-        (pairs >= 3).then(|| lower_median(&self.mem.sw[..pairs]))
+        pairs
     }
 
     /// Copies the draws of f at θ the memory holds (its points equal to θ) to `sw`, the
