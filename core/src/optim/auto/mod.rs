@@ -51,7 +51,10 @@
 //!   model step after each restart (until noise is found) θ is evaluated once more,
 //!   unremembered. Where the two values differ, the objective draws fresh noise at
 //!   every call — a renderer whose seed is not passed on — and a lucky draw of f(θ)
-//!   rejects every later step, which is how such a descent ends. From then on the fit
+//!   rejects every later step, which is how such a descent ends; a third draw then
+//!   tells noise that every draw carries (all three differ) from sparse outliers on
+//!   exact values, and only the former's rejections within the noise keep σ (below).
+//!   From then on the fit
 //!   gives each point a robustness weight, Tukey's biweight of its residual (one step
 //!   of iteratively reweighted least squares per iteration), so that an outlier — a
 //!   Cauchy noise spike — loses its pull; where θ's own draw is such an outlier, θ is
