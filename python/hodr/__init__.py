@@ -236,7 +236,8 @@ def minimize(
         iteration's points, θ among them, on one seed, so the renderer's noise cancels
         in their differences, and compares values only within a seed. Without it, a
         ``fun`` that draws fresh noise at every call is noticed (its point is evaluated
-        a second time after each restart) and fitted robustly.
+        a second time after each restart, and a third once the two differ) and fitted
+        robustly.
     callback : callable, optional
         ``callback(x, f)`` after every iteration with the best point so far and its
         value; returning True stops the run.
