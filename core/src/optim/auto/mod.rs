@@ -54,14 +54,13 @@
 //!   rejects every later step, which is how such a descent ends; a third draw then
 //!   tells noise that every draw carries (all three differ) from sparse outliers on
 //!   exact values, and only the former's rejections within the noise keep σ (below).
-//!   From then on the fit
-//!   gives each point a robustness weight, Tukey's biweight of its residual (one step
-//!   of iteratively reweighted least squares per iteration), so that an outlier — a
-//!   Cauchy noise spike — loses its pull; where θ's own draw is such an outlier, θ is
-//!   drawn again; and after a rejected trial, where θ's draw lies below the robust
-//!   fit, θ is drawn again beside the next one (until [`THETA_DRAWS`] draws), trials
-//!   being compared with the median of θ's draws, so that a draw from the noise's low
-//!   tail cannot hold θ by itself.
+//!   From then on the fit gives each point a robustness weight, Tukey's biweight of its
+//!   residual (one step of iteratively reweighted least squares per iteration), so
+//!   that an outlier — a Cauchy noise spike — loses its pull; where θ's own draw is
+//!   such an outlier, θ is drawn again; and after a rejected trial, where θ's draw lies
+//!   below the robust fit, θ is drawn again beside the next one (until
+//!   [`THETA_DRAWS`] draws), trials being compared with the median of θ's draws, so
+//!   that a draw from the noise's low tail cannot hold θ by itself.
 //! * **Step.** The model's minimiser within ‖s‖ ≤ σ√n (the `trust` module: exact for
 //!   indefinite H, so a non-PSD model steps along its negative curvature) is evaluated;
 //!   where it would leave the box, the coordinates it carries out are held on the
@@ -79,8 +78,8 @@
 //!   2n — or all but two of a full memory — within reach — or, on an unseeded
 //!   objective whose draws never agree exactly, the trial fell short by less than twice
 //!   the noise's scale (below): then a pair is drawn at the same σ first), or the fit
-//!   finds f rough at this scale (residual scatter above
-//!   [`ROUGH`] of the values' spread) and the trial lies within twice that scatter, or
+//!   finds f rough at this scale (residual scatter above [`ROUGH`] of the values'
+//!   spread) and the trial lies within twice that scatter, or
 //!   the objective is unseeded and both the trial's shortfall and the step's promise
 //!   lie within twice the noise's scale (the median |f − f′| over pairs of repeated
 //!   draws at one point): then σ doubles, as on a plateau.
@@ -2222,9 +2221,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// because its draw was one, and a trial's shortfall measured against it says
     /// nothing of the step. O(m²n).
     fn dense_noise_scale(&mut self) -> Option<T> {
+        if !self.st.dense {
+            return None;
+        }
         let pairs = self.repeat_differences();
         let exact = self.mem.sw[..pairs].contains(&T::ZERO);
-        (self.st.dense && pairs >= 3 && !exact).then(|| lower_median(&self.mem.sw[..pairs]))
+        (pairs >= 3 && !exact).then(|| lower_median(&self.mem.sw[..pairs]))
     }
 
     /// Writes |f − f′| for every pair of remembered draws at one point to `sw` (as many
