@@ -551,25 +551,26 @@ fn convergence_rates_hold() {
     // of f(θ) rejected every later step before Auto checked for undeclared noise (10 of
     // 400), and often still when a single draw of θ set the bar (248 of 400, before θ
     // was drawn again after rejections; 373 before the check drew θ a third time).
-    // Measured: 362 of 400. Bound: P(X < 30 | p = 0.905, N = 40) = 9.6e-4.
+    // Measured: 361 of 400. Bound: P(X < 29 | p = 0.9025, N = 40) = 3.0e-4.
     let solved = (0..seeds)
         .filter(|&seed| unseeded_noise_solved(seed, UnseededNoise::Cauchy))
         .count();
-    assert!(solved >= 30, "Cauchy outliers: {solved} of {seeds}");
+    assert!(solved >= 29, "Cauchy outliers: {solved} of {seeds}");
     // Multiplicative noise q·exp(N/2), which vanishes at the optimum: 397 of 400 before
     // the check, 352 before θ was drawn again after rejections, 338 before a rejection
-    // within the noise kept σ. Measured: 373 of 400. Bound:
-    // P(X < 31 | p = 0.9325, N = 40) = 2.5e-4.
+    // within the noise kept σ. Measured: 396 of 400. Bound:
+    // P(X < 37 | p = 0.99, N = 40) = 6.9e-4.
     let solved = (0..seeds)
         .filter(|&seed| unseeded_noise_solved(seed, UnseededNoise::LogNormal))
         .count();
-    assert!(solved >= 31, "multiplicative noise: {solved} of {seeds}");
+    assert!(solved >= 37, "multiplicative noise: {solved} of {seeds}");
     // Rosenbrock's valley at n = 5 under 1 % multiplicative noise, to f < 1e-8 within
     // 5 000 evaluations: 2 of 200 while every rejection halved σ (the steps shrank until
-    // each comparison was the noise's), 164 of 200 since a rejection within twice the
-    // noise's scale keeps σ. Bound: P(X < 25 | p = 0.82, N = 40) = 9.3e-4.
+    // each comparison was the noise's), 164 of 200 while a rejection within twice the
+    // noise's scale kept σ, 200 of 200 within NOISE_MARGIN (10) times it. Bound, with
+    // p = 0.985 (200 of 200's 95 % lower limit): P(X < 36 | p = 0.985, N = 40) = 3.2e-4.
     let solved = (0..seeds).filter(|&seed| noisy_valley_solved(seed)).count();
-    assert!(solved >= 25, "noisy valley: {solved} of {seeds}");
+    assert!(solved >= 36, "noisy valley: {solved} of {seeds}");
 }
 
 /// How many runs of Auto on `f` from `x0` (σ₀ = 1, no bounds, `budget` evaluations), one

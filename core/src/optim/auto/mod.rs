@@ -76,8 +76,9 @@
 //!   shrinks σ towards twice its length (at most halving it); ρ̂ < 0.1 halves σ — unless
 //!   the model rested on its prior (fewer points than it has coefficients, and at most
 //!   2n — or all but two of a full memory — within reach — or, on an unseeded
-//!   objective whose draws never agree exactly, the trial fell short by less than twice
-//!   the noise's scale (below): then a pair is drawn at the same σ first), or the fit
+//!   objective whose draws never agree exactly, the trial fell short by less than
+//!   [`NOISE_MARGIN`] times the noise's scale (below): then a pair is drawn at the same
+//!   σ first), or the fit
 //!   finds f rough at this scale (residual scatter above [`ROUGH`] of the values'
 //!   spread) and the trial lies within twice that scatter, or
 //!   the objective is unseeded and both the trial's shortfall and the step's promise
@@ -215,6 +216,12 @@ pub const DETERMINED_METRIC_WEIGHT: f64 = 0.3;
 /// again beside the next trial until the memory holds this many, and trials must beat
 /// their median (the larger of two).
 pub const THETA_DRAWS: usize = 2;
+
+/// On an unseeded objective whose every draw is noisy, a rejected trial halves σ only
+/// where it is worse than f(θ) by more than this many times the noise's scale (the
+/// median |f − f′| over repeated draws at one point); a smaller shortfall may be the
+/// noise's, and the iteration draws another pair at the same σ instead.
+pub const NOISE_MARGIN: f64 = 10.0;
 
 /// Points evaluated per noise-seed chunk of one batch (a stack array of seeds).
 const CHUNK: usize = 64;
@@ -1431,15 +1438,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // The step fell short of its prediction (ρ̂ < 0.1) without being a tie.
         let poor = ratio < T::from_f64(0.1) && !tie;
         // On an unseeded objective whose every draw is noisy, a trial rejected by less
-        // than twice the noise's scale was rejected by the noise as much as by the
-        // model: halving σ on its word shrinks the steps until every comparison is a
-        // coin toss. The model needs more points at this scale instead.
+        // than NOISE_MARGIN times the noise's scale may have been rejected by the noise
+        // rather than the model: halving σ on its word shrinks the steps until every
+        // comparison is a coin toss. The model needs more points at this scale instead.
         let noise_rejected = poor
             && !accepted
             && self.st.unseeded
             && self
                 .dense_noise_scale()
-                .is_some_and(|s| trial - reference <= T::TWO * s);
+                .is_some_and(|s| trial - reference <= T::from_f64(NOISE_MARGIN) * s);
         self.st.sigma = if poor && accepted && boundary && !self.st.noisy {
             // f fell, by far less than predicted, along a step the radius cut short:
             // the model overstates the decrease (a kink or a ridge its fit smooths
