@@ -11,9 +11,9 @@ with COCO's standard observer, then COCO's own post-processing (cocopp) compares
     python -m cocopp -o ppdata exdata/bbob-hodr* exdata/bbob-cma* exdata/bbob-bobyqa*
 
 `--functions 17,18` (or a range, `10-14`) runs a subset of the suite's functions, as
-COCO numbers them. `--suite bbob-mixint` runs the mixed-integer suite (integer variables: plateaus) in its
-own dimensions (5, 10, 20, ...), where the solvers see the same continuous box and the
-suite rounds the integer coordinates.
+COCO numbers them. `--suite bbob-mixint` runs the mixed-integer suite (integer
+variables: plateaus) in its own dimensions (5, 10, 20, ...), where the solvers see the
+same continuous box and the suite rounds the integer coordinates.
 
 Every solver gets the same problem statement: COCO's initial solution, a scale of 2 (a
 fifth of the [-5, 5] box, pycma's usual choice on bbob), the box as bounds where the

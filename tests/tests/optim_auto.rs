@@ -609,9 +609,7 @@ enum UnseededNoise {
 /// afresh at every call, from (4, −2, 3) to within 0.01 of θ* = (1, 1, 1) in 1 500
 /// evaluations (run seed `seed`).
 fn unseeded_noise_solved(seed: u64, noise: UnseededNoise) -> bool {
-    use rand_xoshiro::rand_core::Rng;
-    let mut rng = Xoshiro256PlusPlus::seed_from_u64(1_000_000 + seed);
-    let mut unit = move || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+    let mut unit = uniforms(1_000_000 + seed);
     let mut f = |x: &[f64]| {
         let q: f64 = x
             .iter()
@@ -628,10 +626,7 @@ fn unseeded_noise_solved(seed: u64, noise: UnseededNoise) -> bool {
                 };
                 q + 1.0 + outlier
             }
-            UnseededNoise::LogNormal => {
-                let normal = (-2.0 * (b + 1e-300).ln()).sqrt() * (std::f64::consts::TAU * c).cos();
-                q * (0.5 * normal).exp()
-            }
+            UnseededNoise::LogNormal => q * (0.5 * standard_normal(b, c)).exp(),
         }
     };
     let (theta, _, _) = minimise(&mut f, &[4.0, -2.0, 3.0], 1.0, None, 1500, seed);
@@ -642,9 +637,7 @@ fn unseeded_noise_solved(seed: u64, noise: UnseededNoise) -> bool {
 /// a standard normal drawn afresh at every call, from 0 to f < 1e-8 (its noiseless value
 /// at the best point) within 5 000 evaluations (run seed `seed`).
 fn noisy_valley_solved(seed: u64) -> bool {
-    use rand_xoshiro::rand_core::Rng;
-    let mut rng = Xoshiro256PlusPlus::seed_from_u64(2_000_000 + seed);
-    let mut unit = move || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+    let mut unit = uniforms(2_000_000 + seed);
     let rosenbrock = |x: &[f64]| -> f64 {
         x.windows(2)
             .map(|w| 100.0 * (w[1] - w[0] * w[0]).powi(2) + (1.0 - w[0]).powi(2))
@@ -652,11 +645,23 @@ fn noisy_valley_solved(seed: u64) -> bool {
     };
     let mut f = |x: &[f64]| {
         let (b, c) = (unit(), unit());
-        let normal = (-2.0 * (b + 1e-300).ln()).sqrt() * (std::f64::consts::TAU * c).cos();
-        rosenbrock(x) * (0.01 * normal).exp()
+        rosenbrock(x) * (0.01 * standard_normal(b, c)).exp()
     };
     let (theta, _, _) = minimise(&mut f, &[0.0; 5], 1.0, None, 5000, seed);
     rosenbrock(&theta) < 1e-8
+}
+
+/// Uniform draws in [0, 1) from a stream seeded with `seed`: the noise of the unseeded
+/// objectives above, drawn afresh at every call.
+fn uniforms(seed: u64) -> impl FnMut() -> f64 {
+    use rand_xoshiro::rand_core::Rng;
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(seed);
+    move || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// A standard normal from two uniforms in [0, 1) (Box–Muller).
+fn standard_normal(b: f64, c: f64) -> f64 {
+    (-2.0 * (b + 1e-300).ln()).sqrt() * (std::f64::consts::TAU * c).cos()
 }
 
 /// A cancelling objective stops Auto within one batch, θ keeps the best point so far,

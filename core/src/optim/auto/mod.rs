@@ -78,9 +78,8 @@
 //!   2n — or all but two of a full memory — within reach — or, on an unseeded
 //!   objective whose draws never agree exactly, the trial fell short by less than
 //!   [`NOISE_MARGIN`] times the noise's scale (below): then a pair is drawn at the same
-//!   σ first), or the fit
-//!   finds f rough at this scale (residual scatter above [`ROUGH`] of the values'
-//!   spread) and the trial lies within twice that scatter, or
+//!   σ first), or the fit finds f rough at this scale (residual scatter above
+//!   [`ROUGH`] of the values' spread) and the trial lies within twice that scatter, or
 //!   the objective is unseeded and both the trial's shortfall and the step's promise
 //!   lie within twice the noise's scale (the median |f − f′| over pairs of repeated
 //!   draws at one point): then σ doubles, as on a plateau.
