@@ -60,7 +60,15 @@
 //!   such an outlier, θ is drawn again; and after a rejected trial, where θ's draw lies
 //!   below the robust fit, θ is drawn again beside the next one (until
 //!   [`THETA_DRAWS`] draws), trials being compared with the median of θ's draws, so
-//!   that a draw from the noise's low tail cannot hold θ by itself.
+//!   that a draw from the noise's low tail cannot hold θ by itself. Sparse outliers
+//!   (the check's draws did not all differ, or two remembered draws at one point
+//!   agree) are voted out instead: from then on every point is drawn until two of its
+//!   draws agree exactly (at most [`VOTES`] draws, else their median), which costs
+//!   about 2/(1 − p) evaluations per point for an outlier rate p; the voted values are
+//!   exact, so the rules kept for deterministic objectives (continuation, the metric
+//!   from determined fits) apply to them too. Without the vote a model fitted to fewer
+//!   points than it has coefficients interpolates the outliers, which no residual then
+//!   exposes, and predicts steps from them.
 //! * **Step.** The model's minimiser within ‖s‖ ≤ σ√n (the `trust` module: exact for
 //!   indefinite H, so a non-PSD model steps along its negative curvature) is evaluated;
 //!   where it would leave the box, the coordinates it carries out are held on the
@@ -117,7 +125,8 @@
 //!   returns it, and the next restart and the run's end put it back into θ. The centre's
 //!   descent from above the best point keeps the run from stagnating but is not a gain
 //!   of the run: only a value below the best point's lets the restarts go on.
-//!   Deterministic objectives only (a noisy trial is judged on common noise).
+//!   Deterministic objectives only, and voted ones (a noisy trial is judged on common
+//!   noise).
 //!
 //! Memory: one caller buffer of [`Auto::buffer_len`] floats, O(n² + m²) for m =
 //! [`Auto::history_len`] remembered points. Cost per iteration: O(m²n + m³) for the fit
@@ -221,6 +230,10 @@ pub const THETA_DRAWS: usize = 2;
 /// median |f − f′| over repeated draws at one point); a smaller shortfall may be the
 /// noise's, and the iteration draws another pair at the same σ instead.
 pub const NOISE_MARGIN: f64 = 10.0;
+
+/// Draws of one point at most on sparse unseeded noise (`Auto::vote`): it is drawn
+/// until two draws agree exactly, and keeps the median of its draws when none do.
+pub const VOTES: usize = 5;
 
 /// Points evaluated per noise-seed chunk of one batch (a stack array of seeds).
 const CHUNK: usize = 64;
@@ -683,6 +696,9 @@ struct State<T> {
     /// also puts f(θ)'s draw below the model, that draw may be a lucky one, and the
     /// next trial's comparison draws θ again (up to [`THETA_DRAWS`] draws).
     doubted: bool,
+    /// The unseeded noise is sparse (`Auto::sparse_noise`): every point is drawn until
+    /// two draws agree (`Auto::vote`). Once set, it stays set.
+    voting: bool,
     /// Noise groups handed out so far; a point's group is stored as this count modulo
     /// 2²⁰ (exact in `f32`; the memory never holds points that far apart in time).
     groups: u32,
@@ -825,6 +841,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 unseeded: false,
                 dense: false,
                 doubted: false,
+                voting: false,
                 groups: 0,
                 shared: None,
                 gained: false,
@@ -1283,6 +1300,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if !self.st.noisy && !self.st.checked {
             self.check_determinism(objective, value, spent)?;
         }
+        if self.st.unseeded && !self.st.voting {
+            self.st.voting = self.sparse_noise();
+        }
         let scale = self.spread(T::from_f64(2.0 * REACH));
         let Some((noise, mut fitted)) = self.fit(value, scale) else {
             self.st.sigma = sigma * T::HALF;
@@ -1396,7 +1416,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             && sigma > T::from_f64(CONTINUATION_SCALE) * self.st.sigma0
             && length < T::from_f64(0.9) * radius
             && !self.st.noisy
-            && !self.st.unseeded
+            && (!self.st.unseeded || self.st.voting)
         {
             // Continuation: a restart at a scale above σ₀'s fits the smoothed objective,
             // whose minimum inside the trust region is where the search should go on
@@ -1472,7 +1492,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.learn_metric(1.0);
         } else if determined
             && !self.st.noisy
-            && !self.st.unseeded
+            && (!self.st.unseeded || self.st.voting)
             && !self.st.lattice
             && self.st.tie_scale <= T::ZERO
             && noise <= T::from_f64(SMOOTH)
@@ -1911,6 +1931,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         seed: impl Fn(usize) -> NoiseSeed,
     ) -> Result<(), Error> {
         let n = self.theta.len();
+        let first = *spent;
         let mut seeds = [0 as NoiseSeed; CHUNK];
         let mut start = 0;
         while start < rows {
@@ -1924,20 +1945,92 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 n,
             )?;
             objective.evaluate_batch(&batch, &mut self.mem.stage_f[start..start + len]);
-            start += len;
+            self.st.evaluations += len;
+            *spent += len;
             if objective.cancelled() {
-                self.st.evaluations += start;
-                *spent += start;
                 return Err(Error::Cancelled);
             }
+            if self.st.voting {
+                self.vote(objective, start, len, spent)?;
+            }
+            start += len;
         }
-        self.st.evaluations += rows;
-        let first = *spent;
-        *spent += rows;
         if self.options.non_finite == NonFinite::Error {
             if let Some(k) = self.mem.stage_f[..rows].iter().position(|f| !f.is_finite()) {
                 return Err(Error::NonFiniteObjective { sample: first + k });
             }
+        }
+        Ok(())
+    }
+
+    /// On sparse unseeded noise ([`State::voting`]), draws each staged row of
+    /// `start … start + len − 1` (at most [`CHUNK`] rows) again — the whole chunk as one
+    /// batch, then one row at a time — until two of its draws agree exactly, and keeps
+    /// that value, which an outlier on exact values cannot set (two non-finite draws
+    /// agree); after [`VOTES`] draws that all differ it keeps the median of the finite
+    /// ones. Within the budget: a row the budget does not let it draw again keeps the
+    /// median of the draws it has.
+    fn vote<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        start: usize,
+        len: usize,
+        spent: &mut usize,
+    ) -> Result<(), Error> {
+        let n = self.theta.len();
+        let len = len.min(self.remaining());
+        if len == 0 {
+            return Ok(());
+        }
+        // An unseeded objective ignores the seed.
+        let seeds = [0 as NoiseSeed; CHUNK];
+        let mut again = [T::ZERO; CHUNK];
+        let rows = &self.mem.stage[start * n..(start + len) * n];
+        objective.evaluate_batch(&Batch::new(rows, &seeds[..len], n)?, &mut again[..len]);
+        self.st.evaluations += len;
+        *spent += len;
+        if objective.cancelled() {
+            return Err(Error::Cancelled);
+        }
+        for (k, &second) in again[..len].iter().enumerate() {
+            let mut draws = [T::ZERO; VOTES];
+            draws[0] = self.mem.stage_f[start + k];
+            draws[1] = second;
+            let mut count = 2;
+            let row = &self.mem.stage[(start + k) * n..(start + k + 1) * n];
+            let agreed = loop {
+                let last = draws[count - 1];
+                // Two non-finite draws agree too: the point fails, whatever its noise.
+                let same = |d: &T| *d == last || !d.is_finite() && !last.is_finite();
+                if draws[..count - 1].iter().any(same) {
+                    break Some(last);
+                }
+                if count == VOTES || self.remaining() == 0 {
+                    break None;
+                }
+                let mut next = [T::ZERO];
+                objective.evaluate_batch(&Batch::new(row, &seeds[..1], n)?, &mut next);
+                self.st.evaluations += 1;
+                *spent += 1;
+                if objective.cancelled() {
+                    return Err(Error::Cancelled);
+                }
+                draws[count] = next[0];
+                count += 1;
+            };
+            self.mem.stage_f[start + k] = agreed.unwrap_or_else(|| {
+                let mut finite = [T::ZERO; VOTES];
+                let mut m = 0;
+                for &d in draws[..count].iter().filter(|d| d.is_finite()) {
+                    finite[m] = d;
+                    m += 1;
+                }
+                if m > 0 {
+                    lower_median(&finite[..m])
+                } else {
+                    draws[0]
+                }
+            });
         }
         Ok(())
     }
@@ -2233,6 +2326,17 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let pairs = self.repeat_differences();
         let exact = self.mem.sw[..pairs].contains(&T::ZERO);
         (pairs >= 3 && !exact).then(|| lower_median(&self.mem.sw[..pairs]))
+    }
+
+    /// The unseeded noise is sparse: outliers on values that are mostly exact — the
+    /// check's three draws did not all differ, or two remembered draws at one point
+    /// agree exactly. O(m²n) for m remembered points.
+    fn sparse_noise(&mut self) -> bool {
+        self.st.unseeded
+            && (!self.st.dense || {
+                let pairs = self.repeat_differences();
+                self.mem.sw[..pairs].contains(&T::ZERO)
+            })
     }
 
     /// Writes |f − f′| for every pair of remembered draws at one point to `sw` (as many
