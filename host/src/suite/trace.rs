@@ -75,8 +75,10 @@ impl Trace {
 type Repeats = Arc<Mutex<HashMap<Vec<u64>, u64>>>;
 
 /// A problem's f at points clamped into its bounds, shareable between threads; on a
-/// noisy problem it counts each point's evaluations, so that a repeat draws fresh noise
-/// (two evaluations of one point within one parallel batch may then swap their draws).
+/// noisy problem it counts each point's evaluations, so that a repeat draws fresh noise.
+/// [`Counter`]'s batches number their repeats in the batch's order before evaluating
+/// in parallel; CMA-ES's parallel generations, whose points never coincide, count them
+/// as they come.
 #[derive(Clone, Debug)]
 pub struct Clamped<'p> {
     problem: &'p Problem,
@@ -96,14 +98,20 @@ impl Clamped<'_> {
     /// What the method sees at x clamped into the bounds ([`Problem::observe`]).
     pub fn value(&self, x: &[f64]) -> f64 {
         let y = self.point(x);
-        let repeat = self.repeats.as_ref().map_or(0, |r| {
+        let repeat = self.next_repeat(&y);
+        self.problem.observe(&y, repeat)
+    }
+
+    /// How many times the run evaluated the clamped point y before, counting this
+    /// evaluation (0 on a problem without noise, which does not count).
+    fn next_repeat(&self, y: &[f64]) -> u64 {
+        self.repeats.as_ref().map_or(0, |r| {
             let key = y.iter().map(|v| v.to_bits()).collect();
             let mut seen = r.lock().unwrap_or_else(PoisonError::into_inner);
             let count = seen.entry(key).or_insert(0);
             *count += 1;
             *count - 1
-        });
-        self.problem.observe(&y, repeat)
+        })
     }
 }
 
@@ -201,10 +209,20 @@ impl Objective<f64> for Counter<'_> {
     }
 
     fn evaluate_batch(&mut self, batch: &Batch<'_, f64>, out: &mut [f64]) {
+        // Repeats are numbered in the batch's order, so that two rows at one point draw
+        // the same noise whichever thread comes first.
         let f = self.clamped();
+        let points: Vec<(Vec<f64>, u64)> = (0..out.len())
+            .map(|k| {
+                let y = f.point(batch.point(k));
+                let repeat = f.next_repeat(&y);
+                (y, repeat)
+            })
+            .collect();
+        let problem = self.problem;
         out.par_iter_mut()
-            .enumerate()
-            .for_each(|(k, v)| *v = f.value(batch.point(k)));
+            .zip(&points)
+            .for_each(|(v, (y, repeat))| *v = problem.observe(y, *repeat));
         for (k, &v) in out.iter().enumerate() {
             self.record(batch.point(k), v);
         }
@@ -212,5 +230,36 @@ impl Objective<f64> for Counter<'_> {
 
     fn deterministic(&self) -> bool {
         true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::suite::noisy;
+
+    /// A batch that evaluates one point of a noisy problem many times draws the same
+    /// noise for each row on one thread or two: its repeats are numbered in its order.
+    #[test]
+    fn a_batch_numbers_its_repeats_in_its_order_whatever_the_threads() {
+        let problem = noisy::problem(101, 2, 1, 10);
+        let x = [0.5, -0.5];
+        let rows = 32;
+        let points: Vec<f64> = x.iter().copied().cycle().take(2 * rows).collect();
+        let seeds = vec![0; rows];
+        let batch = Batch::new(&points, &seeds, 2).unwrap();
+        let run = |threads: usize| {
+            let mut counter = Counter::new(&problem, 100);
+            let mut out = vec![0.0; rows];
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| counter.evaluate_batch(&batch, &mut out));
+            out
+        };
+        let in_order: Vec<f64> = (0..rows as u64).map(|r| problem.observe(&x, r)).collect();
+        assert_eq!(run(1), in_order);
+        assert_eq!(run(2), in_order);
     }
 }
