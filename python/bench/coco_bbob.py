@@ -1,5 +1,5 @@
-"""hodr's default optimiser, pycma and BOBYQA on COCO's `bbob` (or `bbob-mixint`) suite,
-for BENCHMARKS.md.
+"""hodr's default optimiser, pycma and BOBYQA on COCO's `bbob` (or `bbob-mixint`, or
+`bbob-noisy`) suite, for BENCHMARKS.md.
 
 Each solver runs on every function and instance of the suite in the given dimensions
 with COCO's standard observer, then COCO's own post-processing (cocopp) compares them:
@@ -13,7 +13,9 @@ with COCO's standard observer, then COCO's own post-processing (cocopp) compares
 `--functions 17,18` (or a range, `10-14`) runs a subset of the suite's functions, as
 COCO numbers them. `--suite bbob-mixint` runs the mixed-integer suite (integer
 variables: plateaus) in its own dimensions (5, 10, 20, ...), where the solvers see the
-same continuous box and the suite rounds the integer coordinates.
+same continuous box and the suite rounds the integer coordinates. `--suite bbob-noisy`
+runs COCO's noisy functions f101-f130, which draw fresh noise at every call: every
+solver gets them as plain functions, hodr without `noisy=True` (it is not told).
 
 Every solver gets the same problem statement: COCO's initial solution, a scale of 2 (a
 fifth of the [-5, 5] box, pycma's usual choice on bbob), the box as bounds where the
@@ -76,16 +78,17 @@ def main():
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--solver", choices=sorted(SOLVERS), required=True)
-    parser.add_argument("--suite", default="bbob", choices=["bbob", "bbob-mixint"])
+    parser.add_argument("--suite", default="bbob", choices=["bbob", "bbob-mixint", "bbob-noisy"])
     parser.add_argument("--dims", default="2,3,5,10")
     parser.add_argument("--budget", type=int, default=1000, help="evaluations per dimension")
     parser.add_argument("--instances", default="1-15")
-    parser.add_argument("--functions", default="1-24",
+    parser.add_argument("--functions", default=None,
                         help="function indices, e.g. 17,18 or 10-14 (default: all)")
     args = parser.parse_args()
     solve = SOLVERS[args.solver]
-    options = (f"function_indices:{args.functions} dimensions:{args.dims} "
-               f"instance_indices:{args.instances}")
+    options = f"dimensions:{args.dims} instance_indices:{args.instances}"
+    if args.functions:
+        options += f" function_indices:{args.functions}"
     suite = cocoex.Suite(args.suite, "", options)
     folder = f"{args.suite}-{args.solver}"
     observer = cocoex.Observer(args.suite, f"result_folder: {folder} algorithm_name: {args.solver}")
