@@ -1939,17 +1939,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             for (k, s) in seeds[..len].iter_mut().enumerate() {
                 *s = seed(start + k);
             }
-            let batch = Batch::new(
+            draw(
+                objective,
                 &self.mem.stage[start * n..(start + len) * n],
                 &seeds[..len],
-                n,
+                &mut self.mem.stage_f[start..start + len],
+                &mut self.st.evaluations,
+                spent,
             )?;
-            objective.evaluate_batch(&batch, &mut self.mem.stage_f[start..start + len]);
-            self.st.evaluations += len;
-            *spent += len;
-            if objective.cancelled() {
-                return Err(Error::Cancelled);
-            }
             if self.st.voting {
                 self.vote(objective, start, len, spent)?;
             }
@@ -1986,12 +1983,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let seeds = [0 as NoiseSeed; CHUNK];
         let mut again = [T::ZERO; CHUNK];
         let rows = &self.mem.stage[start * n..(start + len) * n];
-        objective.evaluate_batch(&Batch::new(rows, &seeds[..len], n)?, &mut again[..len]);
-        self.st.evaluations += len;
-        *spent += len;
-        if objective.cancelled() {
-            return Err(Error::Cancelled);
-        }
+        let evaluations = &mut self.st.evaluations;
+        draw(
+            objective,
+            rows,
+            &seeds[..len],
+            &mut again[..len],
+            evaluations,
+            spent,
+        )?;
         for (k, &second) in again[..len].iter().enumerate() {
             let mut draws = [T::ZERO; VOTES];
             draws[0] = self.mem.stage_f[start + k];
@@ -2009,12 +2009,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                     break None;
                 }
                 let mut next = [T::ZERO];
-                objective.evaluate_batch(&Batch::new(row, &seeds[..1], n)?, &mut next);
-                self.st.evaluations += 1;
-                *spent += 1;
-                if objective.cancelled() {
-                    return Err(Error::Cancelled);
-                }
+                let evaluations = &mut self.st.evaluations;
+                draw(objective, row, &seeds[..1], &mut next, evaluations, spent)?;
                 draws[count] = next[0];
                 count += 1;
             };
@@ -2398,6 +2394,27 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             },
         );
     }
+}
+
+/// Evaluates `points` (rows of `points.len() / seeds.len()` floats), one per seed, into
+/// `out`, and counts them in `evaluations` and `spent`; [`Error::Cancelled`] when the
+/// objective asks to stop after the batch.
+fn draw<T: Real, O: Objective<T> + ?Sized>(
+    objective: &mut O,
+    points: &[T],
+    seeds: &[NoiseSeed],
+    out: &mut [T],
+    evaluations: &mut usize,
+    spent: &mut usize,
+) -> Result<(), Error> {
+    let n = points.len() / seeds.len().max(1);
+    objective.evaluate_batch(&Batch::new(points, seeds, n)?, out);
+    *evaluations += seeds.len();
+    *spent += seeds.len();
+    if objective.cancelled() {
+        return Err(Error::Cancelled);
+    }
+    Ok(())
 }
 
 /// The element of rank ⌊len/2⌋ (from 0) of `xs` in ascending order, by counting: O(len²)
