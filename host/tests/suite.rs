@@ -99,6 +99,39 @@ fn sphere_and_rosenbrock_match_hand_computed_values() {
     assert!((f8.value(&x) - 901.0).abs() <= tol::HAND);
 }
 
+/// x_opt + t·(row k of R): R(x − x_opt) = t·eₖ up to rounding.
+fn along_row(f: &Bbob, k: usize, t: f64) -> Vec<f64> {
+    let n = f.x_opt().len();
+    (0..n)
+        .map(|j| f.x_opt()[j] + t * f.r()[k * n + j])
+        .collect()
+}
+
+#[test]
+fn discus_bent_cigar_and_different_powers_match_hand_computed_values() {
+    let n = 6;
+    // f11 along R's first row, t = 1: z = T_osz(e₁) = e₁ (T_osz(1) = 1), f = 10⁶.
+    let f11 = Bbob::new(11, n, 2);
+    let v = f11.value(&along_row(&f11, 0, 1.0));
+    assert!((v - 1e6).abs() <= 1e6 * 1e-12, "f11: {v}");
+    // … and along the second, t = 2: z = T_osz(2e₂), f = T_osz(2)².
+    let v = f11.value(&along_row(&f11, 1, 2.0));
+    assert!((v - bbob::t_osz1(2.0).powi(2)).abs() <= 1e-12, "f11: {v}");
+    // f12 along R's first row, t = 1: T_asy leaves e₁ (its first coordinate's exponent
+    // is 1), z = R·e₁, R's first column c: f = c₁² + 10⁶(1 − c₁²).
+    let f12 = Bbob::new(12, n, 2);
+    let c1 = f12.r()[0];
+    let want = c1 * c1 + 1e6 * (1.0 - c1 * c1);
+    let v = f12.value(&along_row(&f12, 0, 1.0));
+    assert!((v - want).abs() <= want * 1e-12, "f12: {v} against {want}");
+    // f14: z = t·eₖ gives √(|t|^(2 + 4k/(n − 1))): |t| for k = 0, |t|³ for k = n − 1.
+    let f14 = Bbob::new(14, n, 2);
+    let v = f14.value(&along_row(&f14, 0, -0.5));
+    assert!((v - 0.5).abs() <= 1e-12, "f14: {v}");
+    let v = f14.value(&along_row(&f14, n - 1, 0.5));
+    assert!((v - 0.125).abs() <= 1e-12, "f14: {v}");
+}
+
 #[test]
 fn oscillation_and_asymmetry_transforms_follow_the_definition() {
     // T_osz(1) = exp(0 + 0.049·(sin 0 + sin 0)) = 1; odd-like sign handling.

@@ -1,4 +1,4 @@
-//! Eight BBOB noiseless functions, written from their published definitions: N. Hansen,
+//! Eleven BBOB noiseless functions, written from their published definitions: N. Hansen,
 //! S. Finck, R. Ros, A. Auger, "Real-Parameter Black-Box Optimization Benchmarking 2009:
 //! Noiseless Functions Definitions", INRIA research report RR-6829.
 //!
@@ -21,7 +21,10 @@
 //! | f7 | step ellipsoid | 0.1·max(\|ẑ₁\|/10⁴, Σ 10^(2(i−1)/(D−1)) zᵢ²) + f_pen(x), ẑ = Λ¹⁰R(x − x_opt), z̃ᵢ = ⌊0.5 + ẑᵢ⌋ if \|ẑᵢ\| > 0.5 else ⌊0.5 + 10ẑᵢ⌋/10, z = Qz̃ |
 //! | f8 | Rosenbrock, original | Σ_{i<D} 100(zᵢ² − zᵢ₊₁)² + (zᵢ − 1)², z = max(1, √D/8)(x − x_opt) + 1 |
 //! | f10 | rotated ellipsoid | Σ 10^(6(i−1)/(D−1)) zᵢ², z = T_osz(R(x − x_opt)) |
+//! | f11 | discus | 10⁶z₁² + Σ_{i≥2} zᵢ², z = T_osz(R(x − x_opt)) |
+//! | f12 | bent cigar | z₁² + 10⁶Σ_{i≥2} zᵢ², z = R·T_asy^0.5(R(x − x_opt)) |
 //! | f13 | sharp ridge | z₁² + 100·√(Σ_{i≥2} zᵢ²), z = QΛ¹⁰R(x − x_opt) |
+//! | f14 | different powers | √(Σ \|zᵢ\|^(2 + 4(i−1)/(D−1))), z = R(x − x_opt) |
 //! | f15 | rotated Rastrigin | 10(D − Σ cos 2πzᵢ) + ‖z‖², z = RΛ¹⁰Q·T_asy^0.2(T_osz(R(x − x_opt))) |
 //!
 //! Each is zero at x_opt and positive elsewhere (f7: almost everywhere — it is zero on
@@ -35,7 +38,7 @@ use super::problem::{Bounds, Family, Measure, Problem, uniform_start};
 use super::random;
 
 /// The functions of the suite, by BBOB number.
-pub const IDS: [u32; 8] = [1, 2, 6, 7, 8, 10, 13, 15];
+pub const IDS: [u32; 11] = [1, 2, 6, 7, 8, 10, 11, 12, 13, 14, 15];
 
 /// σ₀ of every BBOB problem: a common CMA-ES choice on the domain [−5, 5]ⁿ.
 pub const SIGMA0: f64 = 2.0;
@@ -52,7 +55,10 @@ pub fn function_name(id: u32) -> &'static str {
         7 => "step-ellipsoid",
         8 => "rosenbrock",
         10 => "rotated-ellipsoid",
+        11 => "discus",
+        12 => "bent-cigar",
         13 => "sharp-ridge",
+        14 => "different-powers",
         15 => "rastrigin",
         _ => "unknown",
     }
@@ -167,9 +173,28 @@ impl Bbob {
                 let z = t_osz(&z);
                 (0..n).map(|i| ill(1e6, i, n) * z[i] * z[i]).sum()
             }
+            11 => {
+                random::mat_vec(&self.r, &d, &mut z);
+                let z = t_osz(&z);
+                1e6 * z[0] * z[0] + z[1..].iter().map(|v| v * v).sum::<f64>()
+            }
+            12 => {
+                let mut y = vec![0.0; n];
+                random::mat_vec(&self.r, &d, &mut y);
+                random::mat_vec(&self.r, &t_asy(&y, 0.5), &mut z);
+                z[0] * z[0] + 1e6 * z[1..].iter().map(|v| v * v).sum::<f64>()
+            }
             13 => {
                 self.q_lambda_r(&d, &mut z);
                 z[0] * z[0] + 100.0 * z[1..].iter().map(|v| v * v).sum::<f64>().sqrt()
+            }
+            14 => {
+                random::mat_vec(&self.r, &d, &mut z);
+                z.iter()
+                    .enumerate()
+                    .map(|(i, v)| v.abs().powf(2.0 + 4.0 * i as f64 / (n - 1) as f64))
+                    .sum::<f64>()
+                    .sqrt()
             }
             15 => {
                 let mut y = vec![0.0; n];
