@@ -576,6 +576,47 @@ fn convergence_rates_hold() {
     assert!(solved >= 35, "valley under outliers: {solved} of {seeds}");
 }
 
+/// Where no fit is determined (a full model at n = 20: 128 remembered points against 231
+/// coefficients) a stiff direction that stalls the run is learnt by the metric from the
+/// stalled models ([`hodr_core::optim::auto::STALLED_ANISOTROPY`]). BBOB's discus shape,
+/// 10⁶·T_osz(z₁)² + Σᵢ₌₂ T_osz(zᵢ)² with z = ΛH(x − x*) as [`rotated`], whose oscillation
+/// T_osz makes the curvature along z₁ swing to about ±1.7·10⁷ at every scale: in
+/// 20-D from (3, …), to f < 1e-8 within 20 000 evaluations. Before the rule, 0 of seeds
+/// 0–11. Measured: 100 of seeds 0–99 (rate ≥ 0.97 at 95 % confidence). Bound, over seeds
+/// 0–11: P(X < 9 | p = 0.97, N = 12) = 3.3e-4.
+#[test]
+fn a_stiff_direction_is_learnt_where_no_fit_is_determined() {
+    let seeds = 12;
+    let discus = |x: &[f64]| {
+        let z = hodr_host::suite::bbob::t_osz(&rotated(x));
+        1e6 * z[0] * z[0] + z[1..].iter().map(|v| v * v).sum::<f64>()
+    };
+    let solved = (0..seeds)
+        .filter(|&seed| {
+            let mut theta = vec![3.0; 20];
+            let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(20)];
+            let options = AutoOptions::default().with_max_evaluations(20_000).unwrap();
+            let mut auto = Auto::new(
+                &mut theta,
+                1.0,
+                &mut buffer,
+                Xoshiro256PlusPlus::seed_from_u64(seed),
+            )
+            .unwrap()
+            .with_options(options);
+            let mut f = discus;
+            // Stop at the target: a solved run's remaining descent proves nothing here.
+            while let Ok(Some(_)) = auto.step(&mut f) {
+                if auto.value().is_some_and(|v| v < 1e-8) {
+                    return true;
+                }
+            }
+            false
+        })
+        .count();
+    assert!(solved >= 9, "20-D discus: {solved} of {seeds}");
+}
+
 /// How many runs of Auto on `f` from `x0` (σ₀ = 1, no bounds, `budget` evaluations), one
 /// per seed in 0..`seeds`, reach f < 1e-8.
 fn runs_below_1e8(f: impl Fn(&[f64]) -> f64, x0: &[f64], budget: usize, seeds: u64) -> usize {

@@ -36,7 +36,11 @@
 //!   [`SMOOTH`], off a lattice, θ off the box's faces) moves C too, at
 //!   [`DETERMINED_METRIC_WEIGHT`] of the rate, whatever its step did: on a sharp ridge
 //!   (a cone, as an L1 image loss makes) no quadratic predicts f's steps, yet the
-//!   smoothed curvature across the ridge is what stretches C along it. C has the
+//!   smoothed curvature across the ridge is what stretches C along it. Where no fit
+//!   can be determined (n = 15–20), a model whose whitened curvature is still far from
+//!   round after n unconfirmed steps moves C at that weight too
+//!   ([`STALLED_ANISOTROPY`]): a stiff direction the metric has not squashed otherwise
+//!   stalls the run for good. C has the
 //!   model's shape: full for n ≤ [`FULL_MODEL_MAX_DIM`], diagonal above (per-coordinate
 //!   scales).
 //! * **Noise.** A stochastic objective ([`Objective::deterministic`] false) — a Monte
@@ -216,8 +220,23 @@ const GROWTH_WIDTH: f64 = 1_048_576.0;
 /// determine it (more fitted points than coefficients, residual scatter within
 /// [`SMOOTH`], no samples tied since f(θ) last fell, θ on no face of the box) but its
 /// step did not confirm it (ρ̂ < 0.1 or rejected), on a deterministic objective. A
-/// confirmed step moves it at the full rate.
+/// confirmed step moves it at the full rate. Models that stall a run where no fit is
+/// determined move it at the same weight ([`STALLED_ANISOTROPY`]).
 pub const DETERMINED_METRIC_WEIGHT: f64 = 0.3;
+
+/// Where no fit can be determined (a full model from n = 15, whose [`MAX_MEMORY`] points
+/// are fewer than its coefficients), confirmed steps are the metric's only teacher, and
+/// a stiff direction the metric has not yet squashed can keep every step from being
+/// confirmed: sampled at the soft directions' scale, it dominates the values, and the
+/// model's slope along the soft directions drowns in the misfit of its curvature
+/// (BBOB's discus f11 at n = 20: ρ̂ ≈ 0.005 for 20 000 evaluations). So once n model steps
+/// in a row have gone unconfirmed, a model whose curvature in whitened coordinates is
+/// this anisotropic — its largest |eigenvalue| at least this multiple of the median one
+/// — moves the metric at [`DETERMINED_METRIC_WEIGHT`] (on a deterministic objective, off
+/// a lattice and off the box's faces, as for determined fits). A rounder model is left
+/// alone: at the kinks of BBOB's attractive sector f06 stalled fits read 3–6, and
+/// learning from them there lost the runs that succeed.
+pub const STALLED_ANISOTROPY: f64 = 10.0;
 
 /// Draws of f(θ) an unseeded objective's trials are compared with, at most: after a
 /// rejected trial, where θ's draw lies below the robust fit's value at θ, θ is drawn
@@ -710,6 +729,8 @@ struct State<T> {
     finished: Option<AutoTermination>,
     /// Changes of the sampling metric so far.
     metric_changes: u32,
+    /// Model steps since the last one that confirmed its model (ρ̂ ≥ 0.1).
+    unconfirmed: usize,
     /// f at [`Memory::best`], the best point, while a continuation move
     /// ([`AutoStep::Continued`]) has left θ above it; `None` otherwise (θ is the best
     /// point).
@@ -847,6 +868,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 gained: false,
                 finished: None,
                 metric_changes: 0,
+                unconfirmed: 0,
                 best_value: None,
                 reach_key: None,
             },
@@ -1487,24 +1509,27 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             sigma
         };
+        self.st.unconfirmed = self.st.unconfirmed.saturating_add(1);
         if accepted && ratio >= T::from_f64(0.1) {
             // The model predicted the decrease: trust its curvature's shape.
             self.learn_metric(1.0);
-        } else if determined
-            && !self.st.noisy
+            self.st.unconfirmed = 0;
+        } else if !self.st.noisy
             && (!self.st.unseeded || self.st.voting)
             && !self.st.lattice
             && self.st.tie_scale <= T::ZERO
-            && noise <= T::from_f64(SMOOTH)
             && !self.on_face()
+            && (determined && noise <= T::from_f64(SMOOTH) || self.stalled_on_shape())
         {
             // The points determine the curvature, and fit it closely, though the step
             // did not confirm it: a cone's or a kink's smoothed curvature is what the
-            // metric needs even where the quadratic mispredicts f's steps. (Not where
-            // samples have tied since f last fell: on a lattice the fitted curvature is
-            // the steps', not f's. Nor with θ on a face of the box: samples mirrored
-            // there make f look flat across the face, C would stretch along its normal,
-            // and steps along that axis are cut off by the bound.)
+            // metric needs even where the quadratic mispredicts f's steps. Or no fit can
+            // be determined and a shape the metric has not learnt stalls the run
+            // ([`STALLED_ANISOTROPY`]). (Not where samples have tied since f last fell:
+            // on a lattice the fitted curvature is the steps', not f's. Nor with θ on a
+            // face of the box: samples mirrored there make f look flat across the face,
+            // C would stretch along its normal, and steps along that axis are cut off by
+            // the bound.)
             self.learn_metric(DETERMINED_METRIC_WEIGHT);
         }
         self.st.doubted = self.st.unseeded && !accepted;
@@ -2372,6 +2397,26 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             .iter()
             .zip(self.mem.lower.iter().zip(self.mem.upper.iter()))
             .any(|(&t, (&lo, &hi))| t <= lo || t >= hi)
+    }
+
+    /// Whether the run has stalled on a shape the metric has not learnt: no fit can be
+    /// determined (a full model from n = 15), the last n model steps went unconfirmed,
+    /// and the model's curvature in whitened coordinates is anisotropic — its largest
+    /// |eigenvalue| at least [`STALLED_ANISOTROPY`] times the median one. O(n³), with
+    /// the trust region's scratch (`a`, `v`, `lambda`).
+    fn stalled_on_shape(&mut self) -> bool {
+        let n = self.theta.len();
+        if self.shape != Shape::Full || memory_determines_model(n) || self.st.unconfirmed < n {
+            return false;
+        }
+        self.mem.a[..n * n].copy_from_slice(&self.mem.h[..n * n]);
+        eigen::symmetric(self.mem.a, self.mem.v, n);
+        for (m, &e) in self.mem.lambda[..n].iter_mut().zip(self.mem.a[..n].iter()) {
+            *m = e.abs();
+        }
+        let top = self.mem.lambda[..n].iter().fold(T::ZERO, |t, &e| t.max(e));
+        top > T::ZERO
+            && top >= T::from_f64(STALLED_ANISOTROPY) * lower_median(&self.mem.lambda[..n])
     }
 
     /// Moves the sampling metric towards the shape of the prior's curvature H₀ by
