@@ -1947,7 +1947,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.frame_next - 1
     }
 
-    /// Evaluates the first `rows` staged points with the given seeds, in chunks.
+    /// Evaluates the first `rows` staged points with the given seeds, in chunks; with
+    /// [`NonFinite::Error`] the first chunk that leaves a point non-finite ends the batch
+    /// with [`Error::NonFiniteObjective`], naming that point's first draw.
     fn evaluate<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,
@@ -1956,7 +1958,6 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         seed: impl Fn(usize) -> NoiseSeed,
     ) -> Result<(), Error> {
         let n = self.theta.len();
-        let first = *spent;
         let mut seeds = [0 as NoiseSeed; CHUNK];
         let mut start = 0;
         while start < rows {
@@ -1964,6 +1965,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             for (k, s) in seeds[..len].iter_mut().enumerate() {
                 *s = seed(start + k);
             }
+            // The chunk's first draws are evaluations first … first + len − 1; a vote's
+            // further draws follow them.
+            let first = *spent;
             draw(
                 objective,
                 &self.mem.stage[start * n..(start + len) * n],
@@ -1975,12 +1979,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             if self.st.voting {
                 self.vote(objective, start, len, spent)?;
             }
-            start += len;
-        }
-        if self.options.non_finite == NonFinite::Error {
-            if let Some(k) = self.mem.stage_f[..rows].iter().position(|f| !f.is_finite()) {
-                return Err(Error::NonFiniteObjective { sample: first + k });
+            if self.options.non_finite == NonFinite::Error {
+                let values = &self.mem.stage_f[start..start + len];
+                if let Some(k) = values.iter().position(|f| !f.is_finite()) {
+                    return Err(Error::NonFiniteObjective { sample: first + k });
+                }
             }
+            start += len;
         }
         Ok(())
     }
