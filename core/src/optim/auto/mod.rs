@@ -1965,24 +1965,28 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             for (k, s) in seeds[..len].iter_mut().enumerate() {
                 *s = seed(start + k);
             }
-            // The chunk's first draws are evaluations first … first + len − 1; a vote's
-            // further draws follow them.
+            // Row k's first draw is evaluation first + k, or, where a vote draws the first
+            // `doubled` rows twice at once, first + 2k below them and first + doubled + k
+            // from them on.
             let first = *spent;
-            draw(
-                objective,
-                &self.mem.stage[start * n..(start + len) * n],
-                &seeds[..len],
-                &mut self.mem.stage_f[start..start + len],
-                &mut self.st.evaluations,
-                spent,
-            )?;
-            if self.st.voting {
-                self.vote(objective, start, len, spent)?;
-            }
+            let doubled = if self.st.voting {
+                self.vote(objective, start, len, spent)?
+            } else {
+                draw(
+                    objective,
+                    &self.mem.stage[start * n..(start + len) * n],
+                    &seeds[..len],
+                    &mut self.mem.stage_f[start..start + len],
+                    &mut self.st.evaluations,
+                    spent,
+                )?;
+                0
+            };
             if self.options.non_finite == NonFinite::Error {
                 let values = &self.mem.stage_f[start..start + len];
                 if let Some(k) = values.iter().position(|f| !f.is_finite()) {
-                    return Err(Error::NonFiniteObjective { sample: first + k });
+                    let sample = first + k + k.min(doubled);
+                    return Err(Error::NonFiniteObjective { sample });
                 }
             }
             start += len;
@@ -1990,75 +1994,157 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         Ok(())
     }
 
-    /// On sparse unseeded noise ([`State::voting`]), draws each staged row of
-    /// `start … start + len − 1` (at most [`CHUNK`] rows) again — the whole chunk as one
-    /// batch, then one row at a time — until two of its draws agree exactly, and keeps
-    /// that value, which an outlier on exact values cannot set (two non-finite draws
-    /// agree); after [`VOTES`] draws that all differ it keeps the median of the finite
-    /// ones. Within the budget: a row the budget does not let it draw again keeps the
-    /// median of the draws it has.
+    /// On sparse unseeded noise ([`State::voting`]), evaluates the staged rows
+    /// `start … start + len − 1` (at most [`CHUNK`] rows; the objective ignores their
+    /// seeds) until two draws of each agree exactly, and keeps that value, which an
+    /// outlier on exact values cannot set (two non-finite draws agree); after [`VOTES`]
+    /// draws that all differ it keeps the median of the finite ones. The draws go out in
+    /// rounds, each one batch per min(m, [`CHUNK`]) rows, m = [`Auto::history_len`]:
+    /// first every row twice
+    /// (its two draws side by side), then the rows still undecided once each, so that a
+    /// batch renderer sees few calls however many rows disagree. Within the budget: every
+    /// row is drawn once; the first rows twice, as far as the budget goes (their number
+    /// is returned); a round the budget cuts short leaves its last rows with the median
+    /// of the draws they have. The draws are kept in the fit's Gram scratch and the rows
+    /// drawn in its row scratch, both free outside a fit.
     fn vote<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,
         start: usize,
         len: usize,
         spent: &mut usize,
-    ) -> Result<(), Error> {
+    ) -> Result<usize, Error> {
         let n = self.theta.len();
-        let len = len.min(self.remaining());
-        if len == 0 {
-            return Ok(());
-        }
+        let group = history_len(n).min(CHUNK);
+        debug_assert!(len * VOTES <= self.mem.gram.len() && group * n <= self.mem.u.len());
         // An unseeded objective ignores the seed.
         let seeds = [0 as NoiseSeed; CHUNK];
-        let mut again = [T::ZERO; CHUNK];
-        let rows = &self.mem.stage[start * n..(start + len) * n];
-        let evaluations = &mut self.st.evaluations;
-        draw(
-            objective,
-            rows,
-            &seeds[..len],
-            &mut again[..len],
-            evaluations,
-            spent,
-        )?;
-        for (k, &second) in again[..len].iter().enumerate() {
-            let mut draws = [T::ZERO; VOTES];
-            draws[0] = self.mem.stage_f[start + k];
-            draws[1] = second;
-            let mut count = 2;
-            let row = &self.mem.stage[(start + k) * n..(start + k + 1) * n];
-            let agreed = loop {
-                let last = draws[count - 1];
-                // Two non-finite draws agree too: the point fails, whatever its noise.
-                let same = |d: &T| *d == last || !d.is_finite() && !last.is_finite();
-                if draws[..count - 1].iter().any(same) {
-                    break Some(last);
+        let mut fresh = [T::ZERO; CHUNK];
+        // Row k's draws are gram[k·VOTES …], `counts[k]` of them; `open[k]` while they
+        // disagree and more may be drawn, `agreed[k]` once two agree.
+        let mut counts = [0usize; CHUNK];
+        let mut open = [true; CHUNK];
+        let mut agreed = [false; CHUNK];
+        let doubled = len.min(self.remaining().saturating_sub(len));
+        // The first round: rows below `doubled` twice, the rest once, in order.
+        let mut k = 0;
+        while k < len {
+            let mut rows = 0;
+            let mut last = k;
+            while last < len && rows + 1 + usize::from(last < doubled) <= group {
+                for _ in 0..1 + usize::from(last < doubled) {
+                    let row = &self.mem.stage[(start + last) * n..(start + last + 1) * n];
+                    self.mem.u[rows * n..(rows + 1) * n].copy_from_slice(row);
+                    rows += 1;
                 }
-                if count == VOTES || self.remaining() == 0 {
-                    break None;
-                }
-                let mut next = [T::ZERO];
-                let evaluations = &mut self.st.evaluations;
-                draw(objective, row, &seeds[..1], &mut next, evaluations, spent)?;
-                draws[count] = next[0];
-                count += 1;
-            };
-            self.mem.stage_f[start + k] = agreed.unwrap_or_else(|| {
-                let mut finite = [T::ZERO; VOTES];
-                let mut m = 0;
-                for &d in draws[..count].iter().filter(|d| d.is_finite()) {
-                    finite[m] = d;
-                    m += 1;
-                }
-                if m > 0 {
-                    lower_median(&finite[..m])
-                } else {
-                    draws[0]
-                }
-            });
+                last += 1;
+            }
+            let evaluations = &mut self.st.evaluations;
+            let points = &self.mem.u[..rows * n];
+            draw(
+                objective,
+                points,
+                &seeds[..rows],
+                &mut fresh[..rows],
+                evaluations,
+                spent,
+            )?;
+            let mut r = 0;
+            for j in k..last {
+                let times = 1 + usize::from(j < doubled);
+                self.mem.gram[j * VOTES..j * VOTES + times].copy_from_slice(&fresh[r..r + times]);
+                self.mem.stage_f[start + j] = fresh[r];
+                counts[j] = times;
+                open[j] = times == 2;
+                r += times;
+            }
+            k = last;
         }
-        Ok(())
+        loop {
+            // Settle the rows whose newest draw agrees with an earlier one.
+            for k in 0..len {
+                if !open[k] {
+                    continue;
+                }
+                let draws = &self.mem.gram[k * VOTES..k * VOTES + counts[k]];
+                let last = draws[counts[k] - 1];
+                let same = |d: &T| *d == last || !d.is_finite() && !last.is_finite();
+                if draws[..counts[k] - 1].iter().any(same) {
+                    self.mem.stage_f[start + k] = last;
+                    agreed[k] = true;
+                    open[k] = false;
+                } else if counts[k] == VOTES {
+                    open[k] = false;
+                }
+            }
+            // The next round: every open row once more, in groups, within the budget.
+            let mut pending = [0usize; CHUNK];
+            let mut waiting = 0;
+            for k in (0..len).filter(|&k| open[k]) {
+                pending[waiting] = k;
+                waiting += 1;
+            }
+            if waiting == 0 || self.remaining() == 0 {
+                break;
+            }
+            let mut batch = [0usize; CHUNK];
+            let mut size = 0;
+            let mut flush = |auto: &mut Self, batch: &[usize], spent: &mut usize| {
+                for (r, &k) in batch.iter().enumerate() {
+                    let row = &auto.mem.stage[(start + k) * n..(start + k + 1) * n];
+                    auto.mem.u[r * n..(r + 1) * n].copy_from_slice(row);
+                }
+                let rows = &auto.mem.u[..batch.len() * n];
+                let out = &mut fresh[..batch.len()];
+                draw(
+                    objective,
+                    rows,
+                    &seeds[..batch.len()],
+                    out,
+                    &mut auto.st.evaluations,
+                    spent,
+                )?;
+                for (r, &k) in batch.iter().enumerate() {
+                    auto.mem.gram[k * VOTES + counts[k]] = fresh[r];
+                    counts[k] += 1;
+                }
+                Ok::<(), Error>(())
+            };
+            let mut left = self.remaining();
+            for &k in &pending[..waiting] {
+                if left == 0 {
+                    // Out of budget: this row keeps the draws it has.
+                    open[k] = false;
+                    continue;
+                }
+                batch[size] = k;
+                size += 1;
+                left -= 1;
+                if size == group {
+                    flush(self, &batch[..size], spent)?;
+                    size = 0;
+                }
+            }
+            if size > 0 {
+                flush(self, &batch[..size], spent)?;
+            }
+        }
+        // Rows that never agreed keep the median of their finite draws.
+        for k in (0..len).filter(|&k| !agreed[k]) {
+            let draws = &self.mem.gram[k * VOTES..k * VOTES + counts[k]];
+            let mut finite = [T::ZERO; VOTES];
+            let mut m = 0;
+            for &d in draws.iter().filter(|d| d.is_finite()) {
+                finite[m] = d;
+                m += 1;
+            }
+            self.mem.stage_f[start + k] = if m > 0 {
+                lower_median(&finite[..m])
+            } else {
+                draws[0]
+            };
+        }
+        Ok(doubled)
     }
 
     /// A fresh noise group's id.
