@@ -5,7 +5,7 @@
 use hodr_core::optim::{Auto, AutoOptions, AutoStep, AutoTermination, NonFinite};
 use hodr_core::{Error, Objective, Real};
 use rand_xoshiro::Xoshiro256PlusPlus;
-use rand_xoshiro::rand_core::{Rng, SeedableRng};
+use rand_xoshiro::rand_core::SeedableRng;
 
 /// Runs Auto to its end (or `budget` evaluations) from `x0` with scale `sigma0`;
 /// returns the best θ, its value and why the run ended.
@@ -627,21 +627,15 @@ fn a_stiff_direction_is_learnt_where_no_fit_is_determined() {
 /// one row at a time; 1.40 on seed 0); over seeds 0–4, 2.23–2.26.
 #[test]
 fn the_vote_batches_its_draws() {
-    struct Spiky {
-        unit: Xoshiro256PlusPlus,
+    /// An objective that counts its batches and their rows.
+    struct Counted<F> {
+        f: F,
         calls: usize,
         rows: usize,
     }
-    impl Objective<f64> for Spiky {
+    impl<F: FnMut(&[f64]) -> f64> Objective<f64> for Counted<F> {
         fn evaluate(&mut self, x: &[f64], _seed: u64) -> f64 {
-            let mut u = || (self.unit.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-            let (a, b) = (u(), u());
-            let spike = if a < 0.2 {
-                (std::f64::consts::PI * (b - 0.5)).tan()
-            } else {
-                0.0
-            };
-            rosenbrock(x) + 1.0 + spike
+            (self.f)(x)
         }
         fn evaluate_batch(&mut self, batch: &hodr_core::Batch<'_, f64>, out: &mut [f64]) {
             self.calls += 1;
@@ -655,8 +649,8 @@ fn the_vote_batches_its_draws() {
         }
     }
     for seed in 0..5 {
-        let mut f = Spiky {
-            unit: Xoshiro256PlusPlus::seed_from_u64(1000 + seed),
+        let mut f = Counted {
+            f: spiky_valley(1000 + seed),
             calls: 0,
             rows: 0,
         };
@@ -751,8 +745,16 @@ fn noisy_valley_solved(seed: u64) -> bool {
 /// f < 1e-8 (its noiseless value at the best point) within 5 000 evaluations (run seed
 /// `seed`).
 fn sparse_valley_solved(seed: u64) -> bool {
-    let mut unit = uniforms(3_000_000 + seed);
-    let mut f = |x: &[f64]| {
+    let mut f = spiky_valley(3_000_000 + seed);
+    let (theta, _, _) = minimise(&mut f, &[0.0; 5], 1.0, None, 5000, seed);
+    rosenbrock(&theta) < 1e-8
+}
+
+/// Rosenbrock's function observed as f + 1 + 𝟙{U < 0.2}·C, C a standard Cauchy variate,
+/// U and C drawn afresh at every call from the stream [`uniforms`]`(seed)`.
+fn spiky_valley(seed: u64) -> impl FnMut(&[f64]) -> f64 {
+    let mut unit = uniforms(seed);
+    move |x: &[f64]| {
         let (a, b) = (unit(), unit());
         let outlier = if a < 0.2 {
             (std::f64::consts::PI * (b - 0.5)).tan()
@@ -760,9 +762,7 @@ fn sparse_valley_solved(seed: u64) -> bool {
             0.0
         };
         rosenbrock(x) + 1.0 + outlier
-    };
-    let (theta, _, _) = minimise(&mut f, &[0.0; 5], 1.0, None, 5000, seed);
-    rosenbrock(&theta) < 1e-8
+    }
 }
 
 /// Uniform draws in [0, 1) from a stream seeded with `seed`: the noise of the unseeded

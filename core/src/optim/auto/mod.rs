@@ -1999,14 +1999,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// seeds) until two draws of each agree exactly, and keeps that value, which an
     /// outlier on exact values cannot set (two non-finite draws agree); after [`VOTES`]
     /// draws that all differ it keeps the median of the finite ones. The draws go out in
-    /// rounds, each one batch per min(m, [`CHUNK`]) rows, m = [`Auto::history_len`]:
-    /// first every row twice
-    /// (its two draws side by side), then the rows still undecided once each, so that a
-    /// batch renderer sees few calls however many rows disagree. Within the budget: every
-    /// row is drawn once; the first rows twice, as far as the budget goes (their number
-    /// is returned); a round the budget cuts short leaves its last rows with the median
-    /// of the draws they have. The draws are kept in the fit's Gram scratch and the rows
-    /// drawn in its row scratch, both free outside a fit.
+    /// rounds ([`Auto::draw_rows`]): first every row twice (its two draws side by side),
+    /// then the rows still undecided once each, so that a batch renderer sees few calls
+    /// however many rows disagree. Within the budget: every row is drawn once; the first
+    /// rows twice, as far as the budget goes (their number is returned); a round the
+    /// budget cuts short leaves its last rows with the median of the draws they have.
     fn vote<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,
@@ -2014,54 +2011,25 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         len: usize,
         spent: &mut usize,
     ) -> Result<usize, Error> {
-        let n = self.theta.len();
-        let group = history_len(n).min(CHUNK);
-        debug_assert!(len * VOTES <= self.mem.gram.len() && group * n <= self.mem.u.len());
-        // An unseeded objective ignores the seed.
-        let seeds = [0 as NoiseSeed; CHUNK];
-        let mut fresh = [T::ZERO; CHUNK];
         // Row k's draws are gram[k·VOTES …], `counts[k]` of them; `open[k]` while they
         // disagree and more may be drawn, `agreed[k]` once two agree.
         let mut counts = [0usize; CHUNK];
         let mut open = [true; CHUNK];
         let mut agreed = [false; CHUNK];
+        debug_assert!(len * VOTES <= self.mem.gram.len());
         let doubled = len.min(self.remaining().saturating_sub(len));
-        // The first round: rows below `doubled` twice, the rest once, in order.
-        let mut k = 0;
-        while k < len {
-            let mut rows = 0;
-            let mut last = k;
-            while last < len && rows + 1 + usize::from(last < doubled) <= group {
-                for _ in 0..1 + usize::from(last < doubled) {
-                    let row = &self.mem.stage[(start + last) * n..(start + last + 1) * n];
-                    self.mem.u[rows * n..(rows + 1) * n].copy_from_slice(row);
-                    rows += 1;
-                }
-                last += 1;
+        let mut round = [0usize; 2 * CHUNK];
+        let mut size = 0;
+        for k in 0..len {
+            for _ in 0..1 + usize::from(k < doubled) {
+                round[size] = k;
+                size += 1;
             }
-            let evaluations = &mut self.st.evaluations;
-            let points = &self.mem.u[..rows * n];
-            draw(
-                objective,
-                points,
-                &seeds[..rows],
-                &mut fresh[..rows],
-                evaluations,
-                spent,
-            )?;
-            let mut r = 0;
-            for j in k..last {
-                let times = 1 + usize::from(j < doubled);
-                self.mem.gram[j * VOTES..j * VOTES + times].copy_from_slice(&fresh[r..r + times]);
-                self.mem.stage_f[start + j] = fresh[r];
-                counts[j] = times;
-                open[j] = times == 2;
-                r += times;
-            }
-            k = last;
         }
-        loop {
-            // Settle the rows whose newest draw agrees with an earlier one.
+        while size > 0 {
+            self.draw_rows(objective, start, &round[..size], &mut counts, spent)?;
+            // Settle the rows whose newest draw agrees with an earlier one; a row with a
+            // single draw (the budget) or VOTES of them is done.
             for k in 0..len {
                 if !open[k] {
                     continue;
@@ -2069,82 +2037,87 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 let draws = &self.mem.gram[k * VOTES..k * VOTES + counts[k]];
                 let last = draws[counts[k] - 1];
                 let same = |d: &T| *d == last || !d.is_finite() && !last.is_finite();
-                if draws[..counts[k] - 1].iter().any(same) {
-                    self.mem.stage_f[start + k] = last;
-                    agreed[k] = true;
-                    open[k] = false;
-                } else if counts[k] == VOTES {
-                    open[k] = false;
-                }
+                agreed[k] = draws[..counts[k] - 1].iter().any(same);
+                open[k] = !agreed[k] && (2..VOTES).contains(&counts[k]);
             }
-            // The next round: every open row once more, in groups, within the budget.
-            let mut pending = [0usize; CHUNK];
-            let mut waiting = 0;
-            for k in (0..len).filter(|&k| open[k]) {
-                pending[waiting] = k;
-                waiting += 1;
-            }
-            if waiting == 0 || self.remaining() == 0 {
-                break;
-            }
-            let mut batch = [0usize; CHUNK];
-            let mut size = 0;
-            let mut flush = |auto: &mut Self, batch: &[usize], spent: &mut usize| {
-                for (r, &k) in batch.iter().enumerate() {
-                    let row = &auto.mem.stage[(start + k) * n..(start + k + 1) * n];
-                    auto.mem.u[r * n..(r + 1) * n].copy_from_slice(row);
-                }
-                let rows = &auto.mem.u[..batch.len() * n];
-                let out = &mut fresh[..batch.len()];
-                draw(
-                    objective,
-                    rows,
-                    &seeds[..batch.len()],
-                    out,
-                    &mut auto.st.evaluations,
-                    spent,
-                )?;
-                for (r, &k) in batch.iter().enumerate() {
-                    auto.mem.gram[k * VOTES + counts[k]] = fresh[r];
-                    counts[k] += 1;
-                }
-                Ok::<(), Error>(())
-            };
+            // The next round: every open row once more, within the budget.
+            size = 0;
             let mut left = self.remaining();
-            for &k in &pending[..waiting] {
-                if left == 0 {
-                    // Out of budget: this row keeps the draws it has.
-                    open[k] = false;
+            for (k, open) in open[..len].iter_mut().enumerate() {
+                if !*open {
                     continue;
                 }
-                batch[size] = k;
-                size += 1;
-                left -= 1;
-                if size == group {
-                    flush(self, &batch[..size], spent)?;
-                    size = 0;
+                if left == 0 {
+                    *open = false;
+                } else {
+                    round[size] = k;
+                    size += 1;
+                    left -= 1;
                 }
             }
-            if size > 0 {
-                flush(self, &batch[..size], spent)?;
-            }
         }
-        // Rows that never agreed keep the median of their finite draws.
-        for k in (0..len).filter(|&k| !agreed[k]) {
+        // A row keeps the value two of its draws agree on, or the median of its finite
+        // draws.
+        for k in 0..len {
             let draws = &self.mem.gram[k * VOTES..k * VOTES + counts[k]];
-            let mut finite = [T::ZERO; VOTES];
-            let mut m = 0;
-            for &d in draws.iter().filter(|d| d.is_finite()) {
-                finite[m] = d;
-                m += 1;
-            }
-            self.mem.stage_f[start + k] = if m > 0 {
-                lower_median(&finite[..m])
+            self.mem.stage_f[start + k] = if agreed[k] {
+                draws[counts[k] - 1]
             } else {
-                draws[0]
+                let mut finite = [T::ZERO; VOTES];
+                let mut m = 0;
+                for &d in draws.iter().filter(|d| d.is_finite()) {
+                    finite[m] = d;
+                    m += 1;
+                }
+                if m > 0 {
+                    lower_median(&finite[..m])
+                } else {
+                    draws[0]
+                }
             };
         }
         Ok(doubled)
+    }
+
+    /// Draws the staged rows `start + k` for each k of `rows` in order (a row listed
+    /// twice is drawn twice), in batches of min(m, [`CHUNK`]) rows, m =
+    /// [`Auto::history_len`], gathered in the fit's row scratch; row k's draw is appended
+    /// to its draws in the fit's Gram scratch (`gram[k·VOTES + counts[k]]`). Both scratch
+    /// regions are free outside a fit; the objective ignores the seeds (unseeded noise).
+    fn draw_rows<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        start: usize,
+        rows: &[usize],
+        counts: &mut [usize],
+        spent: &mut usize,
+    ) -> Result<(), Error> {
+        let n = self.theta.len();
+        let group = history_len(n).min(CHUNK);
+        debug_assert!(group * n <= self.mem.u.len());
+        let seeds = [0 as NoiseSeed; CHUNK];
+        let mut fresh = [T::ZERO; CHUNK];
+        for batch in rows.chunks(group) {
+            for (r, &k) in batch.iter().enumerate() {
+                let row = &self.mem.stage[(start + k) * n..(start + k + 1) * n];
+                self.mem.u[r * n..(r + 1) * n].copy_from_slice(row);
+            }
+            let m = batch.len();
+            let evaluations = &mut self.st.evaluations;
+            draw(
+                objective,
+                &self.mem.u[..m * n],
+                &seeds[..m],
+                &mut fresh[..m],
+                evaluations,
+                spent,
+            )?;
+            for (&k, &f) in batch.iter().zip(&fresh[..m]) {
+                self.mem.gram[k * VOTES + counts[k]] = f;
+                counts[k] += 1;
+            }
+        }
+        Ok(())
     }
 
     /// A fresh noise group's id.
