@@ -206,6 +206,26 @@ pub fn update<T: Real>(
 }
 
 /// What an update's target axes top/max(|λᵢ|, low) share, for curvatures λᵢ.
+/// A full C ← SCS for S = diag(`factors`), then renormalised to det C = 1 with L and L⁻¹
+/// refreshed (`a`, `v`: n² floats of scratch each): the scale along each coordinate i
+/// grows by factors[i] (n positive, finite floats).
+pub fn stretch<T: Real>(
+    c: &mut [T],
+    l: &mut [T],
+    li: &mut [T],
+    factors: &[T],
+    a: &mut [T],
+    v: &mut [T],
+) {
+    let n = factors.len();
+    for (i, &si) in factors.iter().enumerate() {
+        for (j, &sj) in factors.iter().enumerate() {
+            c[i * n + j] = si * c[i * n + j] * sj;
+        }
+    }
+    refresh(c, l, li, n, a, v);
+}
+
 struct Targets<T> {
     /// maxᵢ |λᵢ|.
     top: T,
@@ -345,5 +365,27 @@ mod tests {
             assert!((l[i] * li[i] - 1.0).abs() < 1e-12);
         }
         assert_eq!(l.iter().copied().fold(0.0, f64::max), l[3]);
+    }
+
+    /// Stretching coordinates 1 and 2 of three by 2 from C = I: C ← SCS = diag(1, 4, 4),
+    /// renormalised to det 1, is diag(4^(−2/3), 4^(1/3), 4^(1/3)); L Lᵀ = C, L⁻¹L = I.
+    #[test]
+    fn stretches_coordinates_and_keeps_det_one() {
+        let n = 3;
+        let (mut c, mut l, mut li) = ([0.0; 9], [0.0; 9], [0.0; 9]);
+        axes(Shape::Full, &[1.0; 3], &mut c, &mut l, &mut li);
+        let (mut a, mut v) = ([0.0; 9], [0.0; 9]);
+        stretch(&mut c, &mut l, &mut li, &[1.0, 2.0, 2.0], &mut a, &mut v);
+        let expected = [libm::pow(4.0, -2.0 / 3.0), libm::cbrt(4.0), libm::cbrt(4.0)];
+        for i in 0..n {
+            for j in 0..n {
+                let want = if i == j { expected[i] } else { 0.0 };
+                assert!((c[i * n + j] - want).abs() < 1e-12, "C = {c:?}");
+                let llt: f64 = (0..n).map(|k| l[i * n + k] * l[j * n + k]).sum();
+                assert!((llt - want).abs() < 1e-12, "L = {l:?}");
+                let p: f64 = (0..n).map(|k| li[i * n + k] * l[k * n + j]).sum();
+                assert!((p - f64::from(u8::from(i == j))).abs() < 1e-12);
+            }
+        }
     }
 }

@@ -21,7 +21,10 @@
 //! * **Samples.** Where fewer than n + 1 remembered points (or half the memory, if
 //!   smaller) lie within z ≤ ρ, the iteration evaluates antithetic pairs θ ± σ√n·b along
 //!   Lb, b the columns of a random orthonormal frame (n pairs, or half the memory's
-//!   worth, and θ on the first iteration). A half that would leave the box stops at
+//!   worth, and θ on the first iteration). A restart's survey of a full model runs
+//!   along the parameter axes instead, each scaled to unit length in whitened
+//!   coordinates, wherever the metric keeps them nearly orthogonal there
+//!   ([`AXIS_COHERENCE`]). A half that would leave the box stops at
 //!   the face on its line (so the pair still fixes the slope and curvature along it,
 //!   and a survey of a quadratic gives the exact model) unless that keeps less than an
 //!   eighth of its length. Such a half, the pairs drawn to explore (below), and every
@@ -40,7 +43,11 @@
 //!   can be determined (n = 15–20), a model whose whitened curvature is still far from
 //!   round after n unconfirmed steps moves C at that weight too
 //!   ([`STALLED_ANISOTROPY`]): a stiff direction the metric has not squashed otherwise
-//!   stalls the run for good. C has the
+//!   stalls the run for good. A survey along the axes that finds some coordinates flat
+//!   (both halves of their pairs tie with f(θ)) and f moving both ways along others
+//!   stretches C along the flat ones ([`FLAT_STRETCH`]): one object of a scene still on
+//!   its plateau while the others are fitted needs wider samples than they can bear.
+//!   C has the
 //!   model's shape: full for n ≤ [`FULL_MODEL_MAX_DIM`], diagonal above (per-coordinate
 //!   scales).
 //! * **Noise.** A stochastic objective ([`Objective::deterministic`] false) — a Monte
@@ -237,6 +244,24 @@ pub const DETERMINED_METRIC_WEIGHT: f64 = 0.3;
 /// alone: at the kinks of BBOB's attractive sector f06 stalled fits read 3–6, and
 /// learning from them there lost the runs that succeed.
 pub const STALLED_ANISOTROPY: f64 = 10.0;
+
+/// Largest |cosine| between two parameter axes in whitened coordinates, between L⁻¹eₐ
+/// and L⁻¹e_b, (C⁻¹)_ab/√((C⁻¹)_aa·(C⁻¹)_bb), at which a restart's survey of a full
+/// model is drawn along the parameter axes rather than a random frame
+/// ([`FLAT_STRETCH`]). Where the metric has learnt a rotated shape (a ridge's stretch
+/// of 10³ along a diagonal) the axes crowd into its stiff directions in whitened
+/// coordinates, and a survey along them would leave the soft ones unsampled.
+pub const AXIS_COHERENCE: f64 = 0.5;
+
+/// The metric's stretch along a coordinate that a survey finds flat: where both halves
+/// of a restart survey's pair along a parameter axis tie with f(θ) while neither half of
+/// some other pair does, f does not depend on that coordinate at this σ but does on
+/// others — an object that does not yet touch its target while others are fitted — and
+/// C's scale along it
+/// grows by this factor (C ← SCS, then det C = 1 again), so that the samples reach
+/// across the plateau there without throwing the fitted coordinates off. A plateau in
+/// every direction widens σ instead.
+pub const FLAT_STRETCH: f64 = 2.0;
 
 /// Draws of f(θ) an unseeded objective's trials are compared with, at most: after a
 /// rejected trial, where θ's draw lies below the robust fit's value at θ, θ is drawn
@@ -1177,6 +1202,18 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // Halves that would leave the box stay on their lines (below) only where that can
         // make the model exact: geometry pairs of a model the memory can determine.
         let keep_on_line = !exploring && memory_determines_model(n);
+        // A restart's survey of a full model is drawn along the parameter axes where the
+        // metric keeps them nearly orthogonal, so that it can tell which coordinates f
+        // ignores at this σ (FLAT_STRETCH); pair p then runs along axis (first_axis + p)
+        // mod n. The first survey keeps the random frame: from a plateau start every
+        // pair ties whatever its direction, and pairs along the axes miss a target that
+        // lies diagonally off more often than pairs along random directions do.
+        let axes = survey && !first && self.axes_orthogonal();
+        let first_axis = if self.st.frame_next >= n {
+            0
+        } else {
+            self.st.frame_next
+        };
         for _ in 0..pairs {
             let k = self.next_direction();
             // Geometry pairs lie at the samples' typical distance σ√n; a pair drawn to
@@ -1187,13 +1224,20 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             } else {
                 sigma * root_n
             };
-            // The direction Lb, in the batch's next row for now.
-            metric::apply(
-                self.shape,
-                self.mem.l,
-                &self.mem.frame[k * n..(k + 1) * n],
-                self.mem.rs,
-            );
+            // The direction Lb, or the axis eₖ scaled to unit whitened length, in the
+            // batch's next row for now.
+            if axes {
+                let length = (0..n).fold(T::ZERO, |s, i| s + self.mem.li[i * n + k].sq());
+                self.mem.rs.fill(T::ZERO);
+                self.mem.rs[k] = T::ONE / length.sqrt();
+            } else {
+                metric::apply(
+                    self.shape,
+                    self.mem.l,
+                    &self.mem.frame[k * n..(k + 1) * n],
+                    self.mem.rs,
+                );
+            }
             for sign in [T::ONE, -T::ONE] {
                 // A half that would leave the box stops where its line does, so that the
                 // pair stays on one line through θ: three points on a line fix the
@@ -1243,6 +1287,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                     self.st.shared = Some((seed_base, group));
                 }
             }
+        }
+        if axes && allowed == rows {
+            self.stretch_flat_axes(first_axis, pairs, usize::from(centre));
         }
         // Remember the points and move θ to the lowest when it beats f(θ).
         self.remember(allowed, group);
@@ -2481,6 +2528,60 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let top = self.mem.lambda[..n].iter().fold(T::ZERO, |t, &e| t.max(e));
         top > T::ZERO
             && top >= T::from_f64(STALLED_ANISOTROPY) * lower_median(&self.mem.lambda[..n])
+    }
+
+    /// Whether a survey may run along the parameter axes: the model is full and no two
+    /// axes have a |cosine| above [`AXIS_COHERENCE`] in whitened coordinates, where
+    /// (L⁻¹eₐ)·(L⁻¹e_b) = (C⁻¹)_ab. O(n³).
+    fn axes_orthogonal(&self) -> bool {
+        let n = self.theta.len();
+        if self.shape != Shape::Full {
+            return false;
+        }
+        let li = &*self.mem.li;
+        let inverse =
+            |a: usize, b: usize| (0..n).fold(T::ZERO, |s, i| s + li[i * n + a] * li[i * n + b]);
+        let bound = T::from_f64(AXIS_COHERENCE * AXIS_COHERENCE);
+        (0..n).all(|a| {
+            let caa = inverse(a, a);
+            (0..a).all(|b| inverse(a, b).sq() <= bound * caa * inverse(b, b))
+        })
+    }
+
+    /// After a survey along the parameter axes (pair p along axis (`first_axis` + p)
+    /// mod n, its halves in the staged rows after the `centre` rows): stretches the
+    /// metric by [`FLAT_STRETCH`] along every axis both of whose halves tie with f(θ),
+    /// where some other pair has neither half tie (f depends on that coordinate both
+    /// ways: a fitted object, not a plateau whose target one half happens to reach).
+    fn stretch_flat_axes(&mut self, first_axis: usize, pairs: usize, centre: usize) {
+        let n = self.theta.len();
+        let Some(v) = self.st.value else {
+            return;
+        };
+        let factors = &mut self.mem.gx[..n];
+        factors.fill(T::ONE);
+        let (mut flat, mut moving) = (0, 0);
+        for p in 0..pairs {
+            let halves = &self.mem.stage_f[centre + 2 * p..centre + 2 * p + 2];
+            if halves.iter().all(|&f| ties_with(f, v)) {
+                factors[(first_axis + p) % n] = T::from_f64(FLAT_STRETCH);
+                flat += 1;
+            } else if !halves.iter().any(|&f| ties_with(f, v)) {
+                moving += 1;
+            }
+        }
+        if flat == 0 || moving == 0 {
+            return;
+        }
+        self.st.metric_changes = self.st.metric_changes.wrapping_add(1);
+        metric::stretch(
+            self.mem.c,
+            self.mem.l,
+            self.mem.li,
+            factors,
+            self.mem.a,
+            self.mem.v,
+        );
     }
 
     /// Moves the sampling metric towards the shape of the prior's curvature H₀ by
