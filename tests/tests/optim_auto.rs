@@ -594,27 +594,7 @@ fn a_stiff_direction_is_learnt_where_no_fit_is_determined() {
         1e6 * z[0] * z[0] + z[1..].iter().map(|v| v * v).sum::<f64>()
     };
     let solved = (0..seeds)
-        .filter(|&seed| {
-            let mut theta = vec![3.0; 20];
-            let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(20)];
-            let options = AutoOptions::default().with_max_evaluations(20_000).unwrap();
-            let mut auto = Auto::new(
-                &mut theta,
-                1.0,
-                &mut buffer,
-                Xoshiro256PlusPlus::seed_from_u64(seed),
-            )
-            .unwrap()
-            .with_options(options);
-            let mut f = discus;
-            // Stop at the target: a solved run's remaining descent proves nothing here.
-            while let Ok(Some(_)) = auto.step(&mut f) {
-                if auto.value().is_some_and(|v| v < 1e-8) {
-                    return true;
-                }
-            }
-            false
-        })
+        .filter(|&seed| reaches_1e8(discus, &[3.0; 20], 20_000, seed))
         .count();
     assert!(solved >= 9, "20-D discus: {solved} of {seeds}");
 }
@@ -634,31 +614,12 @@ fn a_stiff_direction_is_learnt_where_no_fit_is_determined() {
 #[test]
 fn a_flat_pair_of_coordinates_widens_the_metric() {
     let seeds = 200;
+    let cone_and_bowl = |x: &[f64]| {
+        let bowl = (x[2] - 3.5).powi(2) + (x[3] - 3.5).powi(2);
+        1000.0 * (x[0].abs() + x[1].abs()) + bowl.min(1.0)
+    };
     let solved = (0..seeds)
-        .filter(|&seed| {
-            let mut f = |x: &[f64]| {
-                let bowl = (x[2] - 3.5).powi(2) + (x[3] - 3.5).powi(2);
-                1000.0 * (x[0].abs() + x[1].abs()) + bowl.min(1.0)
-            };
-            let mut theta = vec![0.1, -0.1, 0.0, 0.0];
-            let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(4)];
-            let options = AutoOptions::default().with_max_evaluations(4000).unwrap();
-            let mut auto = Auto::new(
-                &mut theta,
-                1.0,
-                &mut buffer,
-                Xoshiro256PlusPlus::seed_from_u64(seed),
-            )
-            .unwrap()
-            .with_options(options);
-            // Stop at the target: the rest of a solved run proves nothing here.
-            while let Ok(Some(_)) = auto.step(&mut f) {
-                if auto.value().is_some_and(|v| v < 1e-8) {
-                    return true;
-                }
-            }
-            false
-        })
+        .filter(|&seed| reaches_1e8(cone_and_bowl, &[0.1, -0.1, 0.0, 0.0], 4000, seed))
         .count();
     assert!(solved >= 13, "cone and bowl: {solved} of {seeds}");
 }
@@ -706,6 +667,28 @@ fn the_vote_batches_its_draws() {
 
 /// How many runs of Auto on `f` from `x0` (σ₀ = 1, no bounds, `budget` evaluations), one
 /// per seed in 0..`seeds`, reach f < 1e-8.
+/// Whether a run of Auto from `x0` with σ₀ = 1 reaches f < 1e-8 within `budget`
+/// evaluations; it stops there, since the rest of a solved run proves nothing.
+fn reaches_1e8(mut f: impl FnMut(&[f64]) -> f64, x0: &[f64], budget: usize, seed: u64) -> bool {
+    let mut theta = x0.to_vec();
+    let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(x0.len())];
+    let options = AutoOptions::default().with_max_evaluations(budget).unwrap();
+    let mut auto = Auto::new(
+        &mut theta,
+        1.0,
+        &mut buffer,
+        Xoshiro256PlusPlus::seed_from_u64(seed),
+    )
+    .unwrap()
+    .with_options(options);
+    while let Ok(Some(_)) = auto.step(&mut f) {
+        if auto.value().is_some_and(|v| v < 1e-8) {
+            return true;
+        }
+    }
+    false
+}
+
 fn runs_below_1e8(f: impl Fn(&[f64]) -> f64, x0: &[f64], budget: usize, seeds: u64) -> usize {
     (0..seeds)
         .filter(|&seed| {
