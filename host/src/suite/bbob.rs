@@ -34,7 +34,7 @@
 
 use std::f64::consts::PI;
 
-use super::problem::{Bounds, Family, Measure, Problem, uniform_start};
+use super::problem::{Bounds, Family, Measure, Observation, Problem, uniform_start};
 use super::random;
 
 /// The functions of the suite, by BBOB number.
@@ -281,7 +281,7 @@ pub fn problem(id: u32, n: usize, instance: u64, budget_per_dim: usize) -> Probl
         family: Family::Bbob,
         n,
         f: Box::new(move |x| b.value(x)),
-        observe: None,
+        observation: Observation::Exact,
         f_opt: 0.0,
         x_opt,
         measure: Measure::Euclidean,

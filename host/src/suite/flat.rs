@@ -4,7 +4,7 @@
 //! information (and no curvature), and its parameter error is measured on x₀…x₄ only.
 //! f* = 0; no bounds; starts uniform in [−4, 4]⁶; σ₀ = [`SIGMA0`].
 
-use super::problem::{Family, Measure, Problem, uniform_start};
+use super::problem::{Family, Measure, Observation, Problem, uniform_start};
 use super::random;
 
 /// Dimension n, including the ignored coordinate.
@@ -37,7 +37,7 @@ pub fn problem(instance: u64, budget_per_dim: usize) -> Problem {
         family: Family::Flat,
         n: DIM,
         f: Box::new(f),
-        observe: None,
+        observation: Observation::Exact,
         f_opt: 0.0,
         x_opt,
         measure: Measure::Leading(seen),

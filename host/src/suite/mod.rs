@@ -29,6 +29,7 @@ pub mod plateau;
 pub mod plot;
 pub mod problem;
 pub mod random;
+pub mod rendered;
 pub mod summary;
 pub mod tasks;
 pub mod trace;
@@ -296,6 +297,13 @@ pub fn catalogue(config: &Config) -> Result<Vec<Problem>> {
             Family::Tasks => {
                 if !dims.is_empty() {
                     out.push(tasks::box2(b)?);
+                }
+            }
+            Family::Rendered => {
+                for &n in &dims {
+                    for i in instances.clone() {
+                        out.push(rendered::discs(n, i, b));
+                    }
                 }
             }
             Family::Noisy => {

@@ -35,7 +35,7 @@
 //! draws fresh noise, as a renderer without a seed does.
 
 use super::bbob;
-use super::problem::{Family, Problem};
+use super::problem::{Family, Observation, Problem};
 use super::random;
 
 /// The functions of the family, by BBOB number.
@@ -138,7 +138,7 @@ pub fn problem(id: u32, n: usize, instance: u64, budget_per_dim: usize) -> Probl
     Problem {
         name,
         family: Family::Noisy,
-        observe: Some(Box::new(observe)),
+        observation: Observation::Unseeded(Box::new(observe)),
         ..bbob::problem(base, n, instance, budget_per_dim)
     }
 }

@@ -20,7 +20,7 @@
 //! f* = 0 exactly on the cell of x*, and the parameter error is ‖round(x) − x*‖;
 //! bounds [−5, 5]ⁿ, starts uniform in [−4, 4]ⁿ, σ₀ = [`INTEGER_SIGMA0`].
 
-use super::problem::{Bounds, Family, Measure, Problem, StartFn, uniform_start};
+use super::problem::{Bounds, Family, Measure, Observation, Problem, StartFn, uniform_start};
 use super::random;
 
 /// Image side, pixels.
@@ -99,12 +99,12 @@ impl Discs {
 }
 
 /// Whether the pixel centre (px, py) lies strictly inside the disc at (cx, cy).
-fn inside(cx: f64, cy: f64, px: f64, py: f64) -> bool {
+pub(super) fn inside(cx: f64, cy: f64, px: f64, py: f64) -> bool {
     (px - cx).powi(2) + (py - cy).powi(2) < RADIUS * RADIUS
 }
 
 /// The pixel index containing coordinate v, clamped into the image (NaN → 0).
-fn pixel_range(v: f64) -> usize {
+pub(super) fn pixel_range(v: f64) -> usize {
     (v.floor().max(0.0) as usize).min(SIDE - 1)
 }
 
@@ -147,7 +147,7 @@ pub fn discs(n: usize, instance: u64, budget_per_dim: usize) -> Problem {
         family: Family::Plateau,
         n,
         f: Box::new(move |x| loss.value(x)),
-        observe: None,
+        observation: Observation::Exact,
         f_opt: 0.0,
         x_opt,
         measure: Measure::UnorderedPairs,
@@ -181,7 +181,7 @@ pub fn integer(n: usize, instance: u64, budget_per_dim: usize) -> Problem {
         family: Family::Integer,
         n,
         f: Box::new(f),
-        observe: None,
+        observation: Observation::Exact,
         f_opt: 0.0,
         x_opt,
         measure: Measure::Rounded,

@@ -14,6 +14,25 @@ pub type Function = Box<dyn Fn(&[f64]) -> f64 + Send + Sync>;
 /// function of its arguments, safe to call from several threads at once).
 pub type Observe = Box<dyn Fn(&[f64], f64, u64) -> f64 + Send + Sync>;
 
+/// A render: the value at x on noise seed s, a pure function of both (safe to call from
+/// several threads at once).
+pub type Render = Box<dyn Fn(&[f64], u64) -> f64 + Send + Sync>;
+
+/// How a method sees f.
+pub enum Observation {
+    /// f itself.
+    Exact,
+    /// f with noise drawn from x and how many times x was evaluated before: a renderer
+    /// whose seed the method cannot pass, so that every call draws fresh noise.
+    Unseeded(Observe),
+    /// A render on the noise seed the method passes (hodr-core's
+    /// [`Objective::evaluate`](hodr_core::Objective::evaluate)), which the problem's
+    /// f is the noiseless reference of: values on one seed compare closely, values on
+    /// different seeds differ by the render's noise. A method that passes no seed
+    /// (CMA-ES, BOBYQA) gets a fresh one at every evaluation.
+    Seeded(Render),
+}
+
 /// The start distribution: θ₀ as a pure function of a run seed.
 pub type StartFn = Box<dyn Fn(u64) -> Vec<f64> + Send + Sync>;
 
@@ -32,17 +51,21 @@ pub enum Family {
     Tasks,
     /// The sphere and Rosenbrock's function under BBOB's noise models, [`super::noisy`].
     Noisy,
+    /// The disc plateaus rendered by Monte Carlo on the method's noise seed,
+    /// [`super::rendered`].
+    Rendered,
 }
 
 impl Family {
     /// Every family, in run order.
-    pub const ALL: [Family; 6] = [
+    pub const ALL: [Family; 7] = [
         Family::Bbob,
         Family::Plateau,
         Family::Integer,
         Family::Flat,
         Family::Tasks,
         Family::Noisy,
+        Family::Rendered,
     ];
 
     /// The name on the command line.
@@ -54,6 +77,7 @@ impl Family {
             Family::Flat => "flat",
             Family::Tasks => "tasks",
             Family::Noisy => "noisy",
+            Family::Rendered => "rendered",
         }
     }
 
@@ -78,7 +102,7 @@ impl Family {
     pub fn dims(self) -> &'static [usize] {
         match self {
             Family::Bbob => &[2, 5, 10, 20],
-            Family::Plateau => &[2, 4, 8],
+            Family::Plateau | Family::Rendered => &[2, 4, 8],
             Family::Integer => &[2, 5, 10],
             Family::Flat => &[super::flat::DIM],
             Family::Tasks => &[2],
@@ -206,8 +230,8 @@ pub struct Problem {
     pub n: usize,
     /// f, noiseless: what runs are judged on.
     pub f: Function,
-    /// What a method sees instead of f(x), for a noisy problem; `None`: f itself.
-    pub observe: Option<Observe>,
+    /// How a method sees f.
+    pub observation: Observation,
     /// f* = min f, the value runs are judged against (f − f*).
     pub f_opt: f64,
     /// A minimiser x*, for the parameter error.
@@ -230,16 +254,39 @@ impl Problem {
         (self.f)(x)
     }
 
-    /// What a method sees at x on its `repeat`-th evaluation there (0 for the first):
-    /// f(x), or f(x) with the problem's noise.
+    /// What a method that passes no noise seed sees at x on its `repeat`-th evaluation
+    /// there (0 for the first): f(x), f(x) with the problem's noise, or a render of x
+    /// on a seed drawn from x and `repeat`.
     pub fn observe(&self, x: &[f64], repeat: u64) -> f64 {
-        let f = self.value(x);
-        self.observe.as_ref().map_or(f, |o| o(x, f, repeat))
+        match &self.observation {
+            Observation::Exact => self.value(x),
+            Observation::Unseeded(observe) => observe(x, self.value(x), repeat),
+            Observation::Seeded(render) => {
+                let bits: Vec<u64> = x.iter().map(|v| v.to_bits()).collect();
+                let point = random::seed_of("x", &bits);
+                render(x, random::seed_of("fresh", &[point, repeat]))
+            }
+        }
+    }
+
+    /// What a method sees at x on noise seed `seed` on its `repeat`-th evaluation there:
+    /// a render on that seed where the problem is [`Observation::Seeded`], otherwise
+    /// [`Problem::observe`] (the seed is ignored).
+    pub fn observe_on(&self, x: &[f64], seed: u64, repeat: u64) -> f64 {
+        match &self.observation {
+            Observation::Seeded(render) => render(x, seed),
+            _ => self.observe(x, repeat),
+        }
     }
 
     /// Whether the problem is noisy (a method sees other values than f's).
     pub fn is_noisy(&self) -> bool {
-        self.observe.is_some()
+        !matches!(self.observation, Observation::Exact)
+    }
+
+    /// Whether the problem renders on the method's noise seed ([`Observation::Seeded`]).
+    pub fn is_seeded(&self) -> bool {
+        matches!(self.observation, Observation::Seeded(_))
     }
 
     /// The parameter error of x ([`Problem::measure`]).

@@ -11,7 +11,7 @@ use anyhow::{Context, Result};
 use hodr_core::Objective;
 use hodr_raster::RasterObjective;
 
-use super::problem::{Bounds, Family, Measure, Problem};
+use super::problem::{Bounds, Family, Measure, Observation, Problem};
 
 /// The image side in the task's parameter units (θ is in units of size/8 px).
 const EXTENT: f64 = 8.0;
@@ -53,7 +53,7 @@ pub fn box2(budget_per_dim: usize) -> Result<Problem> {
         family: Family::Tasks,
         n,
         f: Box::new(f),
-        observe: None,
+        observation: Observation::Exact,
         f_opt,
         x_opt,
         measure: Measure::Euclidean,

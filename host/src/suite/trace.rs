@@ -102,6 +102,14 @@ impl Clamped<'_> {
         self.problem.observe(&y, repeat)
     }
 
+    /// What the method sees at x clamped into the bounds on noise seed `seed`
+    /// ([`Problem::observe_on`]).
+    pub fn value_on(&self, x: &[f64], seed: NoiseSeed) -> f64 {
+        let y = self.point(x);
+        let repeat = self.next_repeat(&y);
+        self.problem.observe_on(&y, seed, repeat)
+    }
+
     /// How many times the run evaluated the clamped point y before, counting this
     /// evaluation (0 on a problem without noise, which does not count).
     fn next_repeat(&self, y: &[f64]) -> u64 {
@@ -178,6 +186,13 @@ impl<'p> Counter<'p> {
         f
     }
 
+    /// Evaluates and counts x on noise seed `seed` ([`Clamped::value_on`]).
+    pub fn evaluate_on(&mut self, x: &[f64], seed: NoiseSeed) -> f64 {
+        let f = self.clamped().value_on(x, seed);
+        self.record(x, f);
+        f
+    }
+
     /// Evaluations counted so far.
     pub fn count(&self) -> usize {
         self.count
@@ -202,34 +217,37 @@ impl<'p> Counter<'p> {
 }
 
 /// hodr-core's objective interface: single points and batches, each batch evaluated in
-/// parallel (rayon) and counted in batch order. f is a function of θ alone.
+/// parallel (rayon) and counted in batch order. A rendered problem
+/// ([`Observation::Seeded`](super::problem::Observation::Seeded)) renders each point on
+/// the seed it comes with and says it is not deterministic; every other problem is a
+/// function of θ alone (an unseeded noisy one draws its noise from θ and the repeat).
 impl Objective<f64> for Counter<'_> {
-    fn evaluate(&mut self, theta: &[f64], _seed: NoiseSeed) -> f64 {
-        Counter::evaluate(self, theta)
+    fn evaluate(&mut self, theta: &[f64], seed: NoiseSeed) -> f64 {
+        Counter::evaluate_on(self, theta, seed)
     }
 
     fn evaluate_batch(&mut self, batch: &Batch<'_, f64>, out: &mut [f64]) {
         // Repeats are numbered in the batch's order, so that two rows at one point draw
         // the same noise whichever thread comes first.
         let f = self.clamped();
-        let points: Vec<(Vec<f64>, u64)> = (0..out.len())
+        let points: Vec<(Vec<f64>, u64, NoiseSeed)> = (0..out.len())
             .map(|k| {
                 let y = f.point(batch.point(k));
                 let repeat = f.next_repeat(&y);
-                (y, repeat)
+                (y, repeat, batch.seed(k))
             })
             .collect();
         let problem = self.problem;
         out.par_iter_mut()
             .zip(&points)
-            .for_each(|(v, (y, repeat))| *v = problem.observe(y, *repeat));
+            .for_each(|(v, (y, repeat, seed))| *v = problem.observe_on(y, *seed, *repeat));
         for (k, &v) in out.iter().enumerate() {
             self.record(batch.point(k), v);
         }
     }
 
     fn deterministic(&self) -> bool {
-        true
+        !self.problem.is_seeded()
     }
 }
 
