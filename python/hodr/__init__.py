@@ -244,7 +244,7 @@ def minimize(
         value; returning True stops the run.
     options : dict, optional
         Auto's options; none is needed. ``tolerance`` (float > 0): converged once sigma
-        falls below tolerance * sigma0 (default 1e-9, or 1e-4 with ``noisy``);
+        falls below tolerance * sigma0 (default 1e-9, or 1e-3 with ``noisy``);
         ``patience`` (int >= 1): iterations without a lower value before a restart
         (default 20 + 10n); ``restarts`` (int >= 0): restarts in a row without a gain
         before the run ends (default 8); ``non_finite``: ``"worst"`` (default: NaN or

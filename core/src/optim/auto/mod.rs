@@ -209,8 +209,9 @@ pub const TOLERANCE: f64 = 1e-9;
 /// σ/σ₀ at which a run on a noisy objective converges by default. Far below its scale a
 /// Monte Carlo render's differences on one seed are its own grain — the noise that a
 /// common seed does not cancel, a mesh's facets — which a model at that width descends
-/// step by step, each a spurious gain that keeps the run from restarting wider.
-pub const NOISY_TOLERANCE: f64 = 1e-4;
+/// step by step, each a spurious gain that keeps the run from restarting wider: the
+/// evaluations spent there are lost to the restarts that look farther afield.
+pub const NOISY_TOLERANCE: f64 = 1e-3;
 
 /// σ's growth after a step to the trust region's boundary that lowered f by less than a
 /// tenth of the decrease its model predicted: 2^¼, so that four such steps double σ as
@@ -1427,7 +1428,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let length = norm(self.mem.s);
         // A model that claims a minimum near θ must have seen θ's surroundings in
         // enough directions before σ shrinks on its word.
-        let validated = self.count_within(T::from_f64(REACH)) > 2 * nearby_needed(n) - 2;
+        let validated = self.count_around(T::from_f64(REACH)) > 2 * nearby_needed(n) - 2;
         if predicted <= T::ZERO || !predicted.is_finite() || length <= T::from_f64(1e-3) * radius {
             if validated {
                 self.st.sigma = sigma * T::HALF;
@@ -2236,12 +2237,30 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             / (self.st.sigma * T::from_usize(n).sqrt())
     }
 
+    /// Remembered points within z.
     fn count_within(&mut self, z: T) -> usize {
         self.refresh_reach();
         self.mem.zs[..self.st.count]
             .iter()
             .filter(|&&r| r <= z)
             .count()
+    }
+
+    /// Remembered points within z that show the model θ's surroundings: on a noisy
+    /// objective θ itself counts once, since it is drawn again beside every iteration's
+    /// samples and those draws, each on a seed of its own, lie at θ. (Counted, they let
+    /// σ shrink on a model that has seen no other point: on a local minimum in the box's
+    /// corner, a run ended after a few evaluations.)
+    fn count_around(&mut self, z: T) -> usize {
+        let within = self.count_within(z);
+        if !self.st.noisy {
+            return within;
+        }
+        let at_theta = self.mem.zs[..self.st.count]
+            .iter()
+            .filter(|&&r| r == T::ZERO)
+            .count();
+        within - at_theta.saturating_sub(1)
     }
 
     /// Remembered points within z other than θ, and how many of them tie with f(θ);
