@@ -24,7 +24,9 @@
 //!   worth, and θ on the first iteration). A restart's survey of a full model runs
 //!   along the parameter axes instead, each scaled to unit length in whitened
 //!   coordinates, wherever the metric keeps them nearly orthogonal there
-//!   ([`AXIS_COHERENCE`]). A half that would leave the box stops at
+//!   ([`AXIS_COHERENCE`]) — except a noisy objective's from θ on a face of the box,
+//!   where pairs along the axes normal to it fold onto one point. A half that would
+//!   leave the box stops at
 //!   the face on its line (so the pair still fixes the slope and curvature along it,
 //!   and a survey of a quadratic gives the exact model) unless that keeps less than an
 //!   eighth of its length. Such a half, the pairs drawn to explore (below), and every
@@ -1208,8 +1210,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // ignores at this σ (FLAT_STRETCH); pair p then runs along axis (first_axis + p)
         // mod n. The first survey keeps the random frame: from a plateau start every
         // pair ties whatever its direction, and pairs along the axes miss a target that
-        // lies diagonally off more often than pairs along random directions do.
-        let axes = survey && !first && self.axes_orthogonal();
+        // lies diagonally off more often than pairs along random directions do. Nor on a
+        // noisy objective from θ on a face of the box: a pair along an axis normal to
+        // the face folds onto one point inside (from a corner, every pair does), which
+        // a deterministic objective's ties still read as flat or not, but a noisy one's
+        // values never tie, so the fold only loses a direction.
+        let axes = survey && !first && !(self.st.noisy && self.on_face()) && self.axes_orthogonal();
         let first_axis = if self.st.frame_next >= n {
             0
         } else {
