@@ -131,8 +131,7 @@ pub fn problem(id: u32, n: usize, instance: u64, budget_per_dim: usize) -> Probl
     let salt = random::seed_of(&name, &[]);
     let noise = Noise::of(id, n);
     let observe = move |x: &[f64], value: f64, repeat: u64| {
-        let bits: Vec<u64> = x.iter().map(|v| v.to_bits()).collect();
-        let point = random::seed_of("x", &bits);
+        let point = random::point_seed(x);
         noise.apply(value, random::seed_of("noise", &[salt, point, repeat]))
     };
     Problem {

@@ -261,11 +261,10 @@ impl Problem {
         match &self.observation {
             Observation::Exact => self.value(x),
             Observation::Unseeded(observe) => observe(x, self.value(x), repeat),
-            Observation::Seeded(render) => {
-                let bits: Vec<u64> = x.iter().map(|v| v.to_bits()).collect();
-                let point = random::seed_of("x", &bits);
-                render(x, random::seed_of("fresh", &[point, repeat]))
-            }
+            Observation::Seeded(render) => render(
+                x,
+                random::seed_of("fresh", &[random::point_seed(x), repeat]),
+            ),
         }
     }
 

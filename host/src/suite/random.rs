@@ -29,6 +29,13 @@ pub fn seed_of(label: &str, parts: &[u64]) -> u64 {
     h
 }
 
+/// A seed from the bits of a point x: equal points, and only they (up to hash
+/// collisions), give equal seeds.
+pub fn point_seed(x: &[f64]) -> u64 {
+    let bits: Vec<u64> = x.iter().map(|v| v.to_bits()).collect();
+    seed_of("x", &bits)
+}
+
 /// A generator for `seed`.
 pub fn rng(seed: u64) -> Xoshiro256PlusPlus {
     Xoshiro256PlusPlus::seed_from_u64(seed)

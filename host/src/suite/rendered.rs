@@ -65,24 +65,32 @@ struct Scene {
 impl Scene {
     /// (1/SIDE²)·Σ_p (c_p − t_p)², c_p from `count` points per pixel ([`coverage`]): only
     /// pixels in the discs' bounding boxes can be covered, so the sum starts from the
-    /// empty image's and corrects those pixels, each once.
+    /// empty image's and corrects those pixels, each once — in the first disc's box that
+    /// holds it. Allocates nothing.
     fn loss(
         &self,
         theta: &[f64],
         count: usize,
         sample: impl Fn(usize, usize) -> (f64, f64) + Copy,
     ) -> f64 {
-        let mut seen = vec![false; SIDE * SIDE];
-        let mut sum = self.base;
-        for c in theta.chunks_exact(2) {
+        let bounding = |c: &[f64]| {
             let (x0, x1) = (pixel_range(c[0] - RADIUS), pixel_range(c[0] + RADIUS));
             let (y0, y1) = (pixel_range(c[1] - RADIUS), pixel_range(c[1] + RADIUS));
-            for row in y0..=y1 {
-                for col in x0..=x1 {
-                    let p = row * SIDE + col;
-                    if std::mem::replace(&mut seen[p], true) {
+            (x0..=x1, y0..=y1)
+        };
+        let mut sum = self.base;
+        for (k, c) in theta.chunks_exact(2).enumerate() {
+            let (cols, rows) = bounding(c);
+            for row in rows {
+                for col in cols.clone() {
+                    let counted = theta[..2 * k].chunks_exact(2).any(|e| {
+                        let (cols, rows) = bounding(e);
+                        cols.contains(&col) && rows.contains(&row)
+                    });
+                    if counted {
                         continue;
                     }
+                    let p = row * SIDE + col;
                     let t = self.target[p];
                     let c = coverage(theta, p, count, sample);
                     sum += (c - t) * (c - t) - t * t;
