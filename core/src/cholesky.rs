@@ -2,7 +2,7 @@
 //! and with a growing diagonal shift, for Newton steps on estimated (noisy, possibly
 //! indefinite) Hessians.
 
-use crate::optim::vector::{axpy, dot_lanes};
+use crate::optim::vector::{axpy, dot_lanes, dot_lanes_many};
 use crate::real::Real;
 
 /// Most shifts tried before giving up; λ grows ×10 per try, so 40 tries span 40 decades.
@@ -64,19 +64,50 @@ fn factor<T: Real>(a: &[T], l: &mut [T], n: usize, lambda: T) -> bool {
 /// one is ignored) and overwrites it with L. False if a pivot is not positive and finite
 /// (then `a` holds no meaningful values).
 pub(crate) fn factor_in_place<T: Real>(a: &mut [T], n: usize, lambda: T) -> bool {
-    for i in 0..n {
-        let (done, rest) = a.split_at_mut(i * n);
-        let row = &mut rest[..=i];
-        for j in 0..i {
+    // Rows are taken BLOCK at a time: their entries left of the block need the same
+    // finished rows of L, so each of those is read once for the whole block
+    // ([`dot_lanes_many`]); every entry is computed exactly as row by row.
+    let mut start = 0;
+    while start + BLOCK <= n {
+        let (done, rest) = a.split_at_mut(start * n);
+        for j in 0..start {
             let lj = &done[j * n..j * n + j + 1];
-            row[j] = (row[j] - dot_lanes(&row[..j], &lj[..j])) / lj[j];
+            let dots = {
+                let rows: [&[T]; BLOCK] = core::array::from_fn(|b| &rest[b * n..b * n + j]);
+                dot_lanes_many(rows, lj, j)
+            };
+            for (b, d) in dots.into_iter().enumerate() {
+                let x = &mut rest[b * n + j];
+                *x = (*x - d) / lj[j];
+            }
         }
-        let s = row[i] + lambda - dot_lanes(&row[..i], &row[..i]);
-        if !(s > T::ZERO && s.is_finite()) {
-            return false;
+        for i in start..start + BLOCK {
+            if !finish_row(a, n, i, start, lambda) {
+                return false;
+            }
         }
-        row[i] = s.sqrt();
+        start += BLOCK;
     }
+    (start..n).all(|i| finish_row(a, n, i, 0, lambda))
+}
+
+/// Rows factored together by [`factor_in_place`].
+const BLOCK: usize = 4;
+
+/// Row i of [`factor_in_place`]'s L from entry `from` on (those before it done), and
+/// its pivot; false if the pivot is not positive and finite.
+fn finish_row<T: Real>(a: &mut [T], n: usize, i: usize, from: usize, lambda: T) -> bool {
+    let (done, rest) = a.split_at_mut(i * n);
+    let row = &mut rest[..=i];
+    for j in from..i {
+        let lj = &done[j * n..j * n + j + 1];
+        row[j] = (row[j] - dot_lanes(&row[..j], &lj[..j])) / lj[j];
+    }
+    let s = row[i] + lambda - dot_lanes(&row[..i], &row[..i]);
+    if !(s > T::ZERO && s.is_finite()) {
+        return false;
+    }
+    row[i] = s.sqrt();
     true
 }
 
@@ -108,6 +139,7 @@ pub(crate) fn backward<T: Real>(l: &[T], n: usize, x: &mut [T]) {
 /// Solves LX = B in place for the n×k row-major `x` (B on entry): [`forward`] for k
 /// right-hand sides at once, each row of L read once and each update a row operation
 /// on k contiguous values.
+#[cfg(feature = "auto")]
 pub(crate) fn forward_many<T: Real>(l: &[T], n: usize, x: &mut [T], k: usize) {
     for i in 0..n {
         let row = &l[i * n..i * n + i + 1];
@@ -122,11 +154,39 @@ pub(crate) fn forward_many<T: Real>(l: &[T], n: usize, x: &mut [T], k: usize) {
     }
 }
 
-#[cfg(all(test, feature = "hessian"))]
+#[cfg(test)]
 mod tests {
     use super::*;
 
+    /// The factor of an SPD matrix whose size is not a multiple of the row block
+    /// reproduces it (LLᵀ = A), so the blocked rows and the rows after them are right.
     #[test]
+    fn factors_past_whole_blocks() {
+        const N: usize = 11;
+        // A = BBᵀ + I for a fixed B.
+        let b: [f64; N * N] = core::array::from_fn(|k| libm::sin(k as f64 * 0.37 + 0.1));
+        let mut a = [0.0; N * N];
+        for i in 0..N {
+            for j in 0..N {
+                let s: f64 = (0..N).map(|k| b[i * N + k] * b[j * N + k]).sum();
+                a[i * N + j] = s + if i == j { 1.0 } else { 0.0 };
+            }
+        }
+        let mut l = a;
+        assert!(factor_in_place(&mut l, N, 0.0));
+        for i in 0..N {
+            for j in 0..=i {
+                let s: f64 = (0..=j).map(|k| l[i * N + k] * l[j * N + k]).sum();
+                assert!((s - a[i * N + j]).abs() < 1e-12 * 20.0, "({i}, {j})");
+            }
+        }
+        let mut indefinite = a;
+        indefinite[5 * N + 5] = -100.0;
+        assert!(!factor_in_place(&mut indefinite, N, 0.0));
+    }
+
+    #[test]
+    #[cfg(feature = "hessian")]
     fn solves_spd_and_shifts_indefinite() {
         let a = [4.0, 1.0, 1.0, 3.0];
         let mut l = [0.0; 4];

@@ -17,19 +17,40 @@ pub(crate) fn dot<T: Real>(x: &[T], y: &[T]) -> T {
 /// kernels (Auto's model fit); its rounding differs from [`dot`]'s.
 #[inline]
 pub(crate) fn dot_lanes<T: Real>(x: &[T], y: &[T]) -> T {
-    let mut lanes = [T::ZERO; 4];
-    let (xs, ys) = (x.chunks_exact(4), y.chunks_exact(4));
-    let tail = xs
-        .remainder()
-        .iter()
-        .zip(ys.remainder())
-        .fold(T::ZERO, |s, (&a, &b)| s + a * b);
-    for (a, b) in xs.zip(ys) {
-        for k in 0..4 {
-            lanes[k] += a[k] * b[k];
+    let [d] = dot_lanes_many([x], y, x.len().min(y.len()));
+    d
+}
+
+/// [`dot_lanes`] of the first `len` elements of each of R vectors `xs` with `y`'s, in
+/// one pass over y. Each product is summed in the same lanes and order whatever R, so
+/// its result does not depend on the block it is computed in, while each element of y
+/// is loaded once for R products instead of R times.
+#[inline]
+pub(crate) fn dot_lanes_many<T: Real, const R: usize>(
+    xs: [&[T]; R],
+    y: &[T],
+    len: usize,
+) -> [T; R] {
+    let mut lanes = [[T::ZERO; 4]; R];
+    let full = len - len % 4;
+    for c in (0..full).step_by(4) {
+        let b = &y[c..c + 4];
+        for (acc, x) in lanes.iter_mut().zip(xs.iter()) {
+            let a = &x[c..c + 4];
+            for k in 0..4 {
+                acc[k] += a[k] * b[k];
+            }
         }
     }
-    (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
+    let mut out = [T::ZERO; R];
+    for ((o, acc), x) in out.iter_mut().zip(lanes.iter()).zip(xs.iter()) {
+        let tail = x[full..len]
+            .iter()
+            .zip(&y[full..len])
+            .fold(T::ZERO, |s, (&a, &b)| s + a * b);
+        *o = (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail;
+    }
+    out
 }
 
 /// ‖x‖₂, scaled by max |xᵢ| so that it neither overflows nor underflows.
@@ -131,5 +152,22 @@ mod tests {
         }
         assert!((norm(&[3e200f64, 4e200]) / 5e200 - 1.0).abs() < 1e-15);
         assert!((norm(&[3e-200f64, 4e-200]) / 5e-200 - 1.0).abs() < 1e-15);
+    }
+
+    /// A product computed in a block is the one computed alone, bit for bit, at every
+    /// length (whole lanes, a tail, both), and matches the plain sum to rounding.
+    #[test]
+    fn products_in_a_block_are_the_products_alone() {
+        let x: [f64; 23] = core::array::from_fn(|i| libm::sin(i as f64 * 1.7) * 1e3);
+        let rows: [[f64; 23]; 3] =
+            core::array::from_fn(|r| core::array::from_fn(|i| libm::cos((i * (r + 2)) as f64)));
+        for len in [0, 1, 3, 4, 7, 8, 21, 23] {
+            let block = dot_lanes_many([&rows[0][..], &rows[1][..], &rows[2][..]], &x, len);
+            for (r, row) in rows.iter().enumerate() {
+                let alone = dot_lanes(&row[..len], &x[..len]);
+                assert_eq!(block[r].to_bits(), alone.to_bits(), "len {len}, row {r}");
+                assert!((alone - dot(&row[..len], &x[..len])).abs() <= 1e-9 * 2e4);
+            }
+        }
     }
 }

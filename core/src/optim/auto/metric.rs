@@ -16,6 +16,7 @@
 
 use super::eigen;
 use super::model::Shape;
+use crate::optim::vector::axpy;
 use crate::real::Real;
 
 /// Fraction of the way C moves towards the target of one update in dimension n:
@@ -79,6 +80,26 @@ pub fn apply<T: Real>(shape: Shape, m: &[T], d: &[T], out: &mut [T]) {
     }
 }
 
+/// [`apply`] for many vectors: out = Md given the transpose `mt` = Mᵀ of a full M
+/// (n×n row-major), accumulated column by column, so that each entry is the same sum in
+/// the same order as [`apply`]'s, where the loop over M's contiguous columns vectorises.
+pub fn apply_by_columns<T: Real>(mt: &[T], d: &[T], out: &mut [T]) {
+    let n = d.len();
+    out[..n].fill(T::ZERO);
+    for (&dj, column) in d.iter().zip(mt.chunks_exact(n)) {
+        axpy(dj, column, &mut out[..n]);
+    }
+}
+
+/// out = Mᵀ for the n×n row-major M.
+pub fn transpose<T: Real>(m: &[T], n: usize, out: &mut [T]) {
+    for i in 0..n {
+        for j in 0..n {
+            out[j * n + i] = m[i * n + j];
+        }
+    }
+}
+
 /// out = Mᵀd for M = L or L⁻¹ (`m`).
 pub fn apply_transposed<T: Real>(shape: Shape, m: &[T], d: &[T], out: &mut [T]) {
     let n = d.len();
@@ -127,16 +148,20 @@ fn row_times_difference<T: Real>(a: &[T], x: &[T], y: &[T]) -> T {
 pub fn congruence<T: Real>(shape: Shape, l: &[T], h: &[T], n: usize, tmp: &mut [T], out: &mut [T]) {
     match shape {
         Shape::Full => {
-            // tmp = H L
+            // tmp = H L and out = Lᵀ tmp, each row accumulated from rows of the right
+            // factor (contiguous), every entry summed over k in order.
             for i in 0..n {
-                for j in 0..n {
-                    tmp[i * n + j] = (0..n).fold(T::ZERO, |s, k| s + h[i * n + k] * l[k * n + j]);
+                let row = &mut tmp[i * n..(i + 1) * n];
+                row.fill(T::ZERO);
+                for k in 0..n {
+                    axpy(h[i * n + k], &l[k * n..(k + 1) * n], row);
                 }
             }
-            // out = Lᵀ tmp
             for i in 0..n {
-                for j in 0..n {
-                    out[i * n + j] = (0..n).fold(T::ZERO, |s, k| s + l[k * n + i] * tmp[k * n + j]);
+                let row = &mut out[i * n..(i + 1) * n];
+                row.fill(T::ZERO);
+                for k in 0..n {
+                    axpy(l[k * n + i], &tmp[k * n..(k + 1) * n], row);
                 }
             }
         }

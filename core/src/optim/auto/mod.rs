@@ -2345,6 +2345,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let reach = T::from_f64(REACH);
         let mut m = 0;
         let root_n = T::from_usize(n).sqrt();
+        let full = shape == Shape::Full;
+        if full {
+            // L⁻¹ and H by columns, for the products below (the same sums as by rows).
+            metric::transpose(self.mem.li, n, self.mem.a);
+            metric::transpose(self.mem.h, n, self.mem.v);
+        }
         for k in 0..self.st.count {
             // Row m of u = L⁻¹(x − θ)/σ, kept if z = ‖u‖/√n is within the limit.
             let x = &self.mem.xs[k * n..(k + 1) * n];
@@ -2352,7 +2358,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 *ri = (xi - ti) / sigma;
             }
             let row = &mut self.mem.u[m * n..(m + 1) * n];
-            metric::apply(shape, self.mem.li, self.mem.rs, row);
+            if full {
+                metric::apply_by_columns(self.mem.a, self.mem.rs, row);
+            } else {
+                metric::apply(shape, self.mem.li, self.mem.rs, row);
+            }
             let z = norm(row) / root_n;
             if z > limit {
                 continue;
@@ -2362,7 +2372,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 continue;
             }
             let sw = (-(z / reach).sq() / T::from_f64(4.0)).exp() * credit.sqrt();
-            let prior = dot(self.mem.g, row) + shape.half_quadratic(self.mem.h, row);
+            let quadratic = if full {
+                Shape::half_quadratic_by_columns(self.mem.v, row, self.mem.lambda)
+            } else {
+                shape.half_quadratic(self.mem.h, row)
+            };
+            let prior = dot(self.mem.g, row) + quadratic;
             self.mem.sw[m] = sw;
             self.mem.gid[m] = self.mem.gs[k];
             self.mem.r[m] = sw * ((self.mem.fs[k] - value) / scale - prior);

@@ -45,8 +45,9 @@
 //!   accumulate from fit to fit and the carried model diverges. H moves by
 //!   (1/(2λ_H)) Σᵢ √wᵢ αᵢ (‖uᵢ‖² + ω uᵢ²) (elementwise square), g by (1/λ_H) Σᵢ √wᵢ αᵢ uᵢ.
 
+use super::metric;
 use crate::cholesky;
-use crate::optim::vector::{axpy, dot, dot_lanes};
+use crate::optim::vector::{axpy, dot, dot_lanes_many};
 use crate::real::Real;
 
 /// Which Hessian the model has.
@@ -116,6 +117,18 @@ impl Shape {
         T::HALF * s
     }
 
+    /// ½uᵀHu of a full H given its transpose `ht`, with n floats of scratch `rows`: the
+    /// same sums in the same order as [`Shape::half_quadratic`]'s, H·u accumulated by
+    /// H's contiguous columns ([`metric::apply_by_columns`]).
+    pub(super) fn half_quadratic_by_columns<T: Real>(ht: &[T], u: &[T], rows: &mut [T]) -> T {
+        metric::apply_by_columns(ht, u, rows);
+        let s = u
+            .iter()
+            .zip(rows.iter())
+            .fold(T::ZERO, |s, (&ui, &ri)| s + ui * ri);
+        T::HALF * s
+    }
+
     /// y ← H·x.
     pub(super) fn apply<T: Real>(self, h: &[T], x: &[T], y: &mut [T]) {
         let n = x.len();
@@ -179,27 +192,73 @@ fn deviation_share(n: usize) -> f64 {
 /// (Σⱼ (aⱼbⱼ)², Σⱼ aⱼbⱼ), summed in four interleaved partial sums so that the compiler
 /// can vectorise the loop (a single running sum fixes the order of every addition).
 fn products<T: Real>(a: &[T], b: &[T]) -> (T, T) {
-    let mut quad = [T::ZERO; 4];
-    let mut lin = [T::ZERO; 4];
-    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
-    let (ra, rb) = (ca.remainder(), cb.remainder());
-    for (x, y) in ca.zip(cb) {
-        for lane in 0..4 {
-            let p = x[lane] * y[lane];
-            quad[lane] += p * p;
-            lin[lane] += p;
+    let [pair] = products_many([a], b);
+    pair
+}
+
+/// [`products`] of each of R vectors `xs` (at least as long as `y`) with `y`, in one
+/// pass over y. Each pair is summed in the same lanes and order whatever R, so a pair's
+/// result does not depend on the block it is computed in, while each element of y is
+/// loaded once per block.
+fn products_many<T: Real, const R: usize>(xs: [&[T]; R], y: &[T]) -> [(T, T); R] {
+    let n = y.len();
+    let full = n - n % 4;
+    let mut quad = [[T::ZERO; 4]; R];
+    let mut lin = [[T::ZERO; 4]; R];
+    for c in (0..full).step_by(4) {
+        let b = &y[c..c + 4];
+        for r in 0..R {
+            let a = &xs[r][c..c + 4];
+            for lane in 0..4 {
+                let p = a[lane] * b[lane];
+                quad[r][lane] += p * p;
+                lin[r][lane] += p;
+            }
         }
     }
-    for (lane, (&x, &y)) in ra.iter().zip(rb).enumerate() {
-        let p = x * y;
-        quad[lane] += p * p;
-        lin[lane] += p;
-    }
-    (
-        (quad[0] + quad[1]) + (quad[2] + quad[3]),
-        (lin[0] + lin[1]) + (lin[2] + lin[3]),
-    )
+    core::array::from_fn(|r| {
+        let (mut q, mut l) = (quad[r], lin[r]);
+        for (lane, (&x, &yy)) in xs[r][full..n].iter().zip(&y[full..n]).enumerate() {
+            let p = x * yy;
+            q[lane] += p * p;
+            l[lane] += p;
+        }
+        ((q[0] + q[1]) + (q[2] + q[3]), (l[0] + l[1]) + (l[2] + l[3]))
+    })
 }
+
+/// 4ψ(uᵢ)·ψ(u_k) for the R points k = k0, …, k0 + R − 1 (rows of `u`, n floats each;
+/// `norms` their ‖u‖²), in one pass over uᵢ: (uᵢ·u_k)² + ‖uᵢ‖²‖u_k‖² for a full
+/// Hessian, ωΣⱼ(uᵢⱼu_kⱼ)² + ‖uᵢ‖²‖u_k‖² + 4uᵢ·u_k for a diagonal one (`share` = ω).
+fn kernel_block<T: Real, const R: usize>(
+    shape: Shape,
+    share: T,
+    u: &[T],
+    norms: &[T],
+    n: usize,
+    i: usize,
+    k0: usize,
+) -> [T; R] {
+    let ui = &u[i * n..(i + 1) * n];
+    let rows: [&[T]; R] = core::array::from_fn(|b| &u[(k0 + b) * n..(k0 + b + 1) * n]);
+    let common = |b: usize| norms[i] * norms[k0 + b];
+    match shape {
+        Shape::Full => {
+            let dots = dot_lanes_many(rows, ui, n);
+            core::array::from_fn(|b| dots[b].sq() + common(b))
+        }
+        Shape::Diagonal => {
+            let pairs = products_many(rows, ui);
+            core::array::from_fn(|b| {
+                let (quad, lin) = pairs[b];
+                quad * share + common(b) + T::from_f64(4.0) * lin
+            })
+        }
+    }
+}
+
+/// Points whose Gram entries with one point [`fit`] computes in one pass.
+const GRAM_BLOCK: usize = 4;
 
 /// Scratch of [`fit`] for p = [`Shape::free_columns`]: `gram` m² floats, `kp` mp,
 /// `schur` p², `beta` p.
@@ -270,23 +329,36 @@ pub(super) fn fit<T: Real>(
         *norm = products(&u[i * n..(i + 1) * n], &u[i * n..(i + 1) * n]).1;
     }
     for i in 0..m {
-        let ui = &u[i * n..(i + 1) * n];
-        for k in 0..=i {
-            let uk = &u[k * n..(k + 1) * n];
-            let q = match shape {
-                Shape::Full => dot_lanes(ui, uk).sq() + kp[i] * kp[k],
-                Shape::Diagonal => {
-                    let (quad, lin) = products(ui, uk);
-                    quad * share + kp[i] * kp[k] + T::from_f64(4.0) * lin
+        // Points k ≤ i, GRAM_BLOCK at a time while a block is left (each element of uᵢ
+        // loaded once per block), then one by one.
+        let mut k0 = 0;
+        while k0 <= i {
+            let mut q = [T::ZERO; GRAM_BLOCK];
+            let block = if k0 + GRAM_BLOCK > i + 1 {
+                q[0] = kernel_block::<T, 1>(shape, share, u, kp, n, i, k0)[0];
+                1
+            } else if shape == Shape::Full {
+                q = kernel_block::<T, GRAM_BLOCK>(shape, share, u, kp, n, i, k0);
+                GRAM_BLOCK
+            } else {
+                // A diagonal model's two sums per pair fill the registers at two pairs.
+                for (half, pair) in q.chunks_exact_mut(2).enumerate() {
+                    let k = k0 + 2 * half;
+                    pair.copy_from_slice(&kernel_block::<T, 2>(shape, share, u, kp, n, i, k));
                 }
+                GRAM_BLOCK
             };
-            let shared = groups.is_some_and(|id| id[i] == id[k]);
-            let offset = if shared { T::from_f64(4.0) } else { T::ZERO };
-            let mut kik = sw[i] * sw[k] * (q + offset) * quarter_lh;
-            if i == k {
-                kik += T::ONE;
+            for (b, &qk) in q[..block].iter().enumerate() {
+                let k = k0 + b;
+                let shared = groups.is_some_and(|id| id[i] == id[k]);
+                let offset = if shared { T::from_f64(4.0) } else { T::ZERO };
+                let mut kik = sw[i] * sw[k] * (qk + offset) * quarter_lh;
+                if i == k {
+                    kik += T::ONE;
+                }
+                gram[i * m + k] = kik;
             }
-            gram[i * m + k] = kik;
+            k0 += block;
         }
     }
     if !cholesky::factor_in_place(gram, m, T::ZERO) {
@@ -357,12 +429,9 @@ pub(super) fn fit<T: Real>(
         match shape {
             Shape::Full => {
                 let common = c * ui.iter().fold(T::ZERO, |s, &x| s + x * x) * half_lh;
-                for j in 0..n {
-                    let cj = c * ui[j] * half_lh;
-                    for l in 0..n {
-                        h[j * n + l] += cj * ui[l];
-                    }
-                    h[j * n + j] += common;
+                for (j, row) in h[..n * n].chunks_exact_mut(n).enumerate() {
+                    axpy(c * ui[j] * half_lh, ui, row);
+                    row[j] += common;
                 }
             }
             Shape::Diagonal => {
@@ -423,6 +492,34 @@ mod tests {
             *x = (state >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0;
         }
         u
+    }
+
+    /// A Gram entry computed in a block of points is the one computed alone, bit for bit
+    /// (what keeps a run's numbers independent of how the fit is blocked), for both
+    /// shapes.
+    #[test]
+    fn kernel_entries_do_not_depend_on_the_block() {
+        let n = 3;
+        let u = points(4242);
+        let mut norms = [0.0; 20];
+        for (i, norm) in norms.iter_mut().enumerate() {
+            *norm = products(&u[i * n..(i + 1) * n], &u[i * n..(i + 1) * n]).1;
+        }
+        for shape in [Shape::Full, Shape::Diagonal] {
+            let four = kernel_block::<f64, 4>(shape, 0.5, &u, &norms, n, 9, 2);
+            let two = kernel_block::<f64, 2>(shape, 0.5, &u, &norms, n, 9, 4);
+            for b in 0..4 {
+                let alone = kernel_block::<f64, 1>(shape, 0.5, &u, &norms, n, 9, 2 + b)[0];
+                assert_eq!(
+                    four[b].to_bits(),
+                    alone.to_bits(),
+                    "{shape:?}, point {}",
+                    2 + b
+                );
+            }
+            assert_eq!(two[0].to_bits(), four[2].to_bits());
+            assert_eq!(two[1].to_bits(), four[3].to_bits());
+        }
     }
 
     /// A quadratic is recovered from enough points, whatever the prior.
