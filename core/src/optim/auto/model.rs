@@ -508,10 +508,10 @@ mod tests {
         for shape in [Shape::Full, Shape::Diagonal] {
             let four = kernel_block::<f64, 4>(shape, 0.5, &u, &norms, n, 9, 2);
             let two = kernel_block::<f64, 2>(shape, 0.5, &u, &norms, n, 9, 4);
-            for b in 0..4 {
+            for (b, entry) in four.iter().enumerate() {
                 let alone = kernel_block::<f64, 1>(shape, 0.5, &u, &norms, n, 9, 2 + b)[0];
                 assert_eq!(
-                    four[b].to_bits(),
+                    entry.to_bits(),
                     alone.to_bits(),
                     "{shape:?}, point {}",
                     2 + b
