@@ -17,8 +17,19 @@ pub(crate) fn dot<T: Real>(x: &[T], y: &[T]) -> T {
 /// kernels (Auto's model fit); its rounding differs from [`dot`]'s.
 #[inline]
 pub(crate) fn dot_lanes<T: Real>(x: &[T], y: &[T]) -> T {
-    let [d] = dot_lanes_many([x], y, x.len().min(y.len()));
-    d
+    let mut lanes = [T::ZERO; 4];
+    let (xs, ys) = (x.chunks_exact(4), y.chunks_exact(4));
+    let tail = xs
+        .remainder()
+        .iter()
+        .zip(ys.remainder())
+        .fold(T::ZERO, |s, (&a, &b)| s + a * b);
+    for (a, b) in xs.zip(ys) {
+        for k in 0..4 {
+            lanes[k] += a[k] * b[k];
+        }
+    }
+    (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
 }
 
 /// [`dot_lanes`] of the first `len` elements of each of R vectors `xs` with `y`'s, in

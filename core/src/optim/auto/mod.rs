@@ -282,6 +282,10 @@ pub const NOISE_MARGIN: f64 = 10.0;
 /// until two draws agree exactly, and keeps the median of its draws when none do.
 pub const VOTES: usize = 5;
 
+/// Dimension from which a fit with a full model forms its offsets and prior values from
+/// the transposes of L⁻¹ and H ([`Auto::fit`]).
+const BY_COLUMNS_MIN_DIM: usize = 10;
+
 /// Points evaluated per noise-seed chunk of one batch (a stack array of seeds).
 const CHUNK: usize = 64;
 
@@ -2345,9 +2349,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let reach = T::from_f64(REACH);
         let mut m = 0;
         let root_n = T::from_usize(n).sqrt();
-        let full = shape == Shape::Full;
-        if full {
-            // L⁻¹ and H by columns, for the products below (the same sums as by rows).
+        // From BY_COLUMNS_MIN_DIM coordinates on, L⁻¹ and H by columns for the products
+        // below (the same sums as by rows, in contiguous passes that vectorise); below
+        // it the transposes cost more than they save.
+        let by_columns = shape == Shape::Full && n >= BY_COLUMNS_MIN_DIM;
+        if by_columns {
             metric::transpose(self.mem.li, n, self.mem.a);
             metric::transpose(self.mem.h, n, self.mem.v);
         }
@@ -2358,7 +2364,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 *ri = (xi - ti) / sigma;
             }
             let row = &mut self.mem.u[m * n..(m + 1) * n];
-            if full {
+            if by_columns {
                 metric::apply_by_columns(self.mem.a, self.mem.rs, row);
             } else {
                 metric::apply(shape, self.mem.li, self.mem.rs, row);
@@ -2372,7 +2378,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 continue;
             }
             let sw = (-(z / reach).sq() / T::from_f64(4.0)).exp() * credit.sqrt();
-            let quadratic = if full {
+            let quadratic = if by_columns {
                 Shape::half_quadratic_by_columns(self.mem.v, row, self.mem.lambda)
             } else {
                 shape.half_quadratic(self.mem.h, row)

@@ -192,39 +192,26 @@ fn deviation_share(n: usize) -> f64 {
 /// (Σⱼ (aⱼbⱼ)², Σⱼ aⱼbⱼ), summed in four interleaved partial sums so that the compiler
 /// can vectorise the loop (a single running sum fixes the order of every addition).
 fn products<T: Real>(a: &[T], b: &[T]) -> (T, T) {
-    let [pair] = products_many([a], b);
-    pair
-}
-
-/// [`products`] of each of R vectors `xs` (at least as long as `y`) with `y`, in one
-/// pass over y. Each pair is summed in the same lanes and order whatever R, so a pair's
-/// result does not depend on the block it is computed in, while each element of y is
-/// loaded once per block.
-fn products_many<T: Real, const R: usize>(xs: [&[T]; R], y: &[T]) -> [(T, T); R] {
-    let n = y.len();
-    let full = n - n % 4;
-    let mut quad = [[T::ZERO; 4]; R];
-    let mut lin = [[T::ZERO; 4]; R];
-    for c in (0..full).step_by(4) {
-        let b = &y[c..c + 4];
-        for r in 0..R {
-            let a = &xs[r][c..c + 4];
-            for lane in 0..4 {
-                let p = a[lane] * b[lane];
-                quad[r][lane] += p * p;
-                lin[r][lane] += p;
-            }
+    let mut quad = [T::ZERO; 4];
+    let mut lin = [T::ZERO; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for lane in 0..4 {
+            let p = x[lane] * y[lane];
+            quad[lane] += p * p;
+            lin[lane] += p;
         }
     }
-    core::array::from_fn(|r| {
-        let (mut q, mut l) = (quad[r], lin[r]);
-        for (lane, (&x, &yy)) in xs[r][full..n].iter().zip(&y[full..n]).enumerate() {
-            let p = x * yy;
-            q[lane] += p * p;
-            l[lane] += p;
-        }
-        ((q[0] + q[1]) + (q[2] + q[3]), (l[0] + l[1]) + (l[2] + l[3]))
-    })
+    for (lane, (&x, &y)) in ra.iter().zip(rb).enumerate() {
+        let p = x * y;
+        quad[lane] += p * p;
+        lin[lane] += p;
+    }
+    (
+        (quad[0] + quad[1]) + (quad[2] + quad[3]),
+        (lin[0] + lin[1]) + (lin[2] + lin[3]),
+    )
 }
 
 /// 4ψ(uᵢ)·ψ(u_k) for the R points k = k0, …, k0 + R − 1 (rows of `u`, n floats each;
@@ -247,13 +234,10 @@ fn kernel_block<T: Real, const R: usize>(
             let dots = dot_lanes_many(rows, ui, n);
             core::array::from_fn(|b| dots[b].sq() + common(b))
         }
-        Shape::Diagonal => {
-            let pairs = products_many(rows, ui);
-            core::array::from_fn(|b| {
-                let (quad, lin) = pairs[b];
-                quad * share + common(b) + T::from_f64(4.0) * lin
-            })
-        }
+        Shape::Diagonal => core::array::from_fn(|b| {
+            let (quad, lin) = products(rows[b], ui);
+            quad * share + common(b) + T::from_f64(4.0) * lin
+        }),
     }
 }
 
@@ -330,23 +314,17 @@ pub(super) fn fit<T: Real>(
     }
     for i in 0..m {
         // Points k ≤ i, GRAM_BLOCK at a time while a block is left (each element of uᵢ
-        // loaded once per block), then one by one.
+        // loaded once per block), then one by one; a diagonal model's two sums per pair
+        // gain nothing from blocks.
         let mut k0 = 0;
         while k0 <= i {
             let mut q = [T::ZERO; GRAM_BLOCK];
-            let block = if k0 + GRAM_BLOCK > i + 1 {
-                q[0] = kernel_block::<T, 1>(shape, share, u, kp, n, i, k0)[0];
-                1
-            } else if shape == Shape::Full {
+            let block = if shape == Shape::Full && k0 + GRAM_BLOCK <= i + 1 {
                 q = kernel_block::<T, GRAM_BLOCK>(shape, share, u, kp, n, i, k0);
                 GRAM_BLOCK
             } else {
-                // A diagonal model's two sums per pair fill the registers at two pairs.
-                for (half, pair) in q.chunks_exact_mut(2).enumerate() {
-                    let k = k0 + 2 * half;
-                    pair.copy_from_slice(&kernel_block::<T, 2>(shape, share, u, kp, n, i, k));
-                }
-                GRAM_BLOCK
+                q[0] = kernel_block::<T, 1>(shape, share, u, kp, n, i, k0)[0];
+                1
             };
             for (b, &qk) in q[..block].iter().enumerate() {
                 let k = k0 + b;
