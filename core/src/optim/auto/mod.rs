@@ -94,7 +94,8 @@
 //!   to the boundary that lowered f with ρ̂ < 0.1 grows σ by 2^¼ (the model overstated
 //!   the decrease — a kink or a ridge that its fit smooths over, which a smaller σ fits
 //!   no better — but not the direction); a step shorter than half the radius
-//!   shrinks σ towards twice its length (at most halving it); ρ̂ < 0.1 halves σ — unless
+//!   shrinks σ towards twice its length (at most halving it); ρ̂ < 0.1 shrinks σ by
+//!   [`SHRINK`] (halves it on a declared-noisy objective) — unless
 //!   the model rested on its prior (fewer points than it has coefficients, and at most
 //!   2n — or all but two of a full memory — within reach — or, on an unseeded
 //!   objective whose draws never agree exactly, the trial fell short by less than
@@ -214,6 +215,17 @@ pub const TOLERANCE: f64 = 1e-9;
 /// step by step, each a spurious gain that keeps the run from restarting wider: the
 /// evaluations spent there are lost to the restarts that look farther afield.
 pub const NOISY_TOLERANCE: f64 = 1e-3;
+
+/// σ's factor after a step whose decrease fell short of a tenth of the model's prediction
+/// (ρ̂ < 0.1), on an objective not declared noisy. A fit uses the remembered points
+/// within 2ρ of θ at the scale of σ: halving σ doubles their whitened distances, so that
+/// every point beyond ρ leaves the next fit, and where shortfalls come often without the
+/// scale being wrong — a kink, a ridge, an orthant where the curvature changes (BBOB's
+/// attractive sector) — σ fell far below the distance to the optimum while the model
+/// refitted from ever fewer points. At 0.7 the points within 1.4ρ stay. A declared-noisy
+/// objective (a render on the caller's seed) still halves σ: the gentler factor was
+/// measured to lose runs there (docs/notes/2026-11-27-shrink.md).
+pub const SHRINK: f64 = 0.7;
 
 /// σ's growth after a step to the trust region's boundary that lowered f by less than a
 /// tenth of the decrease its model predicted: 2^¼, so that four such steps double σ as
@@ -1558,8 +1570,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             // noise rejected the trial: sample more at this σ first.
             self.st.resample = true;
             sigma
-        } else if poor {
+        } else if poor && self.st.noisy {
             sigma * T::HALF
+        } else if poor {
+            sigma * T::from_f64(SHRINK)
         } else if ratio >= T::from_f64(0.7) && boundary {
             self.widened_sigma(GROWTH_WIDTH)
         } else if length < T::HALF * radius && validated {
