@@ -64,6 +64,27 @@ pub(crate) fn dot_lanes_many<T: Real, const R: usize>(
     out
 }
 
+/// out = Md for the n×n row-major M given its transpose `mt` = Mᵀ (n = `d.len()`),
+/// accumulated column by column: each entry is the sum Σⱼ Mᵢⱼdⱼ in the order j = 0, 1, …
+/// that a row-by-row product takes, while the loop runs over M's contiguous columns and
+/// vectorises.
+pub(crate) fn mat_vec_by_columns<T: Real>(mt: &[T], d: &[T], out: &mut [T]) {
+    let n = d.len();
+    out[..n].fill(T::ZERO);
+    for (&dj, column) in d.iter().zip(mt.chunks_exact(n)) {
+        axpy(dj, column, &mut out[..n]);
+    }
+}
+
+/// out = Mᵀ for the n×n row-major M.
+pub(crate) fn transpose<T: Real>(m: &[T], n: usize, out: &mut [T]) {
+    for i in 0..n {
+        for j in 0..n {
+            out[j * n + i] = m[i * n + j];
+        }
+    }
+}
+
 /// ‖x‖₂, scaled by max |xᵢ| so that it neither overflows nor underflows.
 pub(crate) fn norm<T: Real>(x: &[T]) -> T {
     let big = x.iter().fold(T::ZERO, |m, &v| m.max(v.abs()));

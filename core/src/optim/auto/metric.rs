@@ -80,26 +80,6 @@ pub fn apply<T: Real>(shape: Shape, m: &[T], d: &[T], out: &mut [T]) {
     }
 }
 
-/// [`apply`] for many vectors: out = Md given the transpose `mt` = Mᵀ of a full M
-/// (n×n row-major), accumulated column by column, so that each entry is the same sum in
-/// the same order as [`apply`]'s, where the loop over M's contiguous columns vectorises.
-pub fn apply_by_columns<T: Real>(mt: &[T], d: &[T], out: &mut [T]) {
-    let n = d.len();
-    out[..n].fill(T::ZERO);
-    for (&dj, column) in d.iter().zip(mt.chunks_exact(n)) {
-        axpy(dj, column, &mut out[..n]);
-    }
-}
-
-/// out = Mᵀ for the n×n row-major M.
-pub fn transpose<T: Real>(m: &[T], n: usize, out: &mut [T]) {
-    for i in 0..n {
-        for j in 0..n {
-            out[j * n + i] = m[i * n + j];
-        }
-    }
-}
-
 /// out = Mᵀd for M = L or L⁻¹ (`m`).
 pub fn apply_transposed<T: Real>(shape: Shape, m: &[T], d: &[T], out: &mut [T]) {
     let n = d.len();

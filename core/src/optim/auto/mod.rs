@@ -162,7 +162,9 @@ use rand_core::Rng;
 
 use crate::error::Error;
 use crate::objective::{Batch, NoiseSeed, Objective};
-use crate::optim::vector::{axpy, distance, dot, norm, orthogonalise};
+use crate::optim::vector::{
+    axpy, distance, dot, mat_vec_by_columns, norm, orthogonalise, transpose,
+};
 use crate::real::Real;
 use crate::sample::normal;
 use model::Shape;
@@ -2368,8 +2370,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // it the transposes cost more than they save.
         let by_columns = shape == Shape::Full && n >= BY_COLUMNS_MIN_DIM;
         if by_columns {
-            metric::transpose(self.mem.li, n, self.mem.a);
-            metric::transpose(self.mem.h, n, self.mem.v);
+            transpose(self.mem.li, n, self.mem.a);
+            transpose(self.mem.h, n, self.mem.v);
         }
         for k in 0..self.st.count {
             // Row m of u = L⁻¹(x − θ)/σ, kept if z = ‖u‖/√n is within the limit.
@@ -2379,7 +2381,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             }
             let row = &mut self.mem.u[m * n..(m + 1) * n];
             if by_columns {
-                metric::apply_by_columns(self.mem.a, self.mem.rs, row);
+                mat_vec_by_columns(self.mem.a, self.mem.rs, row);
             } else {
                 metric::apply(shape, self.mem.li, self.mem.rs, row);
             }

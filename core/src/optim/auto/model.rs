@@ -45,9 +45,8 @@
 //!   accumulate from fit to fit and the carried model diverges. H moves by
 //!   (1/(2λ_H)) Σᵢ √wᵢ αᵢ (‖uᵢ‖² + ω uᵢ²) (elementwise square), g by (1/λ_H) Σᵢ √wᵢ αᵢ uᵢ.
 
-use super::metric;
 use crate::cholesky;
-use crate::optim::vector::{axpy, dot, dot_lanes_many};
+use crate::optim::vector::{axpy, dot, dot_lanes_many, mat_vec_by_columns};
 use crate::real::Real;
 
 /// Which Hessian the model has.
@@ -119,9 +118,9 @@ impl Shape {
 
     /// ½uᵀHu of a full H given its transpose `ht`, with n floats of scratch `rows`: the
     /// same sums in the same order as [`Shape::half_quadratic`]'s, H·u accumulated by
-    /// H's contiguous columns ([`metric::apply_by_columns`]).
+    /// H's contiguous columns ([`mat_vec_by_columns`]).
     pub(super) fn half_quadratic_by_columns<T: Real>(ht: &[T], u: &[T], rows: &mut [T]) -> T {
-        metric::apply_by_columns(ht, u, rows);
+        mat_vec_by_columns(ht, u, rows);
         let s = u
             .iter()
             .zip(rows.iter())
