@@ -99,7 +99,8 @@
 //!   at most 2n remembered points (or all but two of a full memory) lie within reach,
 //!   so that the model rests on its prior or on points from wider scales, where a
 //!   kink's smoothed curvature is flatter (a cone's falls as 1/σ) and the model would
-//!   mispredict alike at every smaller σ — or, on an unseeded
+//!   mispredict alike at every smaller σ (on a declared-noisy objective: and the fit
+//!   has no more points than coefficients) — or, on an unseeded
 //!   objective whose draws never agree exactly, the trial fell short by less than
 //!   [`NOISE_MARGIN`] times the noise's scale (below): then a pair is drawn at the same
 //!   σ first), or the fit finds f rough at this scale (residual scatter above
@@ -1569,13 +1570,17 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             // would only shorten the next step; let it grow a little instead. (On a
             // noisy objective so small a decrease may be the noise's.)
             (sigma * T::from_f64(STRIDE)).min(self.widened_sigma(GROWTH_WIDTH))
-        } else if poor && (noise_rejected || self.st.lattice || !validated) {
+        } else if poor
+            && (noise_rejected || self.st.lattice || !validated && (!determined || !self.st.noisy))
+        {
             // Too few points near θ to blame the scale, f is piecewise constant at it, or
-            // the noise rejected the trial: sample more at this σ first. However many
-            // points lie farther out (z ≤ 2ρ fits them), a model resting on them blames
-            // no scale: they saw f at wider scales, and a kink's smoothed curvature falls
-            // with the scale (a cone's as 1/σ), so such a model mispredicts alike at
-            // every smaller σ and shrinking on its word only cascades σ down.
+            // the noise rejected the trial: sample more at this σ first. On an objective
+            // not declared noisy, however many points lie farther out (z ≤ 2ρ fits them),
+            // a model resting on them blames no scale: they saw f at wider scales, and a
+            // kink's smoothed curvature falls with the scale (a cone's as 1/σ), so such a
+            // model mispredicts alike at every smaller σ and shrinking on its word only
+            // cascades σ down. (A declared-noisy model determined by its points shrinks
+            // as before: holding σ there lost SHADOW runs.)
             self.st.resample = true;
             sigma
         } else if poor && self.st.noisy {
