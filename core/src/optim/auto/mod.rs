@@ -96,11 +96,12 @@
 //!   no better — but not the direction); a step shorter than half the radius
 //!   shrinks σ towards twice its length (at most halving it); ρ̂ < 0.1 shrinks σ by
 //!   [`SHRINK`] (halves it on a declared-noisy objective) — unless
-//!   at most 2n remembered points (or all but two of a full memory) lie within reach,
-//!   so that the model rests on its prior or on points from wider scales, where a
-//!   kink's smoothed curvature is flatter (a cone's falls as 1/σ) and the model would
-//!   mispredict alike at every smaller σ (on a declared-noisy objective: and the fit
-//!   has no more points than coefficients) — or, on an unseeded
+//!   the points within reach do not determine the model (no more of them than it has
+//!   coefficients, for n ≤ 14; at most 2n, or all but two of a full memory, above), so
+//!   that it rests on its prior or on points from wider scales, where a kink's
+//!   smoothed curvature is flatter (a cone's falls as 1/σ) and the model would
+//!   mispredict alike at every smaller σ (on a declared-noisy objective: at most 2n
+//!   within reach and no more points fitted than coefficients) — or, on an unseeded
 //!   objective whose draws never agree exactly, the trial fell short by less than
 //!   [`NOISE_MARGIN`] times the noise's scale (below): then a pair is drawn at the same
 //!   σ first), or the fit finds f rough at this scale (residual scatter above
@@ -1553,6 +1554,22 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let determined = fitted > self.shape.coefficients(n);
         // The step fell short of its prediction (ρ̂ < 0.1) without being a tie.
         let poor = ratio < T::from_f64(0.1) && !tie;
+        // Whether a shortfall may be blamed on σ: the points near θ determine the model
+        // at this scale. Points farther out (z ≤ 2ρ fits them) do not count: they saw f
+        // at wider scales, and a kink's smoothed curvature falls with the scale (a
+        // cone's as 1/σ), so a model resting on them mispredicts alike at every smaller
+        // σ and shrinking on its word only cascades σ down. Where the memory cannot
+        // determine the model (n ≥ 15, the diagonal model), a validated one may be
+        // blamed. A declared-noisy objective keeps the rule it was measured with: a fit
+        // determined by its points, or a validated one (holding σ lost SHADOW runs).
+        let blames_scale = poor
+            && if self.st.noisy {
+                determined || validated
+            } else if memory_determines_model(n) {
+                self.count_around(T::from_f64(REACH)) > self.shape.coefficients(n)
+            } else {
+                validated
+            };
         // On an unseeded objective whose every draw is noisy, a trial rejected by less
         // than NOISE_MARGIN times the noise's scale may have been rejected by the noise
         // rather than the model: halving σ on its word shrinks the steps until every
@@ -1570,17 +1587,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             // would only shorten the next step; let it grow a little instead. (On a
             // noisy objective so small a decrease may be the noise's.)
             (sigma * T::from_f64(STRIDE)).min(self.widened_sigma(GROWTH_WIDTH))
-        } else if poor
-            && (noise_rejected || self.st.lattice || !validated && (!determined || !self.st.noisy))
-        {
+        } else if poor && (noise_rejected || self.st.lattice || !blames_scale) {
             // Too few points near θ to blame the scale, f is piecewise constant at it, or
-            // the noise rejected the trial: sample more at this σ first. On an objective
-            // not declared noisy, however many points lie farther out (z ≤ 2ρ fits them),
-            // a model resting on them blames no scale: they saw f at wider scales, and a
-            // kink's smoothed curvature falls with the scale (a cone's as 1/σ), so such a
-            // model mispredicts alike at every smaller σ and shrinking on its word only
-            // cascades σ down. (A declared-noisy model determined by its points shrinks
-            // as before: holding σ there lost SHADOW runs.)
+            // the noise rejected the trial: sample more at this σ first.
             self.st.resample = true;
             sigma
         } else if poor && self.st.noisy {
