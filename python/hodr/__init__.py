@@ -52,9 +52,9 @@ class OptimizeResult(dict):
     nit : int
         Iterations.
     success : bool
-        True when the run converged (sigma fell below its tolerance) or stagnated (no
-        lower value within its patience); False when the budget ran out first or the
-        callback stopped it.
+        True when the run converged (the samples' spread fell below its tolerance)
+        or stagnated (no lower value within its patience); False when the budget ran
+        out first or the callback stopped it.
     status : int
         0 converged, 1 budget used, 2 stagnated, 3 stopped by the callback, 4
         interrupted (the ``result`` of the KeyboardInterrupt).
@@ -243,8 +243,9 @@ def minimize(
         ``callback(x, f)`` after every iteration with the best point so far and its
         value; returning True stops the run.
     options : dict, optional
-        Auto's options; none is needed. ``tolerance`` (float > 0): converged once sigma
-        falls below tolerance * sigma0 (default 1e-9, or 1e-3 with ``noisy``);
+        Auto's options; none is needed. ``tolerance`` (float > 0): converged once every
+        coordinate's spread falls below tolerance times its start (with ``noisy``, once
+        sigma < tolerance * sigma0; default 1e-9, or 1e-3 with ``noisy``);
         ``patience`` (int >= 1): iterations without a lower value before a restart
         (default 20 + 10n); ``restarts`` (int >= 0): restarts in a row without a gain
         before the run ends (default 8); ``non_finite``: ``"worst"`` (default: NaN or

@@ -30,10 +30,15 @@ pub fn rate(n: usize) -> f64 {
     (0.5 / n as f64).min(0.3)
 }
 
-/// Smallest |eigenvalue| of the target's H relative to its largest: ε^¾ of T (1.6e-12
-/// for f64, 6.5e-6 for f32), so that C's condition stays within what T can whiten.
+/// Smallest |eigenvalue| of the target's H relative to its largest, and of C relative to
+/// its largest: ε^⅞ of T (2.0e-14 for f64, 8.7e-7 for f32), so that L's axes differ by
+/// at most ε^(−7/16) (7.1e6 in f64) and whitening x − θ by L⁻¹ keeps all but a fraction
+/// ε^(9/16) of T's precision. A sharp ridge needs the stretch: approaching its optimum,
+/// the samples must run along it ever farther than across it (BBOB's f13 stalled at
+/// ε^¾, whose 7.8e5 : 1 CMA-ES's covariance passes).
 pub fn floor<T: Real>() -> T {
-    T::EPSILON.sqrt() * T::EPSILON.sqrt().sqrt()
+    let root = T::EPSILON.sqrt();
+    root * root.sqrt() * root.sqrt().sqrt()
 }
 
 /// Sets C = diag(r²), L = diag(r) and L⁻¹ = diag(1/r) (each of [`Shape::hessian_len`]

@@ -125,8 +125,9 @@
 //!   scales.
 //! * **Anytime.** Nothing depends on a budget: the first k evaluations of a run are the
 //!   same whatever its [`AutoOptions::max_evaluations`], which only stops it (never
-//!   exceeded, even inside an iteration). When σ falls below
-//!   [`AutoOptions::tolerance`]·σ₀ (or below what T resolves at θ), or after
+//!   exceeded, even inside an iteration). When every coordinate's spread σ√Cᵢᵢ falls
+//!   below [`AutoOptions::tolerance`] of its start (σ below it times σ₀ on a noisy
+//!   objective; or σ below what T resolves at θ), or after
 //!   [`AutoOptions::patience`] iterations without a lower f(θ), the run restarts from
 //!   the best point with a survey of pairs, as the first iteration's, at the next scale of the cycle σ₀, 2σ₀,
 //!   …, [`PLATEAU_WIDTH`]·σ₀, σ₀, … (wider scales average over more of the basin that
@@ -212,14 +213,18 @@ const TUKEY: f64 = 4.685;
 /// meet a distant basin ever more rarely. σ₀ states where the parameters matter.
 pub const PLATEAU_WIDTH: f64 = 16.0;
 
-/// σ/σ₀ at which a run on a deterministic objective converges by default.
+/// Every coordinate's spread relative to its start, σ√Cᵢᵢ/sᵢ, at which a run on a
+/// deterministic objective converges by default.
 pub const TOLERANCE: f64 = 1e-9;
 
 /// σ/σ₀ at which a run on a noisy objective converges by default. Far below its scale a
 /// Monte Carlo render's differences on one seed are its own grain — the noise that a
 /// common seed does not cancel, a mesh's facets — which a model at that width descends
 /// step by step, each a spurious gain that keeps the run from restarting wider: the
-/// evaluations spent there are lost to the restarts that look farther afield.
+/// evaluations spent there are lost to the restarts that look farther afield. The test
+/// is on σ itself, not on every coordinate's spread as [`TOLERANCE`]'s: the narrowest
+/// axes reach the grain first, and holding a run until its stretched axes shrink too
+/// cost the path-traced SHADOW task 2 of 40 seeds.
 pub const NOISY_TOLERANCE: f64 = 1e-3;
 
 /// σ's factor after a step whose decrease fell short of a tenth of the model's prediction
@@ -322,9 +327,11 @@ pub enum NonFinite {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct AutoOptions<T> {
-    /// The run converges (and restarts, see [`AutoOptions::restarts`]) once
-    /// σ < `tolerance`·σ₀. Default: `None`, meaning [`TOLERANCE`] for a deterministic
-    /// objective and [`NOISY_TOLERANCE`] for a noisy one.
+    /// The run converges (and restarts, see [`AutoOptions::restarts`]) once every
+    /// coordinate's spread σ√Cᵢᵢ is below `tolerance` times its spread at the start (a
+    /// deterministic objective), or once σ < `tolerance`·σ₀ (a noisy one). Default:
+    /// `None`, meaning [`TOLERANCE`] for a deterministic objective and
+    /// [`NOISY_TOLERANCE`] for a noisy one.
     pub tolerance: Option<T>,
     /// Iterations without a lower f(θ) after which the run restarts from the best point
     /// (see [`AutoOptions::restarts`]) or ends stagnated. Default: `None`, meaning
@@ -410,7 +417,8 @@ impl<T: Real> AutoOptions<T> {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum AutoTermination {
-    /// σ fell below [`AutoOptions::tolerance`]·σ₀, or below what T resolves at θ.
+    /// The samples' spread fell below [`AutoOptions::tolerance`] of its start, or σ below
+    /// what T resolves at θ.
     Converged,
     /// [`AutoOptions::patience`] iterations passed without a lower f(θ).
     Stagnated,
@@ -421,7 +429,7 @@ pub enum AutoTermination {
 impl fmt::Display for AutoTermination {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
-            AutoTermination::Converged => "converged (σ below tolerance)",
+            AutoTermination::Converged => "converged (spread below tolerance)",
             AutoTermination::Stagnated => "stagnated (no lower value within the patience)",
             AutoTermination::MaxEvaluations => "evaluation budget used",
         })
@@ -991,29 +999,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         Ok(self)
     }
 
-    /// Sets σ₀ (and σ) and the initial metric from the coordinates' scales: sᵢ is the
-    /// scale coordinate i was given, cut to a quarter of its side of the box where that
-    /// is narrower (pycma's advice for σ₀: about a quarter of the search interval) and
-    /// held to at least √[`metric::floor`] of the largest sᵢ, which keeps C within what
-    /// T whitens; σ₀ is the sᵢ's geometric mean and C = diag((sᵢ/σ₀)²). Equal sᵢ give
-    /// σ₀ = sᵢ exactly and C = I.
+    /// Sets σ₀ (and σ) and the initial metric from the coordinates' scales: sᵢ is
+    /// [`Auto::start_scale`] held to at least [`Auto::least_start_scale`]; σ₀ is the sᵢ's
+    /// geometric mean and C = diag((sᵢ/σ₀)²). Equal sᵢ give σ₀ = sᵢ exactly and C = I.
     fn shape_scales(&mut self) {
-        let m = &mut self.mem;
-        let n = m.scale.len();
+        let n = self.theta.len();
+        let least = self.least_start_scale();
         for i in 0..n {
-            let width = m.upper[i] - m.lower[i];
-            let quarter = T::HALF * T::HALF * width;
-            m.tmp[i] = if width > T::ZERO && width.is_finite() {
-                m.scale[i].min(quarter)
-            } else {
-                m.scale[i]
-            };
+            self.mem.tmp[i] = self.start_scale(i).max(least);
         }
-        let largest = m.tmp.iter().fold(T::ZERO, |a, &s| a.max(s));
-        let least = largest * metric::floor::<T>().sqrt();
-        for s in m.tmp.iter_mut() {
-            *s = s.max(least);
-        }
+        let m = &mut self.mem;
         let first = m.tmp[0];
         let sigma0 = if m.tmp.iter().all(|&s| s == first) {
             m.tmp.fill(T::ONE);
@@ -1133,8 +1128,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let patience = self.options.patience.unwrap_or(20 + 10 * n);
         let scale = self.theta.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
         let resolvable = T::from_f64(8.0) * T::EPSILON * scale;
-        let converged =
-            self.st.sigma < self.tolerance() * self.st.sigma0 || self.st.sigma <= resolvable;
+        let converged = self.sigma_converged() || self.st.sigma <= resolvable;
         let stagnated = self.st.stale >= patience;
         let termination = if kind == AutoStep::OutOfBudget || self.remaining() == 0 {
             Some(AutoTermination::MaxEvaluations)
@@ -1177,7 +1171,47 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }))
     }
 
-    /// σ/σ₀ below which the run has converged ([`AutoOptions::tolerance`]).
+    /// Whether σ has converged: on a deterministic objective every coordinate's spread
+    /// σ√Cᵢᵢ (a sample's standard deviation along it) is below `tolerance` times its
+    /// spread at the start ([`Auto::start_scale`]), as CMA-ES's TolX asks of its
+    /// coordinates; on a noisy one σ < `tolerance`·σ₀ (see [`NOISY_TOLERANCE`]).
+    fn sigma_converged(&self) -> bool {
+        let n = self.theta.len();
+        let limit = self.tolerance();
+        if self.st.noisy {
+            return self.st.sigma < limit * self.st.sigma0;
+        }
+        let least = self.least_start_scale();
+        (0..n).all(|i| {
+            let c = match self.shape {
+                Shape::Full => self.mem.c[i * n + i],
+                Shape::Diagonal => self.mem.c[i],
+            };
+            self.st.sigma * c.sqrt() < limit * self.start_scale(i).max(least)
+        })
+    }
+
+    /// Coordinate i's scale at the start before [`Auto::least_start_scale`]: the scale
+    /// it was given, cut to a quarter of its side of the box where that is narrower
+    /// (pycma's advice for σ₀: about a quarter of the search interval).
+    fn start_scale(&self, i: usize) -> T {
+        let m = &self.mem;
+        let width = m.upper[i] - m.lower[i];
+        if width > T::ZERO && width.is_finite() {
+            m.scale[i].min(T::HALF * T::HALF * width)
+        } else {
+            m.scale[i]
+        }
+    }
+
+    /// The least scale a coordinate starts with: √[`metric::floor`] of the largest
+    /// [`Auto::start_scale`], which keeps C within what T whitens.
+    fn least_start_scale(&self) -> T {
+        let largest = (0..self.theta.len()).fold(T::ZERO, |a, i| a.max(self.start_scale(i)));
+        largest * metric::floor::<T>().sqrt()
+    }
+
+    /// The tolerance of [`Auto::sigma_converged`] ([`AutoOptions::tolerance`]).
     fn tolerance(&self) -> T {
         let default = if self.st.noisy {
             NOISY_TOLERANCE
