@@ -12,7 +12,9 @@
 //! from C = QEQᵀ), a diagonal model a diagonal one (n floats, L = √C), which whitens
 //! scales that differ per coordinate but not rotated valleys. C moves towards its target
 //! by a fraction [`rate`] per update and is renormalised to det C = 1, so σ alone
-//! carries the scale.
+//! carries the scale. A full C also follows the direction of θ's accepted steps, as
+//! CMA-ES's rank-one update follows its evolution path ([`rank_one`]): a direction that
+//! steps keep taking, such as a ridge's, whose precision no fitted curvature gives.
 
 use super::eigen;
 use super::model::Shape;
@@ -216,9 +218,34 @@ pub fn update<T: Real>(
 }
 
 /// What an update's target axes top/max(|λᵢ|, low) share, for curvatures λᵢ.
+/// A full C ← (1 − w)C + w·ppᵀ for a direction p (n floats) and a weight w in (0, 1),
+/// then renormalised to det C = 1 with L and L⁻¹ refreshed (`a`, `v`: n² floats of
+/// scratch each). Leaves everything unchanged when p is not finite.
+pub fn rank_one<T: Real>(
+    c: &mut [T],
+    l: &mut [T],
+    li: &mut [T],
+    p: &[T],
+    w: f64,
+    a: &mut [T],
+    v: &mut [T],
+) {
+    let n = p.len();
+    if p.iter().any(|x| !x.is_finite()) {
+        return;
+    }
+    let w = T::from_f64(w);
+    for i in 0..n {
+        for j in 0..n {
+            c[i * n + j] = (T::ONE - w) * c[i * n + j] + w * p[i] * p[j];
+        }
+    }
+    refresh(c, l, li, n, a, v);
+}
+
 /// A full C ← SCS for S = diag(`factors`), then renormalised to det C = 1 with L and L⁻¹
 /// refreshed (`a`, `v`: n² floats of scratch each): the scale along each coordinate i
-/// grows by factors[i] (n positive, finite floats).
+/// grows by `factors[i]` (n positive, finite floats).
 pub fn stretch<T: Real>(
     c: &mut [T],
     l: &mut [T],
@@ -397,5 +424,41 @@ mod tests {
                 assert!((p - f64::from(u8::from(i == j))).abs() < 1e-12);
             }
         }
+    }
+
+    /// From C = I, (1 − w)I + w·ppᵀ has eigenvalue 1 − w + w‖p‖² along p and 1 − w
+    /// across it; divided by their geometric mean, det C = 1.
+    #[test]
+    fn a_rank_one_update_stretches_along_the_direction_and_keeps_det_one() {
+        let n = 3;
+        let (mut c, mut l, mut li) = ([0.0; 9], [0.0; 9], [0.0; 9]);
+        axes(Shape::Full, &[1.0; 3], &mut c, &mut l, &mut li);
+        let (mut a, mut v) = ([0.0; 9], [0.0; 9]);
+        let p = [0.0, 3.0, 4.0];
+        let w = 0.2;
+        rank_one(&mut c, &mut l, &mut li, &p, w, &mut a, &mut v);
+        let (along, across) = (1.0 - w + w * 25.0, 1.0 - w);
+        let mean = libm::cbrt(along * across * across);
+        let unit = [0.0, 0.6, 0.8];
+        for i in 0..n {
+            for j in 0..n {
+                let identity = f64::from(u8::from(i == j));
+                let want = (across * identity + (along - across) * unit[i] * unit[j]) / mean;
+                assert!((c[i * n + j] - want).abs() < 1e-12, "C = {c:?}");
+                let llt: f64 = (0..n).map(|k| l[i * n + k] * l[j * n + k]).sum();
+                assert!((llt - want).abs() < 1e-12, "L = {l:?}");
+            }
+        }
+        let before = c;
+        rank_one(
+            &mut c,
+            &mut l,
+            &mut li,
+            &[f64::NAN, 0.0, 0.0],
+            w,
+            &mut a,
+            &mut v,
+        );
+        assert_eq!(c, before);
     }
 }

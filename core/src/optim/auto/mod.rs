@@ -49,8 +49,10 @@
 //!   (both halves of their pairs tie with f(θ)) and f moving both ways along others
 //!   stretches C along the flat ones ([`FLAT_STRETCH`]): one object of a scene still on
 //!   its plateau while the others are fitted needs wider samples than they can bear.
-//!   C has the
-//!   model's shape: full for n ≤ [`FULL_MODEL_MAX_DIM`], diagonal above (per-coordinate
+//!   A full C also stretches along the evolution path of θ's accepted steps, CMA-ES's
+//!   rank-one update (`Auto::follow_path`), off lattices, rough f and noise: a ridge's
+//!   direction, which its cone's fitted curvature never gives precisely enough.
+//!   C has the model's shape: full for n ≤ [`FULL_MODEL_MAX_DIM`], diagonal above (per-coordinate
 //!   scales).
 //! * **Noise.** A stochastic objective ([`Objective::deterministic`] false) — a Monte
 //!   Carlo render — is evaluated on common random numbers: an iteration's samples, θ
@@ -543,10 +545,12 @@ struct Memory<'b, T> {
     /// The best point while a continuation move has left θ, the search centre, above it
     /// ([`State::best_value`]).
     best: &'b mut [T],
+    /// The evolution path of θ's confirmed moves in units of σ ([`Auto::follow_path`]).
+    path: &'b mut [T],
 }
 
 /// Region lengths for dimension n, in [`Memory`]'s order.
-const fn regions(n: usize) -> [usize; 40] {
+const fn regions(n: usize) -> [usize; 41] {
     let shape = Shape::for_dim(n);
     let m = history_len(n);
     let hl = shape.hessian_len(n);
@@ -598,12 +602,13 @@ const fn regions(n: usize) -> [usize; 40] {
         m,
         n,
         n,
+        n,
     ]
 }
 
 /// Floats of buffer an [`Auto`] run needs in dimension n, for m = [`Auto::history_len`]
 /// points remembered:
-/// m(2n + 7) + m² + mp + p² + p + 15n + 7h + r(n + 1) + n² + 2f,
+/// m(2n + 7) + m² + mp + p² + p + 16n + 7h + r(n + 1) + n² + 2f,
 /// with, for the full model (n ≤ [`FULL_MODEL_MAX_DIM`]), h = f = n² and p = n + 1, and
 /// for the diagonal one h = n, f = 0 and p = 1; r = 2·min(n, ⌊m/2⌋) + 2 staged points.
 /// A `const fn`, so that storage can be sized at compile time ([`FixedAuto`]).
@@ -705,6 +710,7 @@ fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         credit: take(),
         scale: take(),
         best: take(),
+        path: take(),
     }
 }
 
@@ -1125,6 +1131,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.st.stale += 1;
         }
         let step_length = distance(self.mem.tmp, self.theta);
+        if kind == AutoStep::Accepted && step_length > T::ZERO && self.follows_path() {
+            self.follow_path(sigma);
+        }
         let patience = self.options.patience.unwrap_or(20 + 10 * n);
         let scale = self.theta.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
         let resolvable = T::from_f64(8.0) * T::EPSILON * scale;
@@ -2695,6 +2704,53 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.mem.l,
             self.mem.li,
             factors,
+            self.mem.a,
+            self.mem.v,
+        );
+    }
+
+    /// Whether an accepted step teaches the metric its direction ([`Auto::follow_path`]):
+    /// a full model on a deterministic objective that has shown neither ties nor
+    /// roughness since the last restart. (On a lattice, or where f is rough at some
+    /// scale, steps go where the cells or wells let them, not along a valley: on the
+    /// step ellipsoid and on Rastrigin the path cost runs.)
+    fn follows_path(&self) -> bool {
+        self.shape == Shape::Full
+            && !self.st.noisy
+            && !self.st.unseeded
+            && !self.st.lattice
+            && self.st.tie_scale <= T::ZERO
+            && self.st.rough_scale <= T::ZERO
+    }
+
+    /// CMA-ES's rank-one update from the evolution path of θ's accepted steps, made
+    /// before this iteration at σ = `sigma` (θ moved from `tmp`): with y = (θ − θ_old)/σ,
+    ///
+    /// p ← (1 − c_c)p + √(c_c(2 − c_c))·y,  C ← (1 − c₁)C + c₁ppᵀ (then det C = 1),
+    ///
+    /// c_c = 4/(n + 4), c₁ = 2/((n + 1.3)² + 1), CMA-ES's defaults for a single parent.
+    /// Steps that zig-zag across a valley cancel in p while their progress along it adds
+    /// up, so C stretches along the valley's floor however precisely that direction must
+    /// be known — more precisely than a fitted curvature's eigenvectors tell it on a
+    /// sharp ridge, whose cone is no quadratic.
+    fn follow_path(&mut self, sigma: T) {
+        let n = self.theta.len();
+        let dims = n as f64;
+        let cc = 4.0 / (dims + 4.0);
+        let c1 = 2.0 / ((dims + 1.3) * (dims + 1.3) + 1.0);
+        let keep = T::from_f64(1.0 - cc);
+        let push = T::from_f64((cc * (2.0 - cc)).sqrt());
+        for i in 0..n {
+            let y = (self.theta[i] - self.mem.tmp[i]) / sigma;
+            self.mem.path[i] = keep * self.mem.path[i] + push * y;
+        }
+        self.st.metric_changes = self.st.metric_changes.wrapping_add(1);
+        metric::rank_one(
+            self.mem.c,
+            self.mem.l,
+            self.mem.li,
+            self.mem.path,
+            c1,
             self.mem.a,
             self.mem.v,
         );
