@@ -545,7 +545,7 @@ struct Memory<'b, T> {
     /// The best point while a continuation move has left θ, the search centre, above it
     /// ([`State::best_value`]).
     best: &'b mut [T],
-    /// The evolution path of θ's confirmed moves in units of σ ([`Auto::follow_path`]).
+    /// The evolution path of θ's accepted model steps in units of σ ([`Auto::follow_path`]).
     path: &'b mut [T],
 }
 
