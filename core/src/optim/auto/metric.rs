@@ -217,7 +217,6 @@ pub fn update<T: Real>(
     refresh(c, l, li, n, a, v);
 }
 
-/// What an update's target axes top/max(|λᵢ|, low) share, for curvatures λᵢ.
 /// A full C ← (1 − w)C + w·ppᵀ for a direction p (n floats) and a weight w in (0, 1),
 /// then renormalised to det C = 1 with L and L⁻¹ refreshed (`a`, `v`: n² floats of
 /// scratch each). Leaves everything unchanged when p is not finite.
@@ -263,6 +262,7 @@ pub fn stretch<T: Real>(
     refresh(c, l, li, n, a, v);
 }
 
+/// What an update's target axes top/max(|λᵢ|, low) share, for curvatures λᵢ.
 struct Targets<T> {
     /// maxᵢ |λᵢ|.
     top: T,
