@@ -176,12 +176,17 @@ use crate::real::Real;
 use crate::sample::normal;
 use model::Shape;
 
-/// Largest n for which the model has a full Hessian; above it, a diagonal one (2n + 1
-/// coefficients instead of (n+1)(n+2)/2, so memory and fitting stay affordable).
-pub const FULL_MODEL_MAX_DIM: usize = 20;
+/// Largest n for which the model has a full Hessian and C a full shape; above it, both
+/// are diagonal (2n + 1 coefficients instead of (n+1)(n+2)/2). Only a full model and
+/// metric represent a valley that does not run along the parameter axes, which most
+/// problems' valleys do not; a diagonal one learns per-coordinate scales exactly from far
+/// fewer points, but no rotation. The full model costs O(n³) per iteration (its trust
+/// step's and the metric's eigen-decompositions) and n² floats per Hessian and shape,
+/// which bounds it.
+pub const FULL_MODEL_MAX_DIM: usize = 40;
 
-/// Most points Auto remembers (it reaches this for n ≥ 14 with a full model, n ≥ 42 with
-/// a diagonal one). A fit costs O(m²n + m³) per iteration for m remembered points, so
+/// Most points Auto remembers (it reaches this for n ≥ 14 with a full model, and always
+/// with a diagonal one). A fit costs O(m²n + m³) per iteration for m remembered points, so
 /// the bound keeps the cost affordable for a full model and linear in n for a diagonal
 /// one; with fewer points than the model's coefficients the fit corrects the model
 /// carried from earlier iterations along the directions of the recent points.
