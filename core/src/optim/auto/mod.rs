@@ -178,11 +178,10 @@ use model::Shape;
 
 /// Largest n for which the model has a full Hessian and C a full shape; above it, both
 /// are diagonal (2n + 1 coefficients instead of (n+1)(n+2)/2). Only a full model and
-/// metric represent a valley that does not run along the parameter axes, which most
-/// problems' valleys do not; a diagonal one learns per-coordinate scales exactly from far
-/// fewer points, but no rotation. The full model costs O(n³) per iteration (its trust
-/// step's and the metric's eigen-decompositions) and n² floats per Hessian and shape,
-/// which bounds it.
+/// metric represent a valley that runs along no parameter axis (a rotated one, the
+/// common case); a diagonal one learns per-coordinate scales from far fewer points, but
+/// no rotation. The full model costs O(n³) per iteration (its trust step's and the
+/// metric's eigen-decompositions) and n² floats per Hessian and shape, which bounds it.
 pub const FULL_MODEL_MAX_DIM: usize = 40;
 
 /// Most points Auto remembers (it reaches this for n ≥ 14 with a full model, and always
