@@ -8,11 +8,18 @@
 //! target's} — the mean squared difference of the binary images. Targets and starts
 //! sit in distinct cells of a 4×4 grid of [`CELL`]-px cells, each centre jittered by at
 //! most [`JITTER`] px from its cell's centre, so no two discs overlap and no start disc
-//! overlaps a target: every start is on the plateau f = (|D| + |T|)/SIDE², where the
-//! pixel counts |D|, |T| change only as a pixel centre crosses a disc's edge. The discs
-//! are interchangeable (the image is their union), so the parameter error is taken over
-//! the best assignment of discs to targets. f* = 0 at the targets; bounds [0, SIDE]ⁿ;
-//! σ₀ = [`DISC_SIGMA0`].
+//! overlaps a target: every start is on the plateau f = (|D| + |T|)/SIDE², where |T| is
+//! fixed and the discs' covered pixel count |D| changes only as a pixel centre crosses a
+//! disc's edge. The discs are interchangeable (the image is their union), so the
+//! parameter error is taken over the best assignment of discs to targets. f* = 0 at the
+//! targets; bounds [0, SIDE]ⁿ; σ₀ = [`DISC_SIGMA0`].
+//!
+//! Two kinds of local minimum are part of the problem, as they are of a scene whose
+//! objects can overlap or leave the view: |D| falls where discs overlap one another (two
+//! discs on one target leave another uncovered, f one disc's pixels over SIDE²), and
+//! where a disc hangs over the image's edge — up to three quarters of it out of view with
+//! its centre in a corner. Leaving either costs f a rise before the disc reaches a free
+//! target.
 //!
 //! **Integer** ([`integer`]): f(x) = Σᵢ κ^((i−1)/(n−1))·(R(round(x) − x*))ᵢ² with
 //! κ = [`INTEGER_CONDITION`], R a random rotation and x* an integer point in [−3, 3]ⁿ:
