@@ -602,17 +602,17 @@ fn a_stiff_direction_is_learnt_where_no_fit_is_determined() {
 }
 
 /// A valley that runs along no parameter axis, above n = 20: the rotated ellipsoid
-/// Σᵢ 10^(3i/(n − 1))·zᵢ², z = Q(x − x*) with Q a random orthogonal matrix
-/// ([`orthogonal`]) and x*ᵢ = 0.1(i + 1), in 30-D from (3, …), σ₀ = 1, to f < 1e-8 within
-/// 3 000 evaluations. Only a full model and metric represent it (n ≤
-/// [`hodr_core::optim::auto::FULL_MODEL_MAX_DIM`]); with the diagonal ones used above
-/// n = 20 before, 0 of seeds 0–19 (and 0 of 5 within 30 000). Measured: 99 of seeds
+/// Σᵢ 10^(3i/(n − 1))·zᵢ², z = Q(x − x*) with Q the suite's random rotation
+/// ([`hodr_host::suite::random::rotation`], seed 7) and x*ᵢ = 0.1(i + 1), in 30-D from
+/// (3, …), σ₀ = 1, to f < 1e-8 within 3 000 evaluations. Only a full model and metric
+/// represent it (n ≤ [`hodr_core::optim::auto::FULL_MODEL_MAX_DIM`]); with the diagonal
+/// ones used above n = 20 before, 0 of seeds 0–19 (and 0 of 5 within 30 000). Measured: 99 of seeds
 /// 0–99 (rate ≥ 0.95 at 95 % confidence). Bound, over seeds 0–15:
 /// P(X < 12 | p = 0.95, N = 16) = 8.6e-4.
 #[test]
 fn a_rotated_valley_is_learnt_above_twenty_dimensions() {
     let n = 30;
-    let q = orthogonal(n, 7);
+    let q = hodr_host::suite::random::rotation(n, 7);
     let ellipsoid = |x: &[f64]| {
         (0..n)
             .map(|i| {
@@ -625,7 +625,7 @@ fn a_rotated_valley_is_learnt_above_twenty_dimensions() {
     };
     let seeds = 16;
     let solved = (0..seeds)
-        .filter(|&seed| reaches_1e8(ellipsoid, &[3.0; 30], 3_000, seed))
+        .filter(|&seed| reaches_1e8(ellipsoid, &vec![3.0; n], 3_000, seed))
         .count();
     assert!(solved >= 12, "30-D rotated ellipsoid: {solved} of {seeds}");
 }
@@ -770,31 +770,6 @@ fn rotated(x: &[f64]) -> Vec<f64> {
     (0..n)
         .map(|i| (d[i] - 2.0 * v[i] * vd) * 10f64.powf(i as f64 / (n as f64 - 1.0)))
         .collect()
-}
-
-/// A random orthogonal n×n matrix (row-major): Gram–Schmidt on the rows of a matrix
-/// drawn uniformly from [−½, ½) by a linear congruential stream from `state`.
-fn orthogonal(n: usize, mut state: u64) -> Vec<f64> {
-    let mut q = vec![0.0; n * n];
-    for i in 0..n {
-        for j in 0..n {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            q[i * n + j] = (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
-        }
-        for k in 0..i {
-            let d: f64 = (0..n).map(|j| q[i * n + j] * q[k * n + j]).sum();
-            for j in 0..n {
-                q[i * n + j] -= d * q[k * n + j];
-            }
-        }
-        let norm = (0..n).map(|j| q[i * n + j].powi(2)).sum::<f64>().sqrt();
-        for j in 0..n {
-            q[i * n + j] /= norm;
-        }
-    }
-    q
 }
 
 /// The noise of [`unseeded_noise_solved`].
