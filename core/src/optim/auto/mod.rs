@@ -174,7 +174,7 @@ use crate::optim::vector::{
 };
 use crate::real::Real;
 use crate::sample::normal;
-use model::Shape;
+use model::{Ridge, Shape};
 
 /// Largest n for which the model has a full Hessian and C a full shape; above it, both
 /// are diagonal (2n + 1 coefficients instead of (n+1)(n+2)/2). Only a full model and
@@ -634,10 +634,9 @@ const fn history_len(n: usize) -> usize {
 
 /// Whether a fit can determine the model from the data alone: the model is full (its
 /// linear part unpenalised) and the memory holds as many points as it has coefficients,
-/// which is n ≤ 14. Above, every fit leans on its prior (and the diagonal model's
-/// penalised gradient is never exact), and the means to make a survey's model exact
-/// (pairs kept on their lines, a minimal ridge on the linear part) cost more than they
-/// bring.
+/// which is n ≤ 14. Above, every fit after the first leans on its prior (and the
+/// diagonal model's penalised gradient is never exact); only a full model's first fit
+/// after a survey is made exact there ([`Auto::ridge`]).
 const fn memory_determines_model(n: usize) -> bool {
     let shape = Shape::for_dim(n);
     matches!(shape, Shape::Full) && shape.coefficients(n) <= history_len(n)
@@ -1272,8 +1271,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let root_n = T::from_usize(n).sqrt();
         let exploring = !survey && self.st.resample;
         // Halves that would leave the box stay on their lines (below) only where that can
-        // make the model exact: geometry pairs of a model the memory can determine.
-        let keep_on_line = !exploring && memory_determines_model(n);
+        // make the model exact: geometry pairs of an exact fit.
+        let keep_on_line = !exploring && self.ridge() != Ridge::Prior;
         // A restart's survey of a full model is drawn along the parameter axes where the
         // metric keeps them nearly orthogonal, so that it can tell which coordinates f
         // ignores at this σ (FLAT_STRETCH); pair p then runs along axis (first_axis + p)
@@ -2472,6 +2471,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.mem.r[m] = sw * ((self.mem.fs[k] - value) / scale - prior);
             m += 1;
         }
+        let ridge = self.ridge();
         model::fit(
             shape,
             n,
@@ -2488,8 +2488,27 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             },
             self.mem.g,
             self.mem.h,
+            ridge,
         )
         .map(|noise| (noise, m))
+    }
+
+    /// The ridge of the next fit ([`Ridge`]); all but [`Ridge::Prior`] make the fit
+    /// reproduce a quadratic where its points determine it, and a survey's pairs stay on
+    /// their lines to let them. A full model's fits where the memory determines the model
+    /// (n ≤ 14), and above that its first fit after a survey, which has no prior: the
+    /// survey's pairs fix the model along their lines and the least change from zero
+    /// fixes the rest, so that a round bowl's first model is exact at every n. Later fits
+    /// of a full model above n = 14, and every fit of a diagonal one, lean on the prior
+    /// they carry and keep its weakly determined part.
+    fn ridge(&self) -> Ridge {
+        if memory_determines_model(self.theta.len()) {
+            Ridge::Determined
+        } else if self.shape == Shape::Full && !self.st.has_prior {
+            Ridge::Survey
+        } else {
+            Ridge::Prior
+        }
     }
 
     /// −(gᵀs + ½sᵀHs) of the model for the step in `s` (standardised units).

@@ -153,30 +153,46 @@ fn curvature_penalty<T: Real>() -> T {
     T::from_f64(16.0) * T::EPSILON.sqrt()
 }
 
-/// The Schur complement's ridge relative to its mean diagonal: ε^¾ where a fit can
-/// determine the full model (`memory_determines_model`), √ε elsewhere.
+/// How firmly a fit holds its free part (c, g) at the prior's: the ridge of the Schur
+/// complement S = PᵀK⁻¹P relative to its mean diagonal ([`fit`]).
 ///
-/// The ridge is a penalty on the change of the free part (c, g): it holds them at the
-/// prior's along directions that S = PᵀK⁻¹P barely determines. S is nearly singular
-/// whenever the remembered points lie at one distance from θ (a survey of antithetic
-/// pairs): there the common curvature's feature ½‖u‖² is nearly the constant one, and
-/// the pair (c, h̄) is fixed only by θ's own value, through an eigenvalue of S some 10⁻⁷
-/// of its mean diagonal (K⁻¹ shrinks every direction the penalised features span by
-/// ~λ_H). A ridge of √ε there bent the fitted curvature by a few per cent, so that a
-/// sphere's model from a survey of 2n + 1 points was not exact; ε^¾ leaves such
-/// directions within a few ppm of the data and still keeps the pivots of undetermined
-/// directions far above the rounding of S. Where the memory can never determine the
-/// model (a full model from n = 15, [`super::MAX_MEMORY`] points against (n + 1)(n + 2)/2
-/// coefficients), every fit leans on the prior, for g as for H, and the √ε ridge that
-/// keeps g's weakly determined part near the prior's does better; the diagonal model
-/// (whose S is 1×1, the constant's) keeps √ε too. `n` is the dimension, the model's
-/// shape that of [`Shape::for_dim`].
-fn schur_ridge<T: Real>(n: usize) -> T {
-    let root = T::EPSILON.sqrt();
-    if super::memory_determines_model(n) {
-        root * root.sqrt()
-    } else {
-        root
+/// S is nearly singular whenever the remembered points lie at one distance from θ (a
+/// survey of antithetic pairs): there the common curvature's feature ½‖u‖² is nearly the
+/// constant one, and the pair (c, h̄) is fixed only by θ's own value, through an
+/// eigenvalue of S some 10⁻⁷ of its mean diagonal (K⁻¹ shrinks every direction the
+/// penalised features span by ~λ_H). A ridge of √ε there bent the fitted curvature by a
+/// few per cent, so that a round bowl's model from a survey of 2n + 1 points was not
+/// exact.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Ridge {
+    /// ε^⅞: a full model's first fit after a survey where later fits cannot determine
+    /// the model (n = 15–40), so that whatever error it leaves in H is carried by every
+    /// later least-change fit. It has no prior to hold g at: the survey's pairs fix g
+    /// and the curvature along their lines, and a round bowl's model comes out exact to
+    /// ~10⁻⁶ of its step (ε^¾ left ~10⁻⁵, so that the step after a survey of a sphere at
+    /// n = 30 ended at f ≈ 10⁻⁸ instead of 10⁻¹²; √ε, a few per cent in H that later
+    /// fits never removed).
+    Survey,
+    /// ε^¾: a fit whose memory can determine the full model (n ≤ 14). It leaves such
+    /// directions within a few ppm of the data and still keeps the pivots of directions
+    /// the points leave undetermined far above the rounding of S.
+    Determined,
+    /// √ε: a fit that leans on its prior (a full model from n = 15 after its first fit,
+    /// [`super::MAX_MEMORY`] points against (n + 1)(n + 2)/2 coefficients; the diagonal
+    /// model, whose S is 1×1, the constant's), which keeps g's weakly determined part
+    /// near the prior's.
+    Prior,
+}
+
+impl Ridge {
+    fn fraction<T: Real>(self) -> T {
+        let root = T::EPSILON.sqrt();
+        let quarter = root.sqrt();
+        match self {
+            Ridge::Survey => root * quarter * quarter.sqrt(),
+            Ridge::Determined => root * quarter,
+            Ridge::Prior => root,
+        }
     }
 }
 
@@ -266,7 +282,7 @@ pub(super) const fn scratch_lens(shape: Shape, m: usize, n: usize) -> [usize; 4]
 /// squared change, as in Powell's NEWUOA: with K = ΨΨᵀ/λ_H + I over the penalised
 /// features ψᵢ and P the weighted free features (see the module's header), the saddle system K α + P β = r, Pᵀα = 0 is solved through K's
 /// Cholesky factor and the Schur complement PᵀK⁻¹P, given a small ridge relative to its
-/// mean diagonal ([`schur_ridge`]). On success `g` and `h`
+/// mean diagonal that `ridge` sets ([`Ridge`]). On success `g` and `h`
 /// hold the fitted coefficients; the scratch and `r` are overwritten.
 ///
 /// With `groups` (one id per row), rows with equal ids share an unknown offset: the
@@ -293,6 +309,7 @@ pub(super) fn fit<T: Real>(
     scratch: Scratch<'_, T>,
     g: &mut [T],
     h: &mut [T],
+    ridge: Ridge,
 ) -> Option<T> {
     if m == 0 {
         return Some(T::ZERO);
@@ -364,7 +381,7 @@ pub(super) fn fit<T: Real>(
         }
     }
     let diag = (0..cols).fold(T::ZERO, |s, a| s + schur[a * cols + a]);
-    let ridge = schur_ridge::<T>(n) * (diag / T::from_usize(cols)).max(T::MIN_POSITIVE);
+    let ridge = ridge.fraction::<T>() * (diag / T::from_usize(cols)).max(T::MIN_POSITIVE);
     if !cholesky::factor_in_place(&mut schur[..cols * cols], cols, ridge) {
         return None;
     }
@@ -529,7 +546,8 @@ mod tests {
                 &mut r,
                 Buffers::new().as_mut(Shape::Full, m, n),
                 &mut g,
-                &mut h
+                &mut h,
+                Ridge::Determined,
             )
             .is_some()
         );
@@ -571,6 +589,7 @@ mod tests {
             Buffers::new().as_mut(Shape::Diagonal, m, n),
             &mut g,
             &mut h,
+            Ridge::Determined,
         );
         assert!(noise.is_some_and(|e| e < 1e-4), "noise {noise:?}");
         for j in 0..n {
@@ -621,6 +640,7 @@ mod tests {
             Buffers::new().as_mut(Shape::Full, m, n),
             &mut g,
             &mut h,
+            Ridge::Determined,
         );
         assert!(noise.is_some_and(|e| e < 1e-4), "noise {noise:?}");
         for j in 0..n {
@@ -655,7 +675,8 @@ mod tests {
                 &mut r,
                 Buffers::new().as_mut(Shape::Full, 3, n),
                 &mut g,
-                &mut h
+                &mut h,
+                Ridge::Determined,
             )
             .is_some()
         );
