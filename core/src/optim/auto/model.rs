@@ -168,10 +168,10 @@ pub(super) enum Ridge {
     /// ε^⅞: a full model's first fit after a survey where later fits cannot determine
     /// the model (n = 15–40), so that whatever error it leaves in H is carried by every
     /// later least-change fit. It has no prior to hold g at: the survey's pairs fix g
-    /// and the curvature along their lines, and a round bowl's model comes out exact to
-    /// ~10⁻⁶ of its step (ε^¾ left ~10⁻⁵, so that the step after a survey of a sphere at
-    /// n = 30 ended at f ≈ 10⁻⁸ instead of 10⁻¹²; √ε, a few per cent in H that later
-    /// fits never removed).
+    /// and the curvature along their lines, so the smallest ridge that still factors
+    /// makes a round bowl's first step land closest to its minimum (√ε left a few per
+    /// cent in H that later fits never removed; ε^¾, a step short of the minimum by
+    /// about 10⁻⁵ of its length).
     Survey,
     /// ε^¾: a fit whose memory can determine the full model (n ≤ 14). It leaves such
     /// directions within a few ppm of the data and still keeps the pivots of directions
@@ -185,6 +185,7 @@ pub(super) enum Ridge {
 }
 
 impl Ridge {
+    /// The ridge relative to S's mean diagonal in precision T: ε^⅞, ε^¾ or √ε.
     fn fraction<T: Real>(self) -> T {
         let root = T::EPSILON.sqrt();
         let quarter = root.sqrt();
