@@ -686,31 +686,6 @@ fn a_render_s_corner_minimum_does_not_end_the_search() {
     assert!(solved >= 58, "rendered disc: {solved} of 80");
 }
 
-/// One disc on a 64² raster (the suite's disc plateau at n = 2: 5 instances × 40 seeds,
-/// each run's first 200 evaluations, which do not depend on the budget). A restart whose
-/// wide model brings the disc onto its target stops following that model there (the
-/// continuation ends at a gain) and fits the disc: measured 119 of 200 runs at f* = 0
-/// within 200 evaluations, against 96 when the wide model led the disc on, often into
-/// the image's corner. The bound, 100, is 2.7 binomial standard deviations below the
-/// measured 119 and above the 96 before.
-#[test]
-fn a_disc_found_by_a_restart_is_fitted_there() {
-    use hodr_host::suite::{methods::Method, plateau, problem::run_seed};
-    let mut solved = 0;
-    for instance in 1..=5 {
-        let problem = plateau::discs(2, instance, 100);
-        for index in 0..40 {
-            let seed = run_seed(&problem.name, index);
-            let trace = Method::Auto.run(&problem, &problem.start(seed), seed);
-            solved += usize::from(trace.reaching_f(1e-8).is_some());
-        }
-    }
-    assert!(
-        solved >= 100,
-        "disc plateau: {solved} of 200 within 200 evaluations"
-    );
-}
-
 /// Sparse outliers on a 5-D Rosenbrock valley (as `sparse_valley_solved`), counting the
 /// objective's batches: the vote draws each point twice in one batch and the points
 /// still undecided in one batch per round, so that a batch renderer is called for

@@ -145,10 +145,7 @@
 //!   extrapolating (a cone's), so no move. The best point is kept: [`Auto::theta`]
 //!   returns it, and the next restart and the run's end put it back into θ. The centre's
 //!   descent from above the best point keeps the run from stagnating but is not a gain
-//!   of the run: only a value below the best point's lets the restarts go on. Such a
-//!   gain also ends the restart's continuation: it has left the basin that held the
-//!   run, and the trust region descends from the new best point instead of following
-//!   the wide model away from it (into a corner where a shape leaves the view, say).
+//!   of the run: only a value below the best point's lets the restarts go on.
 //!   Deterministic objectives only, and voted ones (a noisy trial is judged on common
 //!   noise).
 //!
@@ -195,7 +192,7 @@ pub const FULL_MODEL_MAX_DIM: usize = 40;
 pub const MAX_MEMORY: usize = 128;
 
 /// σ/σ₀ above which a restart follows the smoothed model past a rejected trial
-/// ([`AutoStep::Continued`]) until it gains.
+/// ([`AutoStep::Continued`]).
 pub const CONTINUATION_SCALE: f64 = 1.5;
 
 /// ρ: the kernel's reach in units of σ√n (the distance of a fresh sample). Points with
@@ -1560,7 +1557,6 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if !accepted
             && trial.is_finite()
             && self.st.cycle > 0
-            && !self.st.may_restart
             && sigma > T::from_f64(CONTINUATION_SCALE) * self.st.sigma0
             && length < T::from_f64(0.9) * radius
             && !self.st.noisy
@@ -1571,10 +1567,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             // even where f itself is higher there (a local minimum's wells, a lattice's
             // cells, Rosenbrock's other valley). The centre moves, σ halves on the way
             // down, and the best point is kept (`Auto::restore_best`). A minimum on the
-            // region's boundary is the model extrapolating: no move. Once the restart
-            // has gained (f(θ) below the run's best before it), it has left the basin
-            // that held the run, and the trust region descends from the new best point
-            // rather than follow the wide model elsewhere.
+            // region's boundary is the model extrapolating: no move.
             if self.st.best_value.is_none() {
                 self.st.best_value = Some(reference);
                 self.mem.best.copy_from_slice(self.theta);
