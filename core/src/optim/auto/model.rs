@@ -382,8 +382,8 @@ pub(super) fn fit<T: Real>(
         }
     }
     let diag = (0..cols).fold(T::ZERO, |s, a| s + schur[a * cols + a]);
-    let ridge = ridge.fraction::<T>() * (diag / T::from_usize(cols)).max(T::MIN_POSITIVE);
-    if !cholesky::factor_in_place(&mut schur[..cols * cols], cols, ridge) {
+    let shift = ridge.fraction::<T>() * (diag / T::from_usize(cols)).max(T::MIN_POSITIVE);
+    if !cholesky::factor_in_place(&mut schur[..cols * cols], cols, shift) {
         return None;
     }
     cholesky::solve(schur, cols, &mut beta[..cols]);
