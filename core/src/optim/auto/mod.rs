@@ -6,8 +6,9 @@
 //! Auto is a trust-region method on a smoothed quadratic model that remembers its
 //! evaluations:
 //!
-//! * **Memory.** Every evaluation is kept (up to [`Auto::history_len`] points; when full,
-//!   the point farthest from θ gives way). Each iteration fits the model
+//! * **Memory.** Every evaluation is kept (up to [`Auto::history_len`] points, about twice
+//!   the model's coefficients; when full, the point farthest from θ gives way). Each
+//!   iteration fits the model
 //!   m(θ + σu) = c + gᵀu + ½uᵀHu to the remembered points within reach, weighted by
 //!   w = exp(−½(z/ρ)²), z = ‖L⁻¹(x − θ)‖/(σ√n), ρ = [`REACH`], by ridge regression towards the
 //!   previous iteration's model (the `model` module): an overdetermined fit averages the
@@ -184,7 +185,7 @@ use model::{Ridge, Shape};
 /// metric's eigen-decompositions) and n² floats per Hessian and shape, which bounds it.
 pub const FULL_MODEL_MAX_DIM: usize = 40;
 
-/// Most points Auto remembers (it reaches this for n ≥ 14 with a full model, and always
+/// Most points Auto remembers (it reaches this for n ≥ 10 with a full model, and always
 /// with a diagonal one). A fit costs O(m²n + m³) per iteration for m remembered points, so
 /// the bound keeps the cost affordable for a full model and linear in n for a diagonal
 /// one; with fewer points than the model's coefficients the fit corrects the model
@@ -628,6 +629,12 @@ pub const fn buffer_len(n: usize) -> usize {
 }
 
 const fn history_len(n: usize) -> usize {
+    let m = 2 * Shape::for_dim(n).coefficients(n) + n + 1;
+    if m > MAX_MEMORY { MAX_MEMORY } else { m }
+}
+
+/// Points a run on a declared-noisy objective remembers ([`Auto::history_len`]).
+const fn noisy_history_len(n: usize) -> usize {
     let m = Shape::for_dim(n).coefficients(n) + n + 1;
     if m > MAX_MEMORY { MAX_MEMORY } else { m }
 }
@@ -855,9 +862,21 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         buffer_len(n)
     }
 
-    /// Points remembered in dimension n: the model's coefficient count
+    /// Points remembered in dimension n: twice the model's coefficient count p
     /// ((n+1)(n+2)/2 for a full Hessian, 2n + 1 for a diagonal one) plus n + 1, at most
-    /// [`MAX_MEMORY`].
+    /// [`MAX_MEMORY`]: 2p + n + 1 (15 at n = 2, 48 at n = 5, 128 from n = 10). Twice p
+    /// lets a fit average over the kernel rather than interpolate, and leaves room, once
+    /// a converged descent has crowded θ's surroundings, for the wider points of a
+    /// restart or a widening σ: each new point replaces the one farthest from θ, which
+    /// in a memory of p + n + 1 was often the newest wide one, so that a rejected wide
+    /// trial left the memory before any fit had seen it and was proposed again.
+    ///
+    /// A declared-noisy objective ([`Objective::deterministic`] false) keeps
+    /// p + n + 1 (at most [`MAX_MEMORY`]): its pairs and trials each bring a point of a
+    /// fresh noise group, and the rules that end its descents (the counts of points
+    /// that determine the model, the coarser tolerance) hold for that memory — with
+    /// twice as many points its descents wander at σ ~ 10⁻²σ₀ and restart half as
+    /// often (docs/notes/2026-11-27-memory-twice-the-coefficients.md).
     pub const fn history_len(n: usize) -> usize {
         history_len(n)
     }
@@ -2270,7 +2289,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// `group`. When the memory is full, each replaces the point farthest from θ (by z).
     fn remember(&mut self, rows: usize, group: T) {
         let n = self.theta.len();
-        let cap = history_len(n);
+        let cap = if self.st.noisy {
+            noisy_history_len(n)
+        } else {
+            history_len(n)
+        };
         for row in 0..rows {
             let f = self.mem.stage_f[row];
             if !f.is_finite() {
