@@ -8,13 +8,13 @@
 //!
 //! * **Memory.** Every evaluation is kept (up to [`Auto::history_len`] points, about twice
 //!   the model's coefficients; when full, the point farthest from θ gives way). Each
-//!   iteration fits the model
-//!   m(θ + σu) = c + gᵀu + ½uᵀHu to the remembered points within reach, weighted by
-//!   w = exp(−½(z/ρ)²), z = ‖L⁻¹(x − θ)‖/(σ√n), ρ = [`REACH`], by ridge regression towards the
-//!   previous iteration's model (the `model` module): an overdetermined fit averages the
-//!   points over a Gaussian of width ~σ, as hodr's estimators average samples, so the
-//!   model is that of the *smoothed* objective; an underdetermined one changes the
-//!   curvature least, as Powell's NEWUOA does, so curvature learnt earlier is kept.
+//!   iteration fits the model m(θ + σu) = c + gᵀu + ½uᵀHu to the remembered points
+//!   within reach, weighted by w = exp(−½(z/ρ)²), z = ‖L⁻¹(x − θ)‖/(σ√n),
+//!   ρ = [`REACH`], by ridge regression towards the previous iteration's model (the
+//!   `model` module): an overdetermined fit averages the points over a Gaussian of width
+//!   ~σ, as hodr's estimators average samples, so the model is that of the *smoothed*
+//!   objective; an underdetermined one changes the curvature least, as Powell's NEWUOA
+//!   does, so curvature learnt earlier is kept.
 //!   A full Hessian is modelled for n ≤ [`FULL_MODEL_MAX_DIM`], a diagonal one above;
 //!   the memory holds at most [`MAX_MEMORY`] points, so that an iteration's cost is
 //!   bounded for a full model and linear in n for a diagonal one (the `model` module says
@@ -185,8 +185,8 @@ use model::{Ridge, Shape};
 /// metric's eigen-decompositions) and n² floats per Hessian and shape, which bounds it.
 pub const FULL_MODEL_MAX_DIM: usize = 40;
 
-/// Most points Auto remembers (it reaches this for n ≥ 10 with a full model, and always
-/// with a diagonal one). A fit costs O(m²n + m³) per iteration for m remembered points, so
+/// Most points Auto remembers (it reaches this for n ≥ 10 with a full model — n ≥ 14 on a
+/// declared-noisy objective — and always with a diagonal one). A fit costs O(m²n + m³) per iteration for m remembered points, so
 /// the bound keeps the cost affordable for a full model and linear in n for a diagonal
 /// one; with fewer points than the model's coefficients the fit corrects the model
 /// carried from earlier iterations along the directions of the recent points.
@@ -867,16 +867,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// [`MAX_MEMORY`]: 2p + n + 1 (15 at n = 2, 48 at n = 5, 128 from n = 10). Twice p
     /// lets a fit average over the kernel rather than interpolate, and leaves room, once
     /// a converged descent has crowded θ's surroundings, for the wider points of a
-    /// restart or a widening σ: each new point replaces the one farthest from θ, which
-    /// in a memory of p + n + 1 was often the newest wide one, so that a rejected wide
-    /// trial left the memory before any fit had seen it and was proposed again.
+    /// restart or a widening σ (each new point replaces the one farthest from θ).
     ///
-    /// A declared-noisy objective ([`Objective::deterministic`] false) keeps
-    /// p + n + 1 (at most [`MAX_MEMORY`]): its pairs and trials each bring a point of a
-    /// fresh noise group, and the rules that end its descents (the counts of points
-    /// that determine the model, the coarser tolerance) hold for that memory — with
-    /// twice as many points its descents wander at σ ~ 10⁻²σ₀ and restart half as
-    /// often (docs/notes/2026-11-27-memory-twice-the-coefficients.md).
+    /// A run on a declared-noisy objective ([`Objective::deterministic`] false) uses
+    /// only p + n + 1 of them (at most [`MAX_MEMORY`]): the rules that end its descents
+    /// (the fit's scatter, the counts of points that determine the model) are set for
+    /// that memory (docs/notes/2026-11-27-memory-twice-the-coefficients.md).
     pub const fn history_len(n: usize) -> usize {
         history_len(n)
     }
