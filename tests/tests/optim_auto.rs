@@ -594,22 +594,18 @@ fn convergence_rates_hold() {
 }
 
 /// Whether Auto reaches the exact minimum of a 5-D integer plateau within 150
-/// evaluations: f(x) = Σᵢ 100^(i/4)·zᵢ², z = H(round(x) − x*), H the Householder
-/// reflection of [`rotated`], x* = (1, −2, 0, 3, −1); the start is uniform in [−4, 4]⁵
-/// from a stream seeded with `seed`.
+/// evaluations: f(x) = Σᵢ 100^(i/4)·zᵢ², z = H(round(x) − x*) ([`reflected`]),
+/// x* = (1, −2, 0, 3, −1); the start is uniform in [−4, 4]⁵ from a stream seeded with
+/// `seed`.
 fn integer_plateau_solved(seed: u64) -> bool {
     let n = 5;
     let target = [1.0, -2.0, 0.0, 3.0, -1.0];
-    let v: Vec<f64> = (1..=n).map(|i| i as f64).collect();
-    let vv: f64 = v.iter().map(|a| a * a).sum();
     let mut f = |x: &[f64]| {
         let d: Vec<f64> = x.iter().zip(&target).map(|(a, b)| a.round() - b).collect();
-        let vd: f64 = v.iter().zip(&d).map(|(a, b)| a * b).sum();
-        (0..n)
-            .map(|i| {
-                let z = d[i] - 2.0 * vd / vv * v[i];
-                100f64.powf(i as f64 / (n - 1) as f64) * z * z
-            })
+        reflected(&d)
+            .iter()
+            .enumerate()
+            .map(|(i, z)| 100f64.powf(i as f64 / (n - 1) as f64) * z * z)
             .sum::<f64>()
     };
     let mut u = uniforms(seed ^ 0x5eed);
@@ -804,11 +800,21 @@ fn runs_below_1e8(f: impl Fn(&[f64]) -> f64, x0: &[f64], budget: usize, seeds: u
 fn rotated(x: &[f64]) -> Vec<f64> {
     let n = x.len();
     let d: Vec<f64> = (0..n).map(|i| x[i] - 0.1 * (i as f64 + 1.0)).collect();
-    let v: Vec<f64> = (1..=n).map(|i| i as f64).collect();
+    reflected(&d)
+        .iter()
+        .enumerate()
+        .map(|(i, z)| z * 10f64.powf(i as f64 / (n as f64 - 1.0)))
+        .collect()
+}
+
+/// Hd, H = I − 2vvᵀ/vᵀv the Householder reflection along v = (1, 2, …, n).
+fn reflected(d: &[f64]) -> Vec<f64> {
+    let v: Vec<f64> = (1..=d.len()).map(|i| i as f64).collect();
     let vd =
-        v.iter().zip(&d).map(|(a, b)| a * b).sum::<f64>() / v.iter().map(|a| a * a).sum::<f64>();
-    (0..n)
-        .map(|i| (d[i] - 2.0 * v[i] * vd) * 10f64.powf(i as f64 / (n as f64 - 1.0)))
+        v.iter().zip(d).map(|(a, b)| a * b).sum::<f64>() / v.iter().map(|a| a * a).sum::<f64>();
+    d.iter()
+        .zip(&v)
+        .map(|(di, vi)| di - 2.0 * vi * vd)
         .collect()
 }
 

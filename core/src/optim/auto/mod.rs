@@ -186,9 +186,9 @@ use model::{Ridge, Shape};
 pub const FULL_MODEL_MAX_DIM: usize = 40;
 
 /// Most points Auto remembers (it reaches this for n ≥ 10 with a full model — n ≥ 14 on a
-/// declared-noisy objective — and always with a diagonal one). A fit costs O(m²n + m³) per iteration for m remembered points, so
-/// the bound keeps the cost affordable for a full model and linear in n for a diagonal
-/// one; with fewer points than the model's coefficients the fit corrects the model
+/// declared-noisy objective — and always with a diagonal one). A fit costs O(m²n + m³)
+/// per iteration for m remembered points, so the bound keeps the cost affordable for a
+/// full model and linear in n for a diagonal one; with fewer points than the model's coefficients the fit corrects the model
 /// carried from earlier iterations along the directions of the recent points.
 pub const MAX_MEMORY: usize = 128;
 
@@ -629,13 +629,17 @@ pub const fn buffer_len(n: usize) -> usize {
 }
 
 const fn history_len(n: usize) -> usize {
-    let m = 2 * Shape::for_dim(n).coefficients(n) + n + 1;
-    if m > MAX_MEMORY { MAX_MEMORY } else { m }
+    memory_of(n, 2)
 }
 
 /// Points a run on a declared-noisy objective remembers ([`Auto::history_len`]).
 const fn noisy_history_len(n: usize) -> usize {
-    let m = Shape::for_dim(n).coefficients(n) + n + 1;
+    memory_of(n, 1)
+}
+
+/// `copies` times the model's coefficients plus n + 1, at most [`MAX_MEMORY`].
+const fn memory_of(n: usize, copies: usize) -> usize {
+    let m = copies * Shape::for_dim(n).coefficients(n) + n + 1;
     if m > MAX_MEMORY { MAX_MEMORY } else { m }
 }
 
