@@ -17,9 +17,36 @@ fn minimise<T: Real, O: Objective<T>>(
     budget: usize,
     seed: u64,
 ) -> (Vec<T>, Option<T>, AutoTermination) {
+    let options = AutoOptions::default().with_max_evaluations(budget).unwrap();
+    minimise_with(objective, x0, sigma0, bounds, options, seed)
+}
+
+/// [`minimise`] with its first descent only ([`AutoOptions::fresh_starts`] off): for
+/// what a descent does by itself, such as ending on its own.
+fn descend<T: Real, O: Objective<T>>(
+    objective: &mut O,
+    x0: &[T],
+    sigma0: T,
+    budget: usize,
+    seed: u64,
+) -> (Vec<T>, Option<T>, AutoTermination) {
+    let options = AutoOptions::default()
+        .with_max_evaluations(budget)
+        .unwrap()
+        .with_fresh_starts(false);
+    minimise_with(objective, x0, sigma0, None, options, seed)
+}
+
+fn minimise_with<T: Real, O: Objective<T>>(
+    objective: &mut O,
+    x0: &[T],
+    sigma0: T,
+    bounds: Option<(&[T], &[T])>,
+    options: AutoOptions<T>,
+    seed: u64,
+) -> (Vec<T>, Option<T>, AutoTermination) {
     let mut theta = x0.to_vec();
     let mut buffer = vec![T::ZERO; Auto::<T, Xoshiro256PlusPlus>::buffer_len(x0.len())];
-    let options = AutoOptions::default().with_max_evaluations(budget).unwrap();
     let mut auto = Auto::new(
         &mut theta,
         sigma0,
@@ -218,6 +245,7 @@ fn option_defaults() {
     assert_eq!(o.patience, None);
     assert_eq!(o.restarts, 8);
     assert_eq!(o.max_evaluations, None);
+    assert!(o.fresh_starts);
     assert_eq!(o.non_finite, NonFinite::Worst);
 }
 
@@ -299,7 +327,7 @@ fn extreme_scales_run<T: Real>(side: Option<f64>) {
 fn huge_parameters() {
     let c = 1e8;
     let mut f = |x: &[f64]| (x[0] - c).powi(2) + 10.0 * (x[1] + c).powi(2);
-    let (theta, _, end) = minimise(&mut f, &[c + 50.0, -c + 30.0], 10.0, None, 3000, 7);
+    let (theta, _, end) = descend(&mut f, &[c + 50.0, -c + 30.0], 10.0, 3000, 7);
     assert!(
         (theta[0] - c).abs() < 1e-4 && (theta[1] + c).abs() < 1e-4,
         "{theta:?}"
@@ -336,14 +364,81 @@ fn stiff_quadratic() {
     assert!(err < 1e-6 * 6f64.sqrt(), "error {err:e}, θ = {theta:?}");
 }
 
-/// A constant function ends the run (stagnated) with θ unchanged and finite.
+/// A constant function ends the descent (stagnated) with θ unchanged and finite; with
+/// fresh starts, the run spends its budget and still returns x₀, the first of the points
+/// that tie.
 #[test]
 fn flat_function_ends_the_run() {
     let mut f = |_: &[f64]| 1.0;
-    let (theta, value, end) = minimise(&mut f, &[0.5, -0.5], 1.0, None, 100_000, 0);
+    let (theta, value, end) = descend(&mut f, &[0.5, -0.5], 1.0, 100_000, 0);
     assert_eq!(theta, vec![0.5, -0.5]);
     assert_eq!(value, Some(1.0));
     assert_eq!(end, AutoTermination::Stagnated);
+    let (theta, value, end) = minimise(&mut f, &[0.5, -0.5], 1.0, None, 3000, 0);
+    assert_eq!(theta, vec![0.5, -0.5]);
+    assert_eq!(value, Some(1.0));
+    assert_eq!(end, AutoTermination::MaxEvaluations);
+}
+
+/// Fresh starts: where a descent ends in a local minimum, the budget's remainder goes to
+/// new descents about the best point and the best point of all descents is returned;
+/// a run without a budget is its first descent. Rastrigin's function
+/// f(x) = Σ (xᵢ² − 10 cos 2πxᵢ + 10) in 2-D from (3.3, −2.2) with σ₀ = 1 in [−5.12, 5.12]²
+/// (a local minimum at every integer point), to f < 1e-8 within 3 000 evaluations.
+/// Measured on 400 seeds: 340 of 400 with fresh starts, 216 of 400 with the first
+/// descent only. Bound: P(X < 26 | p = 0.85, N = 40) = 4.1e-4.
+#[test]
+fn fresh_starts_leave_a_local_minimum() {
+    let seeds = 40;
+    let mut solved = 0;
+    for seed in 0..seeds {
+        let (theta, value, end) = rastrigin_run(Some(3000), true, seed);
+        assert_eq!(end, AutoTermination::MaxEvaluations, "seed {seed}");
+        assert_eq!(
+            value,
+            Some(rastrigin(&theta)),
+            "seed {seed}: the best point's value"
+        );
+        solved += usize::from(value.is_some_and(|v| v < 1e-8));
+    }
+    assert!(
+        solved >= 26,
+        "Rastrigin with fresh starts: {solved} of {seeds}"
+    );
+    // Without a budget the run is the first descent alone, which ends on its own.
+    for seed in 0..4 {
+        let unbudgeted = rastrigin_run(None, true, seed);
+        assert_ne!(unbudgeted.2, AutoTermination::MaxEvaluations);
+        assert_eq!(unbudgeted, rastrigin_run(Some(1_000_000), false, seed));
+    }
+}
+
+fn rastrigin(x: &[f64]) -> f64 {
+    x.iter()
+        .map(|v| v * v - 10.0 * (2.0 * std::f64::consts::PI * v).cos() + 10.0)
+        .sum()
+}
+
+/// A run of [`fresh_starts_leave_a_local_minimum`].
+fn rastrigin_run(
+    budget: Option<usize>,
+    fresh_starts: bool,
+    seed: u64,
+) -> (Vec<f64>, Option<f64>, AutoTermination) {
+    let (lower, upper) = ([-5.12, -5.12], [5.12, 5.12]);
+    let mut options = AutoOptions::default().with_fresh_starts(fresh_starts);
+    if let Some(budget) = budget {
+        options = options.with_max_evaluations(budget).unwrap();
+    }
+    let mut f = rastrigin;
+    minimise_with(
+        &mut f,
+        &[3.3, -2.2],
+        1.0,
+        Some((&lower, &upper)),
+        options,
+        seed,
+    )
 }
 
 /// A saddle: the run only ever descends (f of the best point never rises) and leaves

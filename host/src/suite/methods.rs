@@ -34,7 +34,7 @@ use std::time::Instant;
 
 use anyhow::{Result, anyhow};
 use hodr_core::optim::preset::{Hyper, NEWTON_CG_INNER_STEPS, Preset, SIGMA_SHRINK};
-use hodr_core::optim::{Auto, Budget, NegativeCurvature, Optimiser};
+use hodr_core::optim::{Auto, AutoOptions, AutoTermination, Budget, NegativeCurvature, Optimiser};
 use hodr_core::{Estimator, Workspace};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
@@ -118,17 +118,19 @@ fn auto(problem: &Problem, x0: &[f64], seed: u64, counter: &mut Counter<'_>) -> 
     let mut theta = x0.to_vec();
     let mut buf = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)];
     let rng = Xoshiro256PlusPlus::seed_from_u64(random::seed_of("auto", &[seed]));
-    let mut auto = Auto::new(&mut theta, problem.sigma0, &mut buf, rng)?;
+    let options = AutoOptions::default().with_max_evaluations(budget)?;
+    let mut auto = Auto::new(&mut theta, problem.sigma0, &mut buf, rng)?.with_options(options);
     if let Some(b) = &problem.bounds {
         auto = auto.with_bounds(&b.lower, &b.upper)?;
     }
     // Each iteration either evaluates or shrinks σ towards Auto's own tolerance, so
     // this cap is never the binding one; it is there so the loop has one.
     for _ in 0..budget.saturating_mul(100).max(10_000) {
-        match auto.step(counter)? {
-            None => return Ok(auto.termination().map(|t| t.to_string())),
-            Some(_) if auto.evaluations() >= budget => return Ok(None),
-            Some(_) => {}
+        if auto.step(counter)?.is_none() {
+            return Ok(auto
+                .termination()
+                .filter(|&t| t != AutoTermination::MaxEvaluations)
+                .map(|t| t.to_string()));
         }
     }
     Ok(Some("iteration cap".into()))

@@ -126,9 +126,10 @@
 //!   draws another pair instead, and a blind one widens σ, so that a plateau seen
 //!   through a rasteriser's pixel jitter is searched ever wider rather than between two
 //!   scales.
-//! * **Anytime.** Nothing depends on a budget: the first k evaluations of a run are the
-//!   same whatever its [`AutoOptions::max_evaluations`], which only stops it (never
-//!   exceeded, even inside an iteration). When every coordinate's spread σ√Cᵢᵢ falls
+//! * **Anytime.** Nothing depends on a budget's size: the first k evaluations of a run
+//!   are the same whatever its [`AutoOptions::max_evaluations`], which only stops it
+//!   (never exceeded, even inside an iteration) — and, by being set, lets it start
+//!   fresh descents (below). When every coordinate's spread σ√Cᵢᵢ falls
 //!   below [`AutoOptions::tolerance`] of its start (σ below it times σ₀ on a noisy
 //!   objective; or σ below what T resolves at θ), or after
 //!   [`AutoOptions::patience`] iterations without a lower f(θ), the run restarts from
@@ -136,7 +137,17 @@
 //!   …, [`PLATEAU_WIDTH`]·σ₀, σ₀, … (wider scales average over more of the basin that
 //!   held it; a gain does not send the next restart back to σ₀, since on a lattice of
 //!   small steps some gain is always found there); after [`AutoOptions::restarts`]
-//!   restarts in a row without a gain it ends, converged or stagnated.
+//!   restarts in a row without a gain its descent ends, converged or stagnated.
+//! * **Fresh starts.** A run with a budget on a deterministic objective then starts a
+//!   new descent about its best point, as basin hopping does
+//!   ([`AutoOptions::fresh_starts`]): each coordinate moves by its start scale times
+//!   2^(k mod 5) times a normal draw at the k-th fresh start, mirrored into the box,
+//!   and the memory, model, metric and σ start over. A descent's end is as likely a
+//!   local minimum (a disc hidden under another, a lattice cell beside the optimum's)
+//!   as the global one, and nothing in the values tells which; the budget says how
+//!   much more the caller will spend to find out. [`Auto::theta`] is the best point of
+//!   all descents. Without a budget, or on a noisy objective, the run ends with its
+//!   first descent.
 //! * **Continuation.** At such a restart, while σ > [`CONTINUATION_SCALE`]·σ₀, a
 //!   rejected trial whose step ends inside the trust region still moves θ, now the
 //!   search centre, and halves σ ([`AutoStep::Continued`]): the model fitted at a wide
@@ -351,6 +362,16 @@ pub struct AutoOptions<T> {
     pub restarts: usize,
     /// Objective evaluations after which the run stops; never exceeded. Default: none.
     pub max_evaluations: Option<usize>,
+    /// Whether a run with a budget ([`AutoOptions::max_evaluations`]) on a
+    /// deterministic objective spends what its descent leaves: once a descent ends
+    /// (converged, or stagnated after its [`AutoOptions::restarts`]), another starts
+    /// from a point about the best one, as basin hopping does (each coordinate moved
+    /// by its start scale times 2^(k mod 5) times a standard normal draw at the k-th
+    /// fresh start, mirrored into the box), with its memory, model, metric and σ
+    /// started over; the best point of all descents is kept, and the run ends with its
+    /// budget. A run without a budget, or on a noisy objective (values of different
+    /// descents would not compare), ends with its first descent. Default: `true`.
+    pub fresh_starts: bool,
     /// Policy for NaN/±∞ objective values. Default: [`NonFinite::Worst`].
     pub non_finite: NonFinite,
 }
@@ -362,6 +383,7 @@ impl<T: Real> Default for AutoOptions<T> {
             patience: None,
             restarts: 8,
             max_evaluations: None,
+            fresh_starts: true,
             non_finite: NonFinite::Worst,
         }
     }
@@ -411,6 +433,13 @@ impl<T: Real> AutoOptions<T> {
         }
         self.max_evaluations = Some(max);
         Ok(self)
+    }
+
+    /// Sets [`AutoOptions::fresh_starts`] (false: the run ends with its first descent,
+    /// budget or not).
+    pub fn with_fresh_starts(mut self, fresh_starts: bool) -> Self {
+        self.fresh_starts = fresh_starts;
+        self
     }
 
     /// Sets [`AutoOptions::non_finite`].
@@ -552,10 +581,12 @@ struct Memory<'b, T> {
     best: &'b mut [T],
     /// The evolution path of θ's accepted model steps in units of σ ([`Auto::follow_path`]).
     path: &'b mut [T],
+    /// The best point of the run's earlier descents ([`State::record`]).
+    record: &'b mut [T],
 }
 
 /// Region lengths for dimension n, in [`Memory`]'s order.
-const fn regions(n: usize) -> [usize; 41] {
+const fn regions(n: usize) -> [usize; 42] {
     let shape = Shape::for_dim(n);
     let m = history_len(n);
     let hl = shape.hessian_len(n);
@@ -608,12 +639,13 @@ const fn regions(n: usize) -> [usize; 41] {
         n,
         n,
         n,
+        n,
     ]
 }
 
 /// Floats of buffer an [`Auto`] run needs in dimension n, for m = [`Auto::history_len`]
 /// points remembered:
-/// m(2n + 7) + m² + mp + p² + p + 16n + 7h + r(n + 1) + n² + 2f,
+/// m(2n + 7) + m² + mp + p² + p + 17n + 7h + r(n + 1) + n² + 2f,
 /// with, for the full model (n ≤ [`FULL_MODEL_MAX_DIM`]), h = f = n² and p = n + 1, and
 /// for the diagonal one h = n, f = 0 and p = 1; r = 2·min(n, ⌊m/2⌋) + 2 staged points.
 /// A `const fn`, so that storage can be sized at compile time ([`FixedAuto`]).
@@ -725,6 +757,7 @@ fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         scale: take(),
         best: take(),
         path: take(),
+        record: take(),
     }
 }
 
@@ -816,6 +849,11 @@ struct State<T> {
     /// (σ, `metric_changes`) for which [`Memory::zs`] holds the remembered points' z
     /// (with θ = [`Memory::zt`]); `None` before it is first filled.
     reach_key: Option<(T, u32)>,
+    /// f at [`Memory::record`], the best point of the descents before the current one
+    /// (`Auto::fresh_start`); `None` before the first fresh start.
+    record: Option<T>,
+    /// Fresh starts so far.
+    fresh: u32,
 }
 
 /// Auto: a resumable run over θ (borrowed, updated in place to the best point found).
@@ -957,6 +995,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 unconfirmed: 0,
                 best_value: None,
                 reach_key: None,
+                record: None,
+                fresh: 0,
             },
         })
     }
@@ -1062,7 +1102,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
 
     /// The best point found so far (x₀ before the first step).
     pub fn theta(&self) -> &[T] {
-        if self.st.best_value.is_some() {
+        if self.record_leads() {
+            self.mem.record
+        } else if self.st.best_value.is_some() {
             self.mem.best
         } else {
             self.theta
@@ -1071,7 +1113,20 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
 
     /// f at [`Auto::theta`], once evaluated and finite.
     pub fn value(&self) -> Option<T> {
-        self.st.best_value.or(self.st.value)
+        if self.record_leads() {
+            self.st.record
+        } else {
+            self.st.best_value.or(self.st.value)
+        }
+    }
+
+    /// An earlier descent's best point is at least as good as the current descent's.
+    fn record_leads(&self) -> bool {
+        match (self.st.record, self.st.best_value.or(self.st.value)) {
+            (Some(r), Some(v)) => r <= v,
+            (Some(_), None) => true,
+            (None, _) => false,
+        }
     }
 
     /// σ for the next iteration.
@@ -1125,6 +1180,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if self.remaining() == 0 {
             self.st.finished = Some(AutoTermination::MaxEvaluations);
             self.restore_best();
+            self.restore_record();
             return Ok(None);
         }
         let n = self.theta.len();
@@ -1177,6 +1233,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.restart(self.restart_sigma());
             self.st.cycle += 1;
             None
+        } else if (converged || stagnated) && self.may_start_fresh() {
+            self.fresh_start();
+            None
         } else if converged {
             Some(AutoTermination::Converged)
         } else if stagnated {
@@ -1187,6 +1246,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.keep_best();
         if termination.is_some() {
             self.restore_best();
+            self.restore_record();
         }
         self.st.finished = termination;
         Ok(Some(AutoReport {
@@ -2587,6 +2647,72 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.theta.copy_from_slice(self.mem.best);
             self.st.value = Some(b);
         }
+    }
+
+    /// Moves θ to the best point of the earlier descents where that is at least as good
+    /// as the current descent's.
+    fn restore_record(&mut self) {
+        if self.record_leads() {
+            self.theta.copy_from_slice(self.mem.record);
+            self.st.value = self.st.record;
+        }
+    }
+
+    /// Whether a descent that ended (converged, or stagnated after its restarts) is
+    /// followed by a fresh one ([`AutoOptions::fresh_starts`]): the run has a budget
+    /// and the objective is deterministic (values on different seeds, or draws of
+    /// unseeded noise, would make one descent's best point incomparable with
+    /// another's).
+    fn may_start_fresh(&self) -> bool {
+        self.options.fresh_starts
+            && self.options.max_evaluations.is_some()
+            && !self.st.noisy
+            && !self.st.unseeded
+    }
+
+    /// Begins a new descent from a fresh start about the run's best point, as basin
+    /// hopping does: each coordinate moved by its start scale times 2^(k mod
+    /// [`RESTART_SCALES`]) times a standard normal draw for the k-th fresh start, and
+    /// mirrored into the box. The best point so far is kept as the record; the memory,
+    /// the model, the metric and σ start over as in [`Auto::new`].
+    fn fresh_start(&mut self) {
+        self.restore_best();
+        self.restore_record();
+        if let Some(v) = self.st.value {
+            self.mem.record.copy_from_slice(self.theta);
+            self.st.record = Some(v);
+        }
+        let n = self.theta.len();
+        let widen = T::from_f64(libm::pow(2.0, f64::from(self.st.fresh % RESTART_SCALES)));
+        self.st.fresh += 1;
+        let least = self.least_start_scale();
+        for i in 0..n {
+            let spread = self.start_scale(i).max(least) * widen;
+            let x = self.theta[i] + spread * normal::quantile(T::uniform_open(&mut self.rng));
+            self.theta[i] = reflect(x, self.mem.lower[i], self.mem.upper[i]);
+        }
+        self.shape_scales();
+        self.mem.path.fill(T::ZERO);
+        self.forget_scales();
+        let st = &mut self.st;
+        st.count = 0;
+        st.value = None;
+        st.centre_known = false;
+        st.has_prior = false;
+        st.frame_next = n;
+        st.resample = false;
+        st.stale = 0;
+        st.may_restart = false;
+        st.survey = false;
+        st.widenings = 0;
+        st.cycle = 0;
+        st.lattice = false;
+        st.checked = false;
+        st.doubted = false;
+        st.unconfirmed = 0;
+        st.best_value = None;
+        st.reach_key = None;
+        st.metric_changes = st.metric_changes.wrapping_add(1);
     }
 
     /// Starts over from the best point at `sigma` with the memory of points and the
