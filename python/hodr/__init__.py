@@ -139,15 +139,15 @@ def _scales(sigma0: Any, n: int) -> list:
     return array.tolist()
 
 
-OPTIONS = ("tolerance", "patience", "restarts", "non_finite")
+OPTIONS = ("tolerance", "patience", "restarts", "fresh_starts", "non_finite")
 
 
 def _settings(options: Any) -> tuple:
-    """(tolerance, patience, restarts, non_finite) from the ``options`` mapping, each
-    None where it is not given; TypeError/ValueError naming the key. The extension
-    checks the ranges."""
+    """(tolerance, patience, restarts, fresh_starts, non_finite) from the ``options``
+    mapping, each None where it is not given; TypeError/ValueError naming the key. The
+    extension checks the ranges."""
     if options is None:
-        return (None, None, None, None)
+        return (None, None, None, None, None)
     if not hasattr(options, "items"):
         raise TypeError(f"options must be a dict, got {type(options).__name__}")
     unknown = [k for k in options if k not in OPTIONS]
@@ -165,10 +165,17 @@ def _settings(options: Any) -> tuple:
     restarts = options.get("restarts")
     if restarts is not None:
         restarts = _count("options['restarts']", restarts, 0)
+    fresh_starts = options.get("fresh_starts")
+    if fresh_starts is not None and not isinstance(fresh_starts, (bool, np.bool_)):
+        raise TypeError(
+            f"options['fresh_starts'] must be a bool, got {type(fresh_starts).__name__}"
+        )
+    if fresh_starts is not None:
+        fresh_starts = bool(fresh_starts)
     non_finite = options.get("non_finite")
     if non_finite is not None and not isinstance(non_finite, str):
         raise TypeError("options['non_finite'] must be 'worst' or 'error'")
-    return (tolerance, patience, restarts, non_finite)
+    return (tolerance, patience, restarts, fresh_starts, non_finite)
 
 
 def _count(name: str, value: Any, minimum: int) -> int:
@@ -221,7 +228,11 @@ def minimize(
         ``upper``, pass ``list(zip(lower, upper))``: a pair of two arrays reads as
         per-coordinate pairs when n = 2, as in scipy. Every evaluated point lies inside.
     budget : int, optional
-        At most this many evaluations (never exceeded). Default: until converged.
+        At most this many evaluations (never exceeded). With a budget, a deterministic
+        ``fun`` gets it all: once a descent converges or stagnates, another starts
+        about the best point (basin hopping; ``options["fresh_starts"]``), and the
+        best point of all descents is returned, with status 1. Default: until the
+        first descent converges.
     method : str
         ``"auto"`` (the only one).
     seed : int
@@ -248,7 +259,10 @@ def minimize(
         sigma < tolerance * sigma0; default 1e-9, or 1e-3 with ``noisy``);
         ``patience`` (int >= 1): iterations without a lower value before a restart
         (default 20 + 10n); ``restarts`` (int >= 0): restarts in a row without a gain
-        before the run ends (default 8); ``non_finite``: ``"worst"`` (default: NaN or
+        before the descent ends (default 8); ``fresh_starts`` (bool): with a
+        ``budget``, spend what the first descent leaves on new descents about the
+        best point (default True; False ends the run with its first descent);
+        ``non_finite``: ``"worst"`` (default: NaN or
         inf counts as worse than any value) or ``"error"`` (raise ValueError, whose
         ``result`` attribute holds the run so far).
 

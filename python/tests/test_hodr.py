@@ -246,6 +246,15 @@ def test_options_change_the_run():
     assert no_restarts.fun < 1e-12
     patient = hodr.minimize(quadratic, x0, 1.0, seed=2, options={"patience": 1, "restarts": 0})
     assert patient.nfev < default.nfev
+    # With a budget, fresh starts spend it all and keep the best point; without them
+    # the budgeted run is the unbudgeted one.
+    budgeted = hodr.minimize(quadratic, x0, 1.0, seed=2, budget=2 * default.nfev)
+    assert budgeted.nfev == 2 * default.nfev and budgeted.status == 1
+    assert budgeted.fun <= default.fun
+    once = hodr.minimize(
+        quadratic, x0, 1.0, seed=2, budget=2 * default.nfev, options={"fresh_starts": False}
+    )
+    assert once.nfev == default.nfev and once.fun == default.fun and once.success
 
 
 @pytest.mark.parametrize(
@@ -274,6 +283,7 @@ def test_options_change_the_run():
         (lambda: hodr.minimize(quadratic, X, 1.0, options={"tolerance": 0.0}), ValueError, "tolerance"),
         (lambda: hodr.minimize(quadratic, X, 1.0, options={"patience": 0}), ValueError, "patience"),
         (lambda: hodr.minimize(quadratic, X, 1.0, options={"restarts": 1.5}), TypeError, "restarts"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, options={"fresh_starts": 1}), TypeError, "fresh_starts"),
         (lambda: hodr.minimize(quadratic, X, 1.0, options={"non_finite": "skip"}), ValueError, "non_finite"),
         (lambda: hodr.Optimizer(X, 1.0, options={"patience": -2}), ValueError, "patience"),
         (lambda: hodr.minimize(3, X, 1.0), TypeError, "fun"),
