@@ -38,8 +38,10 @@ def run_hodr(problem, x0, budget, seed):
     import hodr
 
     bounds = list(zip(problem.lower_bounds, problem.upper_bounds))
-    hodr.minimize(problem, x0, SIGMA0, bounds=bounds,
-                  budget=budget, seed=seed)
+    # With a budget Auto spends all of it (fresh descents about its best point); the
+    # callback ends the run once COCO's final target is hit, as the restart loop does.
+    hodr.minimize(problem, x0, SIGMA0, bounds=bounds, budget=budget, seed=seed,
+                  callback=lambda x, f: problem.final_target_hit)
 
 
 def run_cma(problem, x0, budget, seed):
