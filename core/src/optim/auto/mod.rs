@@ -2684,7 +2684,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         let n = self.theta.len();
         let widen = T::from_f64(libm::pow(2.0, f64::from(self.st.fresh % RESTART_SCALES)));
-        self.st.fresh += 1;
+        self.st.fresh = self.st.fresh.wrapping_add(1);
         let least = self.least_start_scale();
         for i in 0..n {
             let spread = self.start_scale(i).max(least) * widen;
