@@ -856,6 +856,51 @@ struct State<T> {
     fresh: u32,
 }
 
+impl<T: Real> State<T> {
+    /// The state of a run's first descent at scale σ₀ in dimension n, before its first
+    /// iteration ([`Auto::new`]); a fresh start (`Auto::fresh_start`) begins from it too,
+    /// keeping what the run as a whole has learnt.
+    fn start(sigma0: T, n: usize) -> State<T> {
+        State {
+            sigma: sigma0,
+            sigma0,
+            iteration: 0,
+            evaluations: 0,
+            value: None,
+            centre_known: false,
+            count: 0,
+            has_prior: false,
+            frame_next: n,
+            resample: false,
+            stale: 0,
+            may_restart: false,
+            bounded: false,
+            survey: false,
+            widenings: 0,
+            cycle: 0,
+            lattice: false,
+            tie_scale: T::ZERO,
+            rough_scale: T::ZERO,
+            noisy: false,
+            checked: true,
+            unseeded: false,
+            dense: false,
+            doubted: false,
+            voting: false,
+            groups: 0,
+            shared: None,
+            gained: false,
+            finished: None,
+            metric_changes: 0,
+            unconfirmed: 0,
+            best_value: None,
+            reach_key: None,
+            record: None,
+            fresh: 0,
+        }
+    }
+}
+
 /// Auto: a resumable run over θ (borrowed, updated in place to the best point found).
 ///
 /// ```
@@ -961,43 +1006,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             rng,
             options: AutoOptions::default(),
             shape: Shape::for_dim(n),
-            st: State {
-                sigma: sigma0,
-                sigma0,
-                iteration: 0,
-                evaluations: 0,
-                value: None,
-                centre_known: false,
-                count: 0,
-                has_prior: false,
-                frame_next: n,
-                resample: false,
-                stale: 0,
-                may_restart: false,
-                bounded: false,
-                survey: false,
-                widenings: 0,
-                cycle: 0,
-                lattice: false,
-                tie_scale: T::ZERO,
-                rough_scale: T::ZERO,
-                noisy: false,
-                checked: true,
-                unseeded: false,
-                dense: false,
-                doubted: false,
-                voting: false,
-                groups: 0,
-                shared: None,
-                gained: false,
-                finished: None,
-                metric_changes: 0,
-                unconfirmed: 0,
-                best_value: None,
-                reach_key: None,
-                record: None,
-                fresh: 0,
-            },
+            st: State::start(sigma0, n),
         })
     }
 
@@ -2691,28 +2700,25 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             let x = self.theta[i] + spread * normal::quantile(T::uniform_open(&mut self.rng));
             self.theta[i] = reflect(x, self.mem.lower[i], self.mem.upper[i]);
         }
+        let run = self.st;
+        self.st = State {
+            iteration: run.iteration,
+            evaluations: run.evaluations,
+            bounded: run.bounded,
+            noisy: run.noisy,
+            // A descent may end held by noise: check again, as a restart does.
+            checked: run.unseeded,
+            unseeded: run.unseeded,
+            dense: run.dense,
+            voting: run.voting,
+            groups: run.groups,
+            metric_changes: run.metric_changes.wrapping_add(1),
+            record: run.record,
+            fresh: run.fresh,
+            ..State::start(run.sigma0, n)
+        };
         self.shape_scales();
         self.mem.path.fill(T::ZERO);
-        self.forget_scales();
-        let st = &mut self.st;
-        st.count = 0;
-        st.value = None;
-        st.centre_known = false;
-        st.has_prior = false;
-        st.frame_next = n;
-        st.resample = false;
-        st.stale = 0;
-        st.may_restart = false;
-        st.survey = false;
-        st.widenings = 0;
-        st.cycle = 0;
-        st.lattice = false;
-        st.checked = false;
-        st.doubted = false;
-        st.unconfirmed = 0;
-        st.best_value = None;
-        st.reach_key = None;
-        st.metric_changes = st.metric_changes.wrapping_add(1);
     }
 
     /// Starts over from the best point at `sigma` with the memory of points and the
