@@ -166,11 +166,11 @@ def _settings(options: Any) -> tuple:
     if restarts is not None:
         restarts = _count("options['restarts']", restarts, 0)
     fresh_starts = options.get("fresh_starts")
-    if fresh_starts is not None and not isinstance(fresh_starts, (bool, np.bool_)):
-        raise TypeError(
-            f"options['fresh_starts'] must be a bool, got {type(fresh_starts).__name__}"
-        )
     if fresh_starts is not None:
+        if not isinstance(fresh_starts, (bool, np.bool_)):
+            raise TypeError(
+                f"options['fresh_starts'] must be a bool, got {type(fresh_starts).__name__}"
+            )
         fresh_starts = bool(fresh_starts)
     non_finite = options.get("non_finite")
     if non_finite is not None and not isinstance(non_finite, str):
