@@ -264,6 +264,17 @@ const STRIDE: f64 = 1.189_207_115_002_721;
 /// Scales in the restarts' cycle σ₀, 2σ₀, …, [`PLATEAU_WIDTH`]·σ₀.
 const RESTART_SCALES: u32 = 5;
 
+/// Restarts in a row without a gain before a run's only descent ends (no budget, or a
+/// noisy objective): the cycle σ₀ … [`PLATEAU_WIDTH`]·σ₀ once, and its first three
+/// scales again, since restarts are then the run's only way out of a basin.
+pub const RESTARTS: usize = 8;
+
+/// Restarts in a row without a gain before a descent that a fresh start follows ends
+/// ([`AutoOptions::fresh_starts`]): σ₀ and 2σ₀. Once those find nothing, the wider
+/// scales are left to the new descent, which starts from a point about the best one
+/// with a memory and a model that no longer hold the basin that held the last.
+pub const RESTARTS_BEFORE_FRESH: usize = 2;
+
 /// σ/σ₀ beyond which a confirmed step to the trust boundary no longer widens σ.
 const GROWTH_WIDTH: f64 = 1_048_576.0;
 
@@ -355,11 +366,13 @@ pub struct AutoOptions<T> {
     /// (see [`AutoOptions::restarts`]) or ends stagnated. Default: `None`, meaning
     /// 20 + 10n.
     pub patience: Option<usize>,
-    /// Restarts in a row without a lower f(θ) before the run ends. The k-th restart of
+    /// Restarts in a row without a lower f(θ) before a descent ends. The k-th restart of
     /// a run is at σ₀·2^(k mod 5): σ₀, 2σ₀, …, [`PLATEAU_WIDTH`]·σ₀ (and, with bounds, at
     /// most half the box's widest side), then σ₀ again. Each looks around its scale
-    /// with n antithetic pairs (at most half the memory's worth). Default: 8.
-    pub restarts: usize,
+    /// with n antithetic pairs (at most half the memory's worth). Default: `None`,
+    /// meaning [`RESTARTS_BEFORE_FRESH`] where a fresh start follows the descent (see
+    /// [`AutoOptions::fresh_starts`]) and [`RESTARTS`] where the descent is the run.
+    pub restarts: Option<usize>,
     /// Objective evaluations after which the run stops; never exceeded. Default: none.
     pub max_evaluations: Option<usize>,
     /// Whether a run with a budget ([`AutoOptions::max_evaluations`]) on a
@@ -381,7 +394,7 @@ impl<T: Real> Default for AutoOptions<T> {
         AutoOptions {
             tolerance: None,
             patience: None,
-            restarts: 8,
+            restarts: None,
             max_evaluations: None,
             fresh_starts: true,
             non_finite: NonFinite::Worst,
@@ -417,7 +430,7 @@ impl<T: Real> AutoOptions<T> {
     /// Sets [`AutoOptions::restarts`] (0: the run ends as soon as it converges or
     /// stagnates).
     pub fn with_restarts(mut self, restarts: usize) -> Self {
-        self.restarts = restarts;
+        self.restarts = Some(restarts);
         self
     }
 
@@ -1229,7 +1242,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let termination = if kind == AutoStep::OutOfBudget || self.remaining() == 0 {
             Some(AutoTermination::MaxEvaluations)
         } else if (converged || stagnated)
-            && (self.st.may_restart || (self.st.widenings as usize) < self.options.restarts)
+            && (self.st.may_restart || (self.st.widenings as usize) < self.restarts())
         {
             // A kink or a lattice can hold σ far from the optimum: look again from the
             // best point, at the next scale of the cycle σ₀, 2σ₀, …, where the smoothed
@@ -2665,6 +2678,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.theta.copy_from_slice(self.mem.record);
             self.st.value = self.st.record;
         }
+    }
+
+    /// Restarts in a row without a gain before the descent ends
+    /// ([`AutoOptions::restarts`], or its default for this run).
+    fn restarts(&self) -> usize {
+        self.options.restarts.unwrap_or(if self.may_start_fresh() {
+            RESTARTS_BEFORE_FRESH
+        } else {
+            RESTARTS
+        })
     }
 
     /// Whether a descent that ended (converged, or stagnated after its restarts) is
