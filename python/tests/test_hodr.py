@@ -238,8 +238,8 @@ def test_options_change_the_run():
     x0 = [2.0, 2.0, -1.0]
     default = hodr.minimize(quadratic, x0, 1.0, seed=2)
     assert default.success
-    # Without restarts the run ends at its first convergence; with a coarse tolerance,
-    # sooner still.
+    # With no restarts beyond the first fruitless one the run ends sooner; with a coarse
+    # tolerance, sooner still.
     no_restarts = hodr.minimize(quadratic, x0, 1.0, seed=2, options={"restarts": 0})
     coarse = hodr.minimize(quadratic, x0, 1.0, seed=2, options={"restarts": 0, "tolerance": 1e-3})
     assert coarse.nfev < no_restarts.nfev < default.nfev

@@ -264,16 +264,19 @@ const STRIDE: f64 = 1.189_207_115_002_721;
 /// Scales in the restarts' cycle σ₀, 2σ₀, …, [`PLATEAU_WIDTH`]·σ₀.
 const RESTART_SCALES: u32 = 5;
 
-/// Restarts in a row without a gain before a run's only descent ends (no budget, or a
-/// noisy objective): the cycle σ₀ … [`PLATEAU_WIDTH`]·σ₀ once, and its first three
-/// scales again, since restarts are then the run's only way out of a basin.
+/// Restarts in a row without a gain after the first such one before a run's only
+/// descent ends (no budget, or a noisy objective; [`AutoOptions::restarts`]): the cycle
+/// σ₀ … [`PLATEAU_WIDTH`]·σ₀ and more, since restarts are then the run's only way out of
+/// a basin.
 pub const RESTARTS: usize = 8;
 
-/// Restarts in a row without a gain before a descent that a fresh start follows ends
-/// ([`AutoOptions::fresh_starts`]): σ₀ and 2σ₀. Once those find nothing, the wider
-/// scales are left to the new descent, which starts from a point about the best one
-/// with a memory and a model that no longer hold the basin that held the last.
-pub const RESTARTS_BEFORE_FRESH: usize = 2;
+/// Restarts in a row without a gain after the first such one before a descent that a
+/// fresh start follows ends ([`AutoOptions::fresh_starts`], [`AutoOptions::restarts`]):
+/// none. The descent restarts from its best point while its restarts gain, and ends
+/// with the first restart that gains nothing; the wider search is left to the new descent, which
+/// starts from a point about the best one with a memory and a model that no longer
+/// hold the basin that held the last.
+pub const RESTARTS_BEFORE_FRESH: usize = 0;
 
 /// σ/σ₀ beyond which a confirmed step to the trust boundary no longer widens σ.
 const GROWTH_WIDTH: f64 = 1_048_576.0;
@@ -366,8 +369,10 @@ pub struct AutoOptions<T> {
     /// (see [`AutoOptions::restarts`]) or ends stagnated. Default: `None`, meaning
     /// 20 + 10n.
     pub patience: Option<usize>,
-    /// Restarts in a row without a lower f(θ) before a descent ends. The k-th restart of
-    /// a run is at σ₀·2^(k mod 5): σ₀, 2σ₀, …, [`PLATEAU_WIDTH`]·σ₀ (and, with bounds, at
+    /// A descent restarts from its best point whenever it converges or stagnates with a
+    /// lower f(θ) since its last restart (or its start); once a restart has found none,
+    /// `restarts` more in a row without a lower f(θ) are made before the descent ends.
+    /// The k-th restart of a run is at σ₀·2^(k mod 5): σ₀, 2σ₀, …, [`PLATEAU_WIDTH`]·σ₀ (and, with bounds, at
     /// most half the box's widest side), then σ₀ again. Each looks around its scale
     /// with n antithetic pairs (at most half the memory's worth). Default: `None`,
     /// meaning [`RESTARTS_BEFORE_FRESH`] where a fresh start follows the descent (see
@@ -427,8 +432,8 @@ impl<T: Real> AutoOptions<T> {
         Ok(self)
     }
 
-    /// Sets [`AutoOptions::restarts`] (0: the run ends as soon as it converges or
-    /// stagnates).
+    /// Sets [`AutoOptions::restarts`] (0: the descent ends once a restart has found no
+    /// lower f(θ)).
     pub fn with_restarts(mut self, restarts: usize) -> Self {
         self.restarts = Some(restarts);
         self
