@@ -273,9 +273,9 @@ pub const RESTARTS: usize = 8;
 /// Restarts in a row without a gain after the first such one before a descent that a
 /// fresh start follows ends ([`AutoOptions::fresh_starts`], [`AutoOptions::restarts`]):
 /// none. The descent restarts from its best point while its restarts gain, and ends
-/// with the first restart that gains nothing; the wider search is left to the new descent, which
-/// starts from a point about the best one with a memory and a model that no longer
-/// hold the basin that held the last.
+/// with the first restart that gains nothing; the wider search is left to the new
+/// descent, which starts from a point about the best one with a memory and a model
+/// that no longer hold the basin that held the last.
 pub const RESTARTS_BEFORE_FRESH: usize = 0;
 
 /// σ/σ₀ beyond which a confirmed step to the trust boundary no longer widens σ.
@@ -372,11 +372,12 @@ pub struct AutoOptions<T> {
     /// A descent restarts from its best point whenever it converges or stagnates with a
     /// lower f(θ) since its last restart (or its start); once a restart has found none,
     /// `restarts` more in a row without a lower f(θ) are made before the descent ends.
-    /// The k-th restart of a run is at σ₀·2^(k mod 5): σ₀, 2σ₀, …, [`PLATEAU_WIDTH`]·σ₀ (and, with bounds, at
-    /// most half the box's widest side), then σ₀ again. Each looks around its scale
-    /// with n antithetic pairs (at most half the memory's worth). Default: `None`,
-    /// meaning [`RESTARTS_BEFORE_FRESH`] where a fresh start follows the descent (see
-    /// [`AutoOptions::fresh_starts`]) and [`RESTARTS`] where the descent is the run.
+    /// The k-th restart of a run is at σ₀·2^(k mod 5): σ₀, 2σ₀, …, [`PLATEAU_WIDTH`]·σ₀
+    /// (and, with bounds, at most half the box's widest side), then σ₀ again. Each
+    /// looks around its scale with n antithetic pairs (at most half the memory's
+    /// worth). Default: `None`, meaning [`RESTARTS_BEFORE_FRESH`] where a fresh start
+    /// follows the descent (see [`AutoOptions::fresh_starts`]) and [`RESTARTS`] where
+    /// the descent is the run.
     pub restarts: Option<usize>,
     /// Objective evaluations after which the run stops; never exceeded. Default: none.
     pub max_evaluations: Option<usize>,
@@ -2685,8 +2686,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
     }
 
-    /// Restarts in a row without a gain before the descent ends
-    /// ([`AutoOptions::restarts`], or its default for this run).
+    /// Restarts in a row without a gain, after the first such one, before the descent
+    /// ends ([`AutoOptions::restarts`], or its default for this run).
     fn restarts(&self) -> usize {
         self.options.restarts.unwrap_or(if self.may_start_fresh() {
             RESTARTS_BEFORE_FRESH
