@@ -110,6 +110,72 @@ fn bounds_are_never_violated() {
     assert!(theta[2].abs() < 1e-4, "{theta:?}");
 }
 
+/// A pair whose halves the box folds onto one point — from a corner, θ + d and θ − d
+/// mirror to the same point up to rounding — is evaluated once: no batch holds a point
+/// twice on one seed, the run counts only what the objective evaluated, and the first survey (θ and
+/// two pairs, each folded) costs 3 evaluations, not 5. The minimum lies beyond the
+/// corner, so the whole run samples from it.
+#[test]
+fn a_point_folded_twice_is_evaluated_once() {
+    struct Logged {
+        batches: Vec<Vec<(Vec<f64>, u64)>>,
+    }
+    impl Objective<f64> for Logged {
+        fn evaluate(&mut self, x: &[f64], _seed: u64) -> f64 {
+            (x[0] - 3.0).powi(2) + (x[1] - 3.0).powi(2)
+        }
+        fn evaluate_batch(&mut self, batch: &hodr_core::Batch<'_, f64>, out: &mut [f64]) {
+            let mut rows = Vec::new();
+            for (k, v) in out.iter_mut().enumerate() {
+                *v = self.evaluate(batch.point(k), batch.seed(k));
+                rows.push((batch.point(k).to_vec(), batch.seed(k)));
+            }
+            self.batches.push(rows);
+        }
+        fn deterministic(&self) -> bool {
+            true
+        }
+    }
+    let (lo, hi) = ([0.0, 0.0], [1.0, 1.0]);
+    for seed in 0..4 {
+        let mut f = Logged {
+            batches: Vec::new(),
+        };
+        let mut theta = vec![1.0, 1.0];
+        let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(2)];
+        let options = AutoOptions::default().with_max_evaluations(200).unwrap();
+        let mut auto = Auto::new(
+            &mut theta,
+            0.5,
+            &mut buffer,
+            Xoshiro256PlusPlus::seed_from_u64(seed),
+        )
+        .unwrap()
+        .with_options(options)
+        .with_bounds(&lo, &hi)
+        .unwrap();
+        let mut counted = 0;
+        auto.run(&mut f, |report, _| counted = report.evaluations)
+            .unwrap();
+        assert_eq!(auto.theta(), &[1.0, 1.0][..], "seed {seed}");
+        let evaluated: usize = f.batches.iter().map(Vec::len).sum();
+        assert_eq!(counted, evaluated, "seed {seed}");
+        assert_eq!(f.batches[0].len(), 3, "seed {seed}: {:?}", f.batches[0]);
+        // One point up to the rounding of the mirroring, on one seed.
+        let same = |a: &(Vec<f64>, u64), b: &(Vec<f64>, u64)| {
+            a.1 == b.1 && a.0.iter().zip(&b.0).all(|(x, y)| (x - y).abs() <= 1e-12)
+        };
+        for batch in &f.batches {
+            for (k, row) in batch.iter().enumerate() {
+                assert!(
+                    !batch[..k].iter().any(|earlier| same(earlier, row)),
+                    "seed {seed}: {row:?} twice in {batch:?}"
+                );
+            }
+        }
+    }
+}
+
 /// A quadratic is solved by the first model: the survey's 2n + 1 points (θ and n
 /// antithetic pairs on lines through it) determine every curvature the model's
 /// least-change fit needs for a round bowl, so the step after them lands on the minimum.

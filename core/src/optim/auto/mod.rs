@@ -2197,6 +2197,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// Evaluates the first `rows` staged points with the given seeds, in chunks; with
     /// [`NonFinite::Error`] the first chunk that leaves a point non-finite ends the batch
     /// with [`Error::NonFiniteObjective`], naming that point's first draw.
+    ///
+    /// A row equal to an earlier row of its chunk with the same seed (up to rounding) is
+    /// not evaluated again but takes that row's value ([`Objective`]: equal seeds give equal noise),
+    /// unless the objective draws unseeded noise, where a second draw is information:
+    /// a pair whose halves the box folds onto one point (from a corner, or along an
+    /// axis normal to a face) costs one evaluation.
     fn evaluate<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,
@@ -2214,31 +2220,120 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             }
             // Row k's first draw is evaluation first + k, or, where a vote draws the first
             // `doubled` rows twice at once, first + 2k below them and first + doubled + k
-            // from them on.
+            // from them on; where rows repeat, first + the number of distinct rows before
+            // the one it repeats.
             let first = *spent;
+            let mut source = [0u8; CHUNK];
+            let mut draws = [0u8; CHUNK];
             let doubled = if self.st.voting {
                 self.vote(objective, start, len, spent)?
             } else {
+                let distinct = self.distinct_rows(start, len, &mut seeds, &mut source, &mut draws);
                 draw(
                     objective,
-                    &self.mem.stage[start * n..(start + len) * n],
-                    &seeds[..len],
-                    &mut self.mem.stage_f[start..start + len],
+                    &self.mem.stage[start * n..(start + distinct) * n],
+                    &seeds[..distinct],
+                    &mut self.mem.stage_f[start..start + distinct],
                     &mut self.st.evaluations,
                     spent,
                 )?;
+                if distinct < len {
+                    self.spread_distinct(start, len, &source, &draws);
+                }
                 0
             };
             if self.options.non_finite == NonFinite::Error {
                 let values = &self.mem.stage_f[start..start + len];
                 if let Some(k) = values.iter().position(|f| !f.is_finite()) {
-                    let sample = first + k + k.min(doubled);
+                    let sample = if self.st.voting {
+                        first + k + k.min(doubled)
+                    } else {
+                        first + usize::from(draws[k])
+                    };
                     return Err(Error::NonFiniteObjective { sample });
                 }
             }
             start += len;
         }
         Ok(())
+    }
+
+    /// Moves the distinct rows of the staged chunk `start … start + len − 1` (at most
+    /// [`CHUNK`]) and their seeds to its front, in order, by swaps, and returns their
+    /// number. Row k repeats row `source[k]` < k where their seeds are equal, their
+    /// coordinates equal up to rounding ([`same_point`]) and the objective draws no
+    /// unseeded noise (else `source[k]` = k); `draws[k]` is where the value of row
+    /// `source[k]` will be. With no row repeated nothing moves.
+    fn distinct_rows(
+        &mut self,
+        start: usize,
+        len: usize,
+        seeds: &mut [NoiseSeed; CHUNK],
+        source: &mut [u8; CHUNK],
+        draws: &mut [u8; CHUNK],
+    ) -> usize {
+        let n = self.theta.len();
+        let stage = &mut self.mem.stage[start * n..(start + len) * n];
+        let row = |k: usize| k * n..(k + 1) * n;
+        let mut distinct = 0;
+        for k in 0..len {
+            let repeats = if self.st.unseeded {
+                None
+            } else {
+                (0..k).find(|&j| {
+                    usize::from(source[j]) == j
+                        && seeds[j] == seeds[k]
+                        && same_point(&stage[row(j)], &stage[row(k)])
+                })
+            };
+            // CHUNK ≤ 256: indices fit in a byte.
+            if let Some(j) = repeats {
+                source[k] = j as u8;
+                draws[k] = draws[j];
+            } else {
+                source[k] = k as u8;
+                draws[k] = distinct as u8;
+                distinct += 1;
+            }
+        }
+        if distinct < len {
+            for k in 0..len {
+                let d = usize::from(draws[k]);
+                if usize::from(source[k]) == k && d != k {
+                    swap_rows(stage, n, d, k);
+                    seeds.swap(d, k);
+                }
+            }
+        }
+        distinct
+    }
+
+    /// Undoes [`Auto::distinct_rows`] once its distinct rows were evaluated: every row of
+    /// the chunk back in its place, a repeated one with the value of the row it repeats.
+    fn spread_distinct(
+        &mut self,
+        start: usize,
+        len: usize,
+        source: &[u8; CHUNK],
+        draws: &[u8; CHUNK],
+    ) {
+        let n = self.theta.len();
+        let stage = &mut self.mem.stage[start * n..(start + len) * n];
+        let values = &mut self.mem.stage_f[start..start + len];
+        // The moves to the front were swaps, made in ascending order: undone in reverse.
+        for k in (0..len).rev() {
+            let d = usize::from(draws[k]);
+            if usize::from(source[k]) == k && d != k {
+                swap_rows(stage, n, d, k);
+                values.swap(d, k);
+            }
+        }
+        for k in 0..len {
+            let j = usize::from(source[k]);
+            if j != k {
+                values[k] = values[j];
+            }
+        }
     }
 
     /// On sparse unseeded noise ([`State::voting`]), evaluates the staged rows
@@ -3020,6 +3115,21 @@ fn lower_median<T: Real>(xs: &[T]) -> T {
         }
     }
     T::MAX
+}
+
+/// Swaps rows a < b (n floats each) of `rows`.
+fn swap_rows<T>(rows: &mut [T], n: usize, a: usize, b: usize) {
+    let (head, tail) = rows.split_at_mut(b * n);
+    head[a * n..(a + 1) * n].swap_with_slice(&mut tail[..n]);
+}
+
+/// a and b are one point up to rounding: every coordinate equal to within 8 ulps (a
+/// pair's halves folded by the box onto one point differ by the rounding of their
+/// mirroring).
+fn same_point<T: Real>(a: &[T], b: &[T]) -> bool {
+    a.iter()
+        .zip(b)
+        .all(|(&x, &y)| (x - y).abs() <= T::from_f64(8.0) * T::EPSILON * x.abs().max(y.abs()))
 }
 
 /// f ties with v: equal to within 16 ulps of v (a smooth f almost never does).
