@@ -27,13 +27,14 @@
 //!   coordinates, wherever the metric keeps them nearly orthogonal there
 //!   ([`AXIS_COHERENCE`]) — except a noisy objective's from θ on a face of the box,
 //!   where pairs along the axes normal to it fold onto one point. A half that would
-//!   leave the box stops at
-//!   the face on its line (so the pair still fixes the slope and curvature along it,
-//!   and a survey of a quadratic gives the exact model) unless that keeps less than an
-//!   eighth of its length. Such a half, the pairs drawn to explore (below), and every
-//!   pair from n = 15 (where the memory is smaller than the full model, and for the
-//!   diagonal model) are mirrored into the box at the faces they cross instead, keeping
-//!   their reach. The two halves of a pair share a noise seed.
+//!   leave the box stops at the face on its line (so the pair still fixes the slope and
+//!   curvature along it, and a survey of a quadratic gives the exact model) unless that
+//!   keeps less than an eighth of its length. Such a half, the pairs drawn to explore
+//!   (below), and every pair from n = 15 (where the memory is smaller than the full
+//!   model, and for the diagonal model) are mirrored into the box at the faces they
+//!   cross instead, keeping their reach. The two halves of a pair share a noise seed,
+//!   so where mirroring folds them onto one point (from a corner every pair folds) that
+//!   point is evaluated once, unless the objective draws unseeded noise.
 //! * **Metric.** Samples, reach and the trust region live in whitened coordinates
 //!   u = L⁻¹(x − θ)/σ, C = LLᵀ a shape (det C = 1) that moves towards |H|⁻¹ after each
 //!   step the model predicted (the `metric` module), as CMA-ES's covariance follows its
