@@ -2200,10 +2200,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// with [`Error::NonFiniteObjective`], naming that point's first draw.
     ///
     /// A row equal to an earlier row of its chunk with the same seed (up to rounding) is
-    /// not evaluated again but takes that row's value ([`Objective`]: equal seeds give equal noise),
-    /// unless the objective draws unseeded noise, where a second draw is information:
-    /// a pair whose halves the box folds onto one point (from a corner, or along an
-    /// axis normal to a face) costs one evaluation.
+    /// not evaluated again but takes that row's value ([`Objective`]: equal seeds give
+    /// equal noise), unless the objective draws unseeded noise, where a second draw is
+    /// information: a pair whose halves the box folds onto one point (from a corner, or
+    /// along an axis normal to a face) costs one evaluation.
     fn evaluate<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,
