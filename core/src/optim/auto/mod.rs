@@ -200,8 +200,9 @@ pub const FULL_MODEL_MAX_DIM: usize = 40;
 /// Most points Auto remembers (it reaches this for n ≥ 10 with a full model — n ≥ 14 on a
 /// declared-noisy objective — and always with a diagonal one). A fit costs O(m²n + m³)
 /// per iteration for m remembered points, so the bound keeps the cost affordable for a
-/// full model and linear in n for a diagonal one; with fewer points than the model's coefficients the fit corrects the model
-/// carried from earlier iterations along the directions of the recent points.
+/// full model and linear in n for a diagonal one; with fewer points than the model's
+/// coefficients the fit corrects the model carried from earlier iterations along the
+/// directions of the recent points.
 pub const MAX_MEMORY: usize = 128;
 
 /// σ/σ₀ above which a restart follows the smoothed model past a rejected trial
