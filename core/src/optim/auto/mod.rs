@@ -2225,12 +2225,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             // from them on; where rows repeat, first + the number of distinct rows before
             // the one it repeats.
             let first = *spent;
-            let mut source = [0u8; CHUNK];
             let mut draws = [0u8; CHUNK];
             let doubled = if self.st.voting {
                 self.vote(objective, start, len, spent)?
             } else {
-                let distinct = self.distinct_rows(start, len, &mut seeds, &mut source, &mut draws);
+                let distinct = self.distinct_rows(start, len, &mut seeds, &mut draws);
                 draw(
                     objective,
                     &self.mem.stage[start * n..(start + distinct) * n],
@@ -2240,7 +2239,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                     spent,
                 )?;
                 if distinct < len {
-                    self.spread_distinct(start, len, &source, &draws);
+                    self.spread_distinct(start, len, &draws);
                 }
                 0
             };
@@ -2262,16 +2261,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
 
     /// Moves the distinct rows of the staged chunk `start … start + len − 1` (at most
     /// [`CHUNK`]) and their seeds to its front, in order, by swaps, and returns their
-    /// number. Row k repeats row `source[k]` < k where their seeds are equal, their
-    /// coordinates equal up to rounding ([`same_point`]) and the objective draws no
-    /// unseeded noise (else `source[k]` = k); `draws[k]` is where the value of row
-    /// `source[k]` will be. With no row repeated nothing moves.
+    /// number; `draws[k]` is where row k's value will be. A row repeats an earlier one,
+    /// and shares its draw, where their seeds are equal, their coordinates equal up to
+    /// rounding ([`same_point`]) and the objective draws no unseeded noise. With no row
+    /// repeated nothing moves.
     fn distinct_rows(
         &mut self,
         start: usize,
         len: usize,
         seeds: &mut [NoiseSeed; CHUNK],
-        source: &mut [u8; CHUNK],
         draws: &mut [u8; CHUNK],
     ) -> usize {
         let n = self.theta.len();
@@ -2282,26 +2280,21 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             let repeats = if self.st.unseeded {
                 None
             } else {
-                (0..k).find(|&j| {
-                    usize::from(source[j]) == j
-                        && seeds[j] == seeds[k]
-                        && same_point(&stage[row(j)], &stage[row(k)])
-                })
+                (0..k).find(|&j| seeds[j] == seeds[k] && same_point(&stage[row(j)], &stage[row(k)]))
             };
             // CHUNK ≤ 256: indices fit in a byte.
-            if let Some(j) = repeats {
-                source[k] = j as u8;
-                draws[k] = draws[j];
-            } else {
-                source[k] = k as u8;
-                draws[k] = distinct as u8;
-                distinct += 1;
-            }
+            draws[k] = match repeats {
+                Some(j) => draws[j],
+                None => {
+                    distinct += 1;
+                    (distinct - 1) as u8
+                }
+            };
         }
         if distinct < len {
             for k in 0..len {
                 let d = usize::from(draws[k]);
-                if usize::from(source[k]) == k && d != k {
+                if first_draw(draws, k) && d != k {
                     swap_rows(stage, n, d, k);
                     seeds.swap(d, k);
                 }
@@ -2312,27 +2305,21 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
 
     /// Undoes [`Auto::distinct_rows`] once its distinct rows were evaluated: every row of
     /// the chunk back in its place, a repeated one with the value of the row it repeats.
-    fn spread_distinct(
-        &mut self,
-        start: usize,
-        len: usize,
-        source: &[u8; CHUNK],
-        draws: &[u8; CHUNK],
-    ) {
+    fn spread_distinct(&mut self, start: usize, len: usize, draws: &[u8; CHUNK]) {
         let n = self.theta.len();
         let stage = &mut self.mem.stage[start * n..(start + len) * n];
         let values = &mut self.mem.stage_f[start..start + len];
         // The moves to the front were swaps, made in ascending order: undone in reverse.
         for k in (0..len).rev() {
             let d = usize::from(draws[k]);
-            if usize::from(source[k]) == k && d != k {
+            if first_draw(draws, k) && d != k {
                 swap_rows(stage, n, d, k);
                 values.swap(d, k);
             }
         }
         for k in 0..len {
-            let j = usize::from(source[k]);
-            if j != k {
+            if !first_draw(draws, k) {
+                let j = draws.iter().position(|&d| d == draws[k]).unwrap_or(k);
                 values[k] = values[j];
             }
         }
@@ -3117,6 +3104,12 @@ fn lower_median<T: Real>(xs: &[T]) -> T {
         }
     }
     T::MAX
+}
+
+/// Whether row k is the first of its chunk with its draw (`Auto::distinct_rows`): not a
+/// repeat.
+fn first_draw(draws: &[u8; CHUNK], k: usize) -> bool {
+    !draws[..k].contains(&draws[k])
 }
 
 /// Swaps rows a < b (n floats each) of `rows`.
