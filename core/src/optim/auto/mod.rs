@@ -22,7 +22,11 @@
 //! * **Samples.** Where fewer than n + 1 remembered points (or half the memory, if
 //!   smaller) lie within z ≤ ρ, the iteration evaluates antithetic pairs θ ± σ√n·b along
 //!   Lb, b the columns of a random orthonormal frame (n pairs, or half the memory's
-//!   worth, and θ on the first iteration). A restart's survey of a full model runs
+//!   worth, and θ on the first iteration). A model that puts its minimum at θ shrinks
+//!   σ only once more than 2q − 2 remembered points lie within reach, q the count
+//!   above; short of that, the next iteration draws the pairs it lacks in one batch
+//!   (one pair per iteration on a declared-noisy objective): one fit instead of one per
+//!   pair, and a batch the caller can evaluate in parallel. A restart's survey of a full model runs
 //!   along the parameter axes instead, each scaled to unit length in whitened
 //!   coordinates, wherever the metric keeps them nearly orthogonal there
 //!   ([`AXIS_COHERENCE`]) — except a noisy objective's from θ on a face of the box,
@@ -713,6 +717,13 @@ const fn nearby_needed(n: usize) -> usize {
     if n + 1 < half { n + 1 } else { half }
 }
 
+/// Points within reach above which a model that puts its minimum at θ is validated, so
+/// that σ may shrink on its word: 2q − 2 for q = [`nearby_needed`] — pairs in about as
+/// many directions as the model has linear coefficients.
+const fn validating(n: usize) -> usize {
+    2 * nearby_needed(n) - 2
+}
+
 /// Pairs a survey (the first iteration, a restart) draws: n, or as many as half the
 /// memory holds.
 const fn survey_pairs(n: usize) -> usize {
@@ -801,6 +812,9 @@ struct State<T> {
     /// Draw a pair this iteration whatever the count of nearby points: σ widened on a
     /// plateau, or a step failed on a model the nearby points did not determine.
     resample: bool,
+    /// The model claimed its minimum at θ before enough points around θ validated it:
+    /// the next iteration draws the pairs the validation lacks at once (with `resample`).
+    validate: bool,
     /// Iterations since f(θ) last fell.
     stale: usize,
     /// f(θ) fell since the last restart (or the run began): a stagnation restarts
@@ -893,6 +907,7 @@ impl<T: Real> State<T> {
             has_prior: false,
             frame_next: n,
             resample: false,
+            validate: false,
             stale: 0,
             may_restart: false,
             bounded: false,
@@ -1222,6 +1237,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let mut spent = 0;
         let mut kind = self.sample(objective, &mut spent)?;
         self.st.resample = false;
+        self.st.validate = false;
         let mut ratio = None;
         if kind.is_none() {
             let (k, r) = self.model_step(objective, &mut spent)?;
@@ -1364,6 +1380,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.survey = false;
         let pairs = if survey {
             survey_pairs(n)
+        } else if self.st.validate {
+            (validating(n) + 1)
+                .saturating_sub(self.count_around(T::from_f64(REACH)))
+                .div_ceil(2)
+                .clamp(1, survey_pairs(n))
         } else if self.st.resample {
             1
         } else {
@@ -1610,13 +1631,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         };
         let length = norm(self.mem.s);
         // A model that claims a minimum near θ must have seen θ's surroundings in
-        // enough directions before σ shrinks on its word.
-        let validated = self.count_around(T::from_f64(REACH)) > 2 * nearby_needed(n) - 2;
+        // enough directions before σ shrinks on its word; the pairs it lacks come in
+        // one batch (on a declared-noisy objective one pair per iteration, the rule its
+        // runs were measured with).
+        let validated = self.count_around(T::from_f64(REACH)) > validating(n);
         if predicted <= T::ZERO || !predicted.is_finite() || length <= T::from_f64(1e-3) * radius {
             if validated {
                 self.st.sigma = sigma * T::HALF;
             } else {
                 self.st.resample = true;
+                self.st.validate = !self.st.noisy;
             }
             return Ok((AutoStep::AtModelMinimum, None));
         }
