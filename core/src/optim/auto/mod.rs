@@ -26,9 +26,9 @@
 //!   σ only once more than 2q − 2 remembered points lie within reach, q the count
 //!   above; short of that, the next iteration draws the pairs it lacks in one batch
 //!   (one pair per iteration on a declared-noisy objective): one fit instead of one per
-//!   pair, and a batch the caller can evaluate in parallel. A restart's survey of a full model runs
-//!   along the parameter axes instead, each scaled to unit length in whitened
-//!   coordinates, wherever the metric keeps them nearly orthogonal there
+//!   pair, and a batch the caller can evaluate in parallel. A restart's survey of a
+//!   full model runs along the parameter axes instead, each scaled to unit length in
+//!   whitened coordinates, wherever the metric keeps them nearly orthogonal there
 //!   ([`AXIS_COHERENCE`]) — except a noisy objective's from θ on a face of the box,
 //!   where pairs along the axes normal to it fold onto one point. A half that would
 //!   leave the box stops at the face on its line (so the pair still fixes the slope and
