@@ -7,7 +7,8 @@
 //! evaluations:
 //!
 //! * **Memory.** Every evaluation is kept (up to [`Auto::history_len`] points, about twice
-//!   the model's coefficients; when full, the point farthest from θ gives way). Each
+//!   the model's coefficients; when full, the point farthest from θ gives way, and a
+//!   survey's rows only to points older than the survey). Each
 //!   iteration fits the model m(θ + σu) = c + gᵀu + ½uᵀHu to the remembered points
 //!   within reach, weighted by w = exp(−½(z/ρ)²), z = ‖L⁻¹(x − θ)‖/(σ√n),
 //!   ρ = [`REACH`], by ridge regression towards the previous iteration's model (the
@@ -990,7 +991,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// [`MAX_MEMORY`]: 2p + n + 1 (15 at n = 2, 48 at n = 5, 128 from n = 10). Twice p
     /// lets a fit average over the kernel rather than interpolate, and leaves room, once
     /// a converged descent has crowded θ's surroundings, for the wider points of a
-    /// restart or a widening σ (each new point replaces the one farthest from θ).
+    /// restart or a widening σ (each new point replaces the one farthest from θ; a
+    /// survey's, the farthest of those older than the survey).
     ///
     /// A run on a declared-noisy objective ([`Objective::deterministic`] false) uses
     /// only p + n + 1 of them (at most [`MAX_MEMORY`]): the rules that end its descents
@@ -1497,7 +1499,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.stretch_flat_axes(first_axis, pairs, usize::from(centre));
         }
         // Remember the points and move θ to the lowest when it beats f(θ).
-        self.remember(allowed, group);
+        self.remember(allowed, group, survey);
         let mut lowest: Option<(usize, T)> = None;
         for row in 0..allowed {
             let f = self.mem.stage_f[row];
@@ -1604,7 +1606,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             if self.mem.beta[0].abs() >= cut && self.remaining() > 0 {
                 let again = self.evaluate_theta_again(objective, spent)?;
                 let group = self.next_group();
-                self.remember(1, group);
+                self.remember(1, group, false);
                 if again.is_finite() {
                     value = again;
                     self.st.value = Some(again);
@@ -1665,7 +1667,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.evaluate(objective, rows, spent, |_| seed)?;
         let trial = self.mem.stage_f[0];
         let mut reference = if compare { self.mem.stage_f[1] } else { value };
-        self.remember(rows, group);
+        self.remember(rows, group, false);
         if self.st.unseeded {
             // The trial must beat the median of θ's draws (the larger of two), which one
             // lucky draw — the low tail of the noise — cannot set.
@@ -2482,14 +2484,22 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Remembers the staged rows 0 … `rows` − 1 with finite values, in noise group
-    /// `group`. When the memory is full, each replaces the point farthest from θ (by z).
-    fn remember(&mut self, rows: usize, group: T) {
+    /// `group`. When the memory is full, each replaces the point farthest from θ (by z);
+    /// with `keep_batch`, farthest among those remembered before this batch. A survey
+    /// asks for that: it is the geometry a model is fitted from (n lines through θ), and
+    /// a restart's, drawn at a σ far above the one the memory was filled at, lies
+    /// farther out than every older point, so that each of its rows would evict the last
+    /// and the first fit would see one of them.
+    fn remember(&mut self, rows: usize, group: T, keep_batch: bool) {
         let n = self.theta.len();
         let cap = if self.st.noisy {
             noisy_history_len(n)
         } else {
             history_len(n)
         };
+        if self.st.count + rows > cap {
+            self.refresh_reach();
+        }
         for row in 0..rows {
             let f = self.mem.stage_f[row];
             if !f.is_finite() {
@@ -2499,7 +2509,6 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 self.st.count += 1;
                 self.st.count - 1
             } else {
-                self.refresh_reach();
                 let mut far = (0, -T::ONE);
                 for (k, &z) in self.mem.zs[..cap].iter().enumerate() {
                     if z > far.1 {
@@ -2514,7 +2523,19 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.mem.gs[slot] = group;
             self.mem.credit[slot] = T::ONE;
             if self.reach_is_current() {
-                self.mem.zs[slot] = self.reach_of(slot);
+                // A row kept from eviction is marked until the batch is in.
+                self.mem.zs[slot] = if keep_batch {
+                    -T::ONE
+                } else {
+                    self.reach_of(slot)
+                };
+            }
+        }
+        if keep_batch && self.reach_is_current() {
+            for k in 0..self.st.count {
+                if self.mem.zs[k] < T::ZERO {
+                    self.mem.zs[k] = self.reach_of(k);
+                }
             }
         }
     }
