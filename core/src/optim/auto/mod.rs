@@ -8,7 +8,7 @@
 //!
 //! * **Memory.** Every evaluation is kept (up to [`Auto::history_len`] points, about twice
 //!   the model's coefficients; when full, the point farthest from θ gives way, and a
-//!   survey's rows only to points older than the survey). Each
+//!   a survey's rows only to points older than the survey, not θ's own). Each
 //!   iteration fits the model m(θ + σu) = c + gᵀu + ½uᵀHu to the remembered points
 //!   within reach, weighted by w = exp(−½(z/ρ)²), z = ‖L⁻¹(x − θ)‖/(σ√n),
 //!   ρ = [`REACH`], by ridge regression towards the previous iteration's model (the
@@ -992,7 +992,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// lets a fit average over the kernel rather than interpolate, and leaves room, once
     /// a converged descent has crowded θ's surroundings, for the wider points of a
     /// restart or a widening σ (each new point replaces the one farthest from θ; a
-    /// survey's, the farthest of those older than the survey).
+    /// survey's, the farthest of those older than the survey other than θ's).
     ///
     /// A run on a declared-noisy objective ([`Objective::deterministic`] false) uses
     /// only p + n + 1 of them (at most [`MAX_MEMORY`]): the rules that end its descents
@@ -2484,12 +2484,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Remembers the staged rows 0 … `rows` − 1 with finite values, in noise group
-    /// `group`. When the memory is full, each replaces the point farthest from θ (by z);
-    /// with `keep_batch`, farthest among those remembered before this batch. A survey
-    /// asks for that: it is the geometry a model is fitted from (n lines through θ), and
-    /// a restart's, drawn at a σ far above the one the memory was filled at, lies
-    /// farther out than every older point, so that each of its rows would evict the last
-    /// and the first fit would see one of them.
+    /// `group`. When the memory is full, each replaces the point farthest from θ (by z).
+    /// With `keep_batch` it replaces the farthest of the points that are neither this
+    /// batch's nor θ's own draws, while there is one. A survey asks for that: it is the
+    /// geometry a model is fitted from, n lines through θ, and a restart's, drawn at a σ
+    /// far above the one the memory was filled at, lies farther out than every older
+    /// point, so that each of its rows would evict the last (the first fit would see one
+    /// of them), and where it fills the memory, θ's value, which alone tells the model's
+    /// constant from its curvature on points all at one distance.
     fn remember(&mut self, rows: usize, group: T, keep_batch: bool) {
         let n = self.theta.len();
         let cap = if self.st.noisy {
@@ -2497,8 +2499,17 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             history_len(n)
         };
+        // A kept point's z is stored as −1 − z until the batch is in.
+        let kept = |z: T| -T::ONE - z;
         if self.st.count + rows > cap {
             self.refresh_reach();
+            if keep_batch {
+                for z in self.mem.zs[..self.st.count].iter_mut() {
+                    if *z == T::ZERO {
+                        *z = kept(*z);
+                    }
+                }
+            }
         }
         for row in 0..rows {
             let f = self.mem.stage_f[row];
@@ -2509,13 +2520,20 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 self.st.count += 1;
                 self.st.count - 1
             } else {
-                let mut far = (0, -T::ONE);
-                for (k, &z) in self.mem.zs[..cap].iter().enumerate() {
-                    if z > far.1 {
-                        far = (k, z);
-                    }
+                // The farthest point not kept, else the farthest kept one.
+                let zs = &self.mem.zs[..cap];
+                let farthest = |key: &dyn Fn(T) -> T| {
+                    (0..cap).fold((0, -T::MAX), |far, k| {
+                        let z = key(zs[k]);
+                        if z > far.1 { (k, z) } else { far }
+                    })
+                };
+                let free = farthest(&|z| if z >= T::ZERO { z } else { -T::MAX });
+                if free.1 >= T::ZERO {
+                    free.0
+                } else {
+                    farthest(&|z| kept(z)).0
                 }
-                far.0
             };
             self.mem.xs[slot * n..(slot + 1) * n]
                 .copy_from_slice(&self.mem.stage[row * n..(row + 1) * n]);
@@ -2523,18 +2541,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.mem.gs[slot] = group;
             self.mem.credit[slot] = T::ONE;
             if self.reach_is_current() {
-                // A row kept from eviction is marked until the batch is in.
-                self.mem.zs[slot] = if keep_batch {
-                    -T::ONE
-                } else {
-                    self.reach_of(slot)
-                };
+                let z = self.reach_of(slot);
+                self.mem.zs[slot] = if keep_batch { kept(z) } else { z };
             }
         }
         if keep_batch && self.reach_is_current() {
-            for k in 0..self.st.count {
-                if self.mem.zs[k] < T::ZERO {
-                    self.mem.zs[k] = self.reach_of(k);
+            for z in self.mem.zs[..self.st.count].iter_mut() {
+                if *z < T::ZERO {
+                    *z = kept(*z);
                 }
             }
         }
