@@ -7,7 +7,7 @@
 //! evaluations:
 //!
 //! * **Memory.** Every evaluation is kept (up to [`Auto::history_len`] points, about twice
-//!   the model's coefficients; when full, the point farthest from θ gives way, and a
+//!   the model's coefficients; when full, the point farthest from θ gives way, and
 //!   a survey's rows only to points older than the survey, not θ's own). Each
 //!   iteration fits the model m(θ + σu) = c + gᵀu + ½uᵀHu to the remembered points
 //!   within reach, weighted by w = exp(−½(z/ρ)²), z = ‖L⁻¹(x − θ)‖/(σ√n),
