@@ -2499,7 +2499,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             history_len(n)
         };
-        // A kept point's z is stored as −1 − z until the batch is in.
+        // A kept point's z is stored as −1 − z until the batch is in (and then
+        // computed again: the round trip through −1 − z is not exact).
         let kept = |z: T| -T::ONE - z;
         if self.st.count + rows > cap {
             self.refresh_reach();
@@ -2546,9 +2547,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             }
         }
         if keep_batch && self.reach_is_current() {
-            for z in self.mem.zs[..self.st.count].iter_mut() {
-                if *z < T::ZERO {
-                    *z = kept(*z);
+            for k in 0..self.st.count {
+                if self.mem.zs[k] < T::ZERO {
+                    self.mem.zs[k] = self.reach_of(k);
                 }
             }
         }
