@@ -1265,6 +1265,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let resolvable = T::from_f64(8.0) * T::EPSILON * scale;
         let converged = self.sigma_converged() || self.st.sigma <= resolvable;
         let stagnated = self.st.stale >= patience;
+        // Before a restart or the end moves θ back to the best point: a centre that
+        // continuation left above it may have just stepped below it.
+        self.keep_best();
         let termination = if kind == AutoStep::OutOfBudget || self.remaining() == 0 {
             Some(AutoTermination::MaxEvaluations)
         } else if (converged || stagnated)
@@ -1291,7 +1294,6 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             None
         };
-        self.keep_best();
         if termination.is_some() {
             self.restore_best();
             self.restore_record();
