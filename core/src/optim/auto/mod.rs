@@ -2524,19 +2524,17 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 self.st.count - 1
             } else {
                 // The farthest point not kept, else the farthest kept one.
-                let zs = &self.mem.zs[..cap];
-                let farthest = |key: &dyn Fn(T) -> T| {
-                    (0..cap).fold((0, -T::MAX), |far, k| {
-                        let z = key(zs[k]);
-                        if z > far.1 { (k, z) } else { far }
-                    })
-                };
-                let free = farthest(&|z| if z >= T::ZERO { z } else { -T::MAX });
-                if free.1 >= T::ZERO {
-                    free.0
-                } else {
-                    farthest(&|z| kept(z)).0
+                let (mut free, mut held) = ((None, -T::ONE), (0, -T::ONE));
+                for (k, &z) in self.mem.zs[..cap].iter().enumerate() {
+                    if z >= T::ZERO {
+                        if z > free.1 {
+                            free = (Some(k), z);
+                        }
+                    } else if kept(z) > held.1 {
+                        held = (k, kept(z));
+                    }
                 }
+                free.0.unwrap_or(held.0)
             };
             self.mem.xs[slot * n..(slot + 1) * n]
                 .copy_from_slice(&self.mem.stage[row * n..(row + 1) * n]);
