@@ -1,0 +1,440 @@
+//! Auto's memory: the caller's buffer carved into its regions ([`buffer_len`], `carve`),
+//! the sizes that depend on n (points remembered, pairs of a survey, points a model
+//! needs within reach), which evaluated points are kept (`Auto::remember`: the farthest
+//! from θ goes), and their whitened distances to θ, counted within the kernel's reach.
+
+use rand_core::Rng;
+
+use super::model::{self, Shape};
+use super::{Auto, MAX_MEMORY, metric, ties_with};
+use crate::real::Real;
+
+/// Regions of the caller's buffer.
+pub(super) struct Memory<'b, T> {
+    pub(super) lower: &'b mut [T],
+    pub(super) upper: &'b mut [T],
+    /// Remembered points (rows of n) and their values.
+    pub(super) xs: &'b mut [T],
+    pub(super) fs: &'b mut [T],
+    /// The noise group of each remembered point (see [`State::groups`](super::State::groups)).
+    pub(super) gs: &'b mut [T],
+    /// z of each remembered point, for θ = `zt` and the σ and metric of
+    /// [`State::reach_key`](super::State::reach_key) (see `Auto::refresh_reach`).
+    pub(super) zs: &'b mut [T],
+    pub(super) zt: &'b mut [T],
+    /// The fit's rows u, √w, noise groups, residuals, and its m×m system.
+    pub(super) u: &'b mut [T],
+    pub(super) sw: &'b mut [T],
+    pub(super) gid: &'b mut [T],
+    pub(super) r: &'b mut [T],
+    pub(super) gram: &'b mut [T],
+    pub(super) kp: &'b mut [T],
+    pub(super) schur: &'b mut [T],
+    pub(super) beta: &'b mut [T],
+    /// The model (standardised units) and the prior (parameter units, at `c0`).
+    pub(super) g: &'b mut [T],
+    pub(super) h: &'b mut [T],
+    pub(super) g0: &'b mut [T],
+    pub(super) h0: &'b mut [T],
+    pub(super) c0: &'b mut [T],
+    /// Trust-region scratch.
+    pub(super) a: &'b mut [T],
+    pub(super) v: &'b mut [T],
+    pub(super) gamma: &'b mut [T],
+    pub(super) lambda: &'b mut [T],
+    pub(super) s: &'b mut [T],
+    /// θ at the start of the iteration (the report's step length).
+    pub(super) tmp: &'b mut [T],
+    /// Orthonormal sampling frame (columns as rows of n).
+    pub(super) frame: &'b mut [T],
+    /// Points of the current batch and their values. While the trust step is solved,
+    /// its first two rows hold the held coordinates' moves and flags (`trust_step`).
+    pub(super) stage: &'b mut [T],
+    pub(super) stage_f: &'b mut [T],
+    /// The trust step with coordinates held on bounds (`held_step`): the reduced
+    /// problem's slope (first R's solution y), curvature (first R) and step w.
+    pub(super) rg: &'b mut [T],
+    pub(super) rh: &'b mut [T],
+    pub(super) rs: &'b mut [T],
+    /// `gx` holds the trial step Ls (parameter directions, over σ) and other n-vectors
+    /// of the iteration; `hx` the held step's orthonormal basis (Q's rows, then Z's).
+    pub(super) gx: &'b mut [T],
+    pub(super) hx: &'b mut [T],
+    /// The sampling metric C = LLᵀ, L and L⁻¹, of the model's shape (see `metric`).
+    pub(super) c: &'b mut [T],
+    pub(super) l: &'b mut [T],
+    pub(super) li: &'b mut [T],
+    /// Each remembered point's robustness weight in the fit, in [0, 1]: 1 unless the
+    /// objective draws unseeded noise ([`State::unseeded`](super::State::unseeded)), where points the model
+    /// cannot explain (a Cauchy outlier) lose it (`Auto::reweigh`).
+    pub(super) credit: &'b mut [T],
+    /// The scale each coordinate was given ([`Auto::new`]'s σ₀ or
+    /// [`Auto::with_scales`]), from which `Auto::shape_scales` sets σ₀ and C.
+    pub(super) scale: &'b mut [T],
+    /// The best point while a continuation move has left θ, the search centre, above it
+    /// ([`State::best_value`](super::State::best_value)).
+    pub(super) best: &'b mut [T],
+    /// The evolution path of θ's accepted model steps in units of σ ([`Auto::follow_path`]).
+    pub(super) path: &'b mut [T],
+    /// The best point of the run's earlier descents ([`State::record`](super::State::record)).
+    pub(super) record: &'b mut [T],
+}
+
+/// Region lengths for dimension n, in [`Memory`]'s order.
+pub(super) const fn regions(n: usize) -> [usize; 42] {
+    let shape = Shape::for_dim(n);
+    let m = history_len(n);
+    let hl = shape.hessian_len(n);
+    let full = if matches!(shape, Shape::Full) {
+        n * n
+    } else {
+        0
+    };
+    let rows = stage_rows(n);
+    let [gram, kp, schur, beta] = model::scratch_lens(shape, m, n);
+    [
+        n,
+        n,
+        m * n,
+        m,
+        m,
+        m,
+        n,
+        m * n,
+        m,
+        m,
+        m,
+        gram,
+        kp,
+        schur,
+        beta,
+        n,
+        hl,
+        n,
+        hl,
+        n,
+        full,
+        full,
+        n,
+        n,
+        n,
+        n,
+        n * n,
+        rows * n,
+        rows,
+        n,
+        hl,
+        n,
+        n,
+        hl,
+        hl,
+        hl,
+        hl,
+        m,
+        n,
+        n,
+        n,
+        n,
+    ]
+}
+
+/// Floats of buffer an [`Auto`] run needs in dimension n, for m = [`Auto::history_len`]
+/// points remembered:
+/// m(2n + 7) + m² + mp + p² + p + 17n + 7h + r(n + 1) + n² + 2f,
+/// with, for the full model (n ≤ [`FULL_MODEL_MAX_DIM`](super::FULL_MODEL_MAX_DIM)), h = f = n² and p = n + 1, and
+/// for the diagonal one h = n, f = 0 and p = 1; r = 2·min(n, ⌊m/2⌋) + 2 staged points.
+/// A `const fn`, so that storage can be sized at compile time ([`FixedAuto`](super::FixedAuto)).
+pub const fn buffer_len(n: usize) -> usize {
+    let lens = regions(n);
+    let mut sum = 0;
+    let mut k = 0;
+    while k < lens.len() {
+        sum += lens[k];
+        k += 1;
+    }
+    sum
+}
+
+pub(super) const fn history_len(n: usize) -> usize {
+    memory_of(n, 2)
+}
+
+/// Points a run on a declared-noisy objective remembers ([`Auto::history_len`]).
+pub(super) const fn noisy_history_len(n: usize) -> usize {
+    memory_of(n, 1)
+}
+
+/// `copies` times the model's coefficients plus n + 1, at most [`MAX_MEMORY`].
+pub(super) const fn memory_of(n: usize, copies: usize) -> usize {
+    let m = copies * Shape::for_dim(n).coefficients(n) + n + 1;
+    if m > MAX_MEMORY { MAX_MEMORY } else { m }
+}
+
+/// Whether a fit can determine the model from the data alone: the model is full (its
+/// linear part unpenalised) and the memory holds as many points as it has coefficients,
+/// which is n ≤ 14. Above, every fit after the first leans on its prior (and the
+/// diagonal model's penalised gradient is never exact); only a full model's first fit
+/// after a survey is made exact there ([`Auto::ridge`]).
+pub(super) const fn memory_determines_model(n: usize) -> bool {
+    let shape = Shape::for_dim(n);
+    matches!(shape, Shape::Full) && shape.coefficients(n) <= history_len(n)
+}
+
+/// Remembered points within reach that a model needs before it steps without sampling:
+/// n + 1, or half the memory where that holds fewer than 2n + 2 points.
+pub(super) const fn nearby_needed(n: usize) -> usize {
+    let half = history_len(n) / 2;
+    if n + 1 < half { n + 1 } else { half }
+}
+
+/// Points within reach above which a model that puts its minimum at θ is validated, so
+/// that σ may shrink on its word: 2q − 2 for q = [`nearby_needed`] — pairs in about as
+/// many directions as the model has linear coefficients.
+pub(super) const fn validating(n: usize) -> usize {
+    2 * nearby_needed(n) - 2
+}
+
+/// Pairs a survey (the first iteration, a restart) draws: n, or as many as half the
+/// memory holds.
+pub(super) const fn survey_pairs(n: usize) -> usize {
+    let half = history_len(n) / 2;
+    if n < half { n } else { half }
+}
+
+/// Points one batch can hold: a survey's samples and θ, or a trial point and θ.
+pub(super) const fn stage_rows(n: usize) -> usize {
+    2 * survey_pairs(n) + 2
+}
+
+pub(super) fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
+    let lens = regions(n);
+    let mut lens = lens.iter();
+    let mut rest = buffer;
+    // Regions in `regions`' order: struct fields are initialised in source order.
+    let mut take = || {
+        let len = lens.next().copied().unwrap_or(0);
+        let (head, tail) = core::mem::take(&mut rest).split_at_mut(len);
+        rest = tail;
+        head
+    };
+    Memory {
+        lower: take(),
+        upper: take(),
+        xs: take(),
+        fs: take(),
+        gs: take(),
+        zs: take(),
+        zt: take(),
+        u: take(),
+        sw: take(),
+        gid: take(),
+        r: take(),
+        gram: take(),
+        kp: take(),
+        schur: take(),
+        beta: take(),
+        g: take(),
+        h: take(),
+        g0: take(),
+        h0: take(),
+        c0: take(),
+        a: take(),
+        v: take(),
+        gamma: take(),
+        lambda: take(),
+        s: take(),
+        tmp: take(),
+        frame: take(),
+        stage: take(),
+        stage_f: take(),
+        rg: take(),
+        rh: take(),
+        rs: take(),
+        gx: take(),
+        hx: take(),
+        c: take(),
+        l: take(),
+        li: take(),
+        credit: take(),
+        scale: take(),
+        best: take(),
+        path: take(),
+        record: take(),
+    }
+}
+
+impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
+    /// A fresh noise group's id.
+    pub(super) fn next_group(&mut self) -> T {
+        self.st.groups = self.st.groups.wrapping_add(1);
+        T::from_usize((self.st.groups % (1 << 20)) as usize)
+    }
+
+    /// Remembers the staged rows 0 … `rows` − 1 with finite values, in noise group
+    /// `group`. When the memory is full, each replaces the point farthest from θ (by z).
+    /// With `keep_batch` it replaces the farthest of the points that are neither this
+    /// batch's nor θ's own draws, while there is one. A survey asks for that: it is the
+    /// geometry a model is fitted from, n lines through θ, and a restart's, drawn at a σ
+    /// far above the one the memory was filled at, lies farther out than every older
+    /// point, so that each of its rows would evict the last (the first fit would see one
+    /// of them), and where it fills the memory, θ's value, which alone tells the model's
+    /// constant from its curvature on points all at one distance.
+    pub(super) fn remember(&mut self, rows: usize, group: T, keep_batch: bool) {
+        let n = self.theta.len();
+        let cap = if self.st.noisy {
+            noisy_history_len(n)
+        } else {
+            history_len(n)
+        };
+        // A kept point's z is stored as −1 − z until the batch is in (and then
+        // computed again: the round trip through −1 − z is not exact).
+        let kept = |z: T| -T::ONE - z;
+        if self.st.count + rows > cap {
+            self.refresh_reach();
+            if keep_batch {
+                for z in self.mem.zs[..self.st.count].iter_mut() {
+                    if *z == T::ZERO {
+                        *z = kept(*z);
+                    }
+                }
+            }
+        }
+        for row in 0..rows {
+            let f = self.mem.stage_f[row];
+            if !f.is_finite() {
+                continue;
+            }
+            let slot = if self.st.count < cap {
+                self.st.count += 1;
+                self.st.count - 1
+            } else {
+                // The farthest point not kept, else the farthest kept one.
+                let (mut free, mut held) = ((None, -T::ONE), (0, -T::ONE));
+                for (k, &z) in self.mem.zs[..cap].iter().enumerate() {
+                    if z >= T::ZERO {
+                        if z > free.1 {
+                            free = (Some(k), z);
+                        }
+                    } else if kept(z) > held.1 {
+                        held = (k, kept(z));
+                    }
+                }
+                free.0.unwrap_or(held.0)
+            };
+            self.mem.xs[slot * n..(slot + 1) * n]
+                .copy_from_slice(&self.mem.stage[row * n..(row + 1) * n]);
+            self.mem.fs[slot] = f;
+            self.mem.gs[slot] = group;
+            self.mem.credit[slot] = T::ONE;
+            if self.reach_is_current() {
+                let z = self.reach_of(slot);
+                self.mem.zs[slot] = if keep_batch { kept(z) } else { z };
+            }
+        }
+        if keep_batch && self.reach_is_current() {
+            for k in 0..self.st.count {
+                if self.mem.zs[k] < T::ZERO {
+                    self.mem.zs[k] = self.reach_of(k);
+                }
+            }
+        }
+    }
+
+    /// Whether [`Memory::zs`] holds the remembered points' z for the current θ, σ and
+    /// metric.
+    pub(super) fn reach_is_current(&self) -> bool {
+        self.st.reach_key == Some((self.st.sigma, self.st.metric_changes))
+            && *self.mem.zt == *self.theta
+    }
+
+    /// Brings [`Memory::zs`] (z of remembered point k at index k) up to date, computing
+    /// it afresh only when θ, σ or the metric changed since it was filled: most
+    /// iterations ask several times (ties, spread, counts, the memory's replacements),
+    /// each O(mn²) for a full metric.
+    pub(super) fn refresh_reach(&mut self) {
+        if !self.reach_is_current() {
+            for k in 0..self.st.count {
+                self.mem.zs[k] = self.reach_of(k);
+            }
+            self.mem.zt.copy_from_slice(self.theta);
+            self.st.reach_key = Some((self.st.sigma, self.st.metric_changes));
+        }
+    }
+
+    /// z = ‖L⁻¹(x − θ)‖/(σ√n) of remembered point k.
+    pub(super) fn reach_of(&self, k: usize) -> T {
+        let n = self.theta.len();
+        let x = &self.mem.xs[k * n..(k + 1) * n];
+        metric::whitened_distance(self.shape, self.mem.li, x, self.theta)
+            / (self.st.sigma * T::from_usize(n).sqrt())
+    }
+
+    /// Remembered points within z.
+    pub(super) fn count_within(&mut self, z: T) -> usize {
+        self.refresh_reach();
+        self.mem.zs[..self.st.count]
+            .iter()
+            .filter(|&&r| r <= z)
+            .count()
+    }
+
+    /// Remembered points within z that show the model θ's surroundings: on a noisy
+    /// objective θ itself counts once, since it is drawn again beside every iteration's
+    /// samples and those draws, each on a seed of its own, lie at θ. (Counted, they let
+    /// σ shrink on a model that has seen no other point: on a local minimum in the box's
+    /// corner, a run ended after a few evaluations.)
+    pub(super) fn count_around(&mut self, z: T) -> usize {
+        let within = self.count_within(z);
+        if !self.st.noisy {
+            return within;
+        }
+        let at_theta = self.mem.zs[..self.st.count]
+            .iter()
+            .filter(|&&r| r == T::ZERO)
+            .count();
+        within - at_theta.saturating_sub(1)
+    }
+
+    /// Remembered points within z other than θ, and how many of them tie with f(θ);
+    /// (0, 0) when f(θ) is unknown. Deterministic objectives only: a noisy one's values
+    /// compare only within their noise group.
+    pub(super) fn ties_within(&mut self, z: T) -> (usize, usize) {
+        let Some(v) = self.st.value else {
+            return (0, 0);
+        };
+        self.refresh_reach();
+        (0..self.st.count)
+            .filter(|&k| {
+                let reach = self.mem.zs[k];
+                reach > T::ZERO && reach <= z
+            })
+            .fold((0, 0), |(near, ties), k| {
+                (near + 1, ties + usize::from(ties_with(self.mem.fs[k], v)))
+            })
+    }
+
+    /// max |f − f(θ)| over remembered points within z (0 when f(θ) is unknown); for a
+    /// noisy objective the largest difference within a noise group, where values
+    /// compare (max |f − f(θ)| where no group holds two such points).
+    pub(super) fn spread(&mut self, z: T) -> T {
+        let Some(v) = self.st.value else {
+            return T::ZERO;
+        };
+        self.refresh_reach();
+        let near = |k: &usize| self.mem.zs[*k] <= z;
+        if self.st.noisy {
+            let within = (0..self.st.count).filter(near).fold(T::ZERO, |s, k| {
+                (0..k)
+                    .filter(|&j| self.mem.gs[j] == self.mem.gs[k])
+                    .filter(near)
+                    .fold(s, |s, j| s.max((self.mem.fs[k] - self.mem.fs[j]).abs()))
+            });
+            if within > T::ZERO {
+                return within;
+            }
+        }
+        (0..self.st.count)
+            .filter(near)
+            .fold(T::ZERO, |s, k| s.max((self.mem.fs[k] - v).abs()))
+    }
+}

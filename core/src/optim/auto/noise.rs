@@ -1,0 +1,252 @@
+//! Noise an objective does not declare: the check that a "deterministic" objective
+//! gives θ the same value twice (`Auto::check_determinism`), the robust weights that
+//! let a fit ignore the points it cannot explain (`Auto::reweigh`), the vote that draws
+//! a point until two values agree where the noise is sparse (`Auto::vote`), and the
+//! spreads of repeated draws that tell dense noise from sparse.
+
+use rand_core::Rng;
+
+use super::{Auto, CHUNK, REACH, TUKEY, VOTES, lower_median};
+use crate::error::Error;
+use crate::objective::Objective;
+use crate::optim::vector::dot;
+use crate::real::Real;
+
+impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
+    /// Evaluates θ once more, unremembered, on an objective declared deterministic, at
+    /// the first model step after each restart until noise is found, and sets
+    /// [`State::unseeded`](super::State::unseeded) when the value differs from f(θ)'s; then a third time, to
+    /// tell dense noise from sparse outliers ([`State::dense`](super::State::dense)). One evaluation on a
+    /// deterministic objective, on seed 0 (which it ignores), so the run's random
+    /// stream, and a deterministic run's points, are unchanged.
+    pub(super) fn check_determinism<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        value: T,
+        spent: &mut usize,
+    ) -> Result<(), Error> {
+        if self.remaining() == 0 {
+            return Ok(());
+        }
+        self.st.checked = true;
+        let again = self.evaluate_theta_again(objective, spent)?;
+        self.st.unseeded = again.is_finite() && again != value;
+        if self.st.unseeded && self.remaining() > 0 {
+            let third = self.evaluate_theta_again(objective, spent)?;
+            self.st.dense = third != value && third != again;
+        }
+        Ok(())
+    }
+
+    /// f(θ) evaluated once more, staged in row 0 (so that [`Auto::remember`] can keep
+    /// it), on seed 0: only objectives declared deterministic are evaluated again this
+    /// way, and they ignore the seed.
+    pub(super) fn evaluate_theta_again<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        spent: &mut usize,
+    ) -> Result<T, Error> {
+        let n = self.theta.len();
+        self.mem.stage[..n].copy_from_slice(self.theta);
+        self.evaluate(objective, 1, spent, |_| 0)?;
+        Ok(self.mem.stage_f[0])
+    }
+
+    /// Sets the robustness weights ([`Memory::credit`](super::memory::Memory::credit)) of the points the fit used from
+    /// their residuals rᵢ under the model just fitted: Tukey's biweight
+    /// (1 − (rᵢ/(cs))²)², zero beyond |rᵢ| = cs, with c = [`TUKEY`] and s = 1.4826 ×
+    /// the median |rᵢ| (floored at √ε of the values' spread, so that a model that
+    /// interpolates most points exactly keeps them). Points beyond the fit's reach keep
+    /// their weights. Returns the cut cs, in the fit's units (values over `scale`;
+    /// `T::MAX` when no point was within reach).
+    pub(super) fn reweigh(&mut self, value: T, scale: T) -> T {
+        let shape = self.shape;
+        let limit = T::from_f64(2.0 * REACH);
+        let c = self.mem.beta[0];
+        // |rᵢ| in `sw`, free until the next fit fills it again.
+        let mut used = 0;
+        for k in 0..self.st.count {
+            if self.offset_of(k) > limit {
+                continue;
+            }
+            let u = &*self.mem.gx;
+            let model = c + dot(self.mem.g, u) + shape.half_quadratic(self.mem.h, u);
+            let r = (self.mem.fs[k] - value) / scale - model;
+            // Kept in the reach cache `zs` (invalidated below) until the scale is known.
+            self.mem.zs[k] = r;
+            self.mem.sw[used] = r.abs();
+            used += 1;
+        }
+        if used == 0 {
+            return T::MAX;
+        }
+        let spread = T::from_f64(1.4826) * lower_median(&self.mem.sw[..used]);
+        let cut = T::from_f64(TUKEY) * spread.max(T::EPSILON.sqrt());
+        for k in 0..self.st.count {
+            if self.offset_of(k) > limit {
+                continue;
+            }
+            let t = self.mem.zs[k] / cut;
+            self.mem.credit[k] = if t.abs() < T::ONE {
+                (T::ONE - t.sq()).sq()
+            } else {
+                T::ZERO
+            };
+        }
+        // `zs` held residuals: the reach cache is stale.
+        self.st.reach_key = None;
+        cut
+    }
+
+    /// On sparse unseeded noise ([`State::voting`](super::State::voting)), evaluates the staged rows
+    /// `start … start + len − 1` (at most [`CHUNK`] rows; the objective ignores their
+    /// seeds) until two draws of each agree exactly, and keeps that value, which an
+    /// outlier on exact values cannot set (two non-finite draws agree); after [`VOTES`]
+    /// draws that all differ it keeps the median of the finite ones. The draws go out in
+    /// rounds ([`Auto::draw_rows`]): first every row twice (its two draws side by side),
+    /// then the rows still undecided once each, so that a batch renderer sees few calls
+    /// however many rows disagree. Within the budget: every row is drawn once; the first
+    /// rows twice, as far as the budget goes (their number is returned); a round the
+    /// budget cuts short leaves its last rows with the median of the draws they have.
+    pub(super) fn vote<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        start: usize,
+        len: usize,
+        spent: &mut usize,
+    ) -> Result<usize, Error> {
+        // Row k's draws are gram[k·VOTES …], `counts[k]` of them; `open[k]` while they
+        // disagree and more may be drawn, `agreed[k]` once two agree.
+        let mut counts = [0usize; CHUNK];
+        let mut open = [true; CHUNK];
+        let mut agreed = [false; CHUNK];
+        debug_assert!(len * VOTES <= self.mem.gram.len());
+        let doubled = len.min(self.remaining().saturating_sub(len));
+        let mut round = [0usize; 2 * CHUNK];
+        let mut size = 0;
+        for k in 0..len {
+            for _ in 0..1 + usize::from(k < doubled) {
+                round[size] = k;
+                size += 1;
+            }
+        }
+        while size > 0 {
+            self.draw_rows(objective, start, &round[..size], &mut counts, spent)?;
+            // Settle the rows whose newest draw agrees with an earlier one; a row with a
+            // single draw (the budget) or VOTES of them is done.
+            for k in 0..len {
+                if !open[k] {
+                    continue;
+                }
+                let draws = &self.mem.gram[k * VOTES..k * VOTES + counts[k]];
+                let last = draws[counts[k] - 1];
+                let same = |d: &T| *d == last || !d.is_finite() && !last.is_finite();
+                agreed[k] = draws[..counts[k] - 1].iter().any(same);
+                open[k] = !agreed[k] && (2..VOTES).contains(&counts[k]);
+            }
+            // The next round: every open row once more, within the budget.
+            size = 0;
+            let mut left = self.remaining();
+            for (k, open) in open[..len].iter_mut().enumerate() {
+                if !*open {
+                    continue;
+                }
+                if left == 0 {
+                    *open = false;
+                } else {
+                    round[size] = k;
+                    size += 1;
+                    left -= 1;
+                }
+            }
+        }
+        // A row keeps the value two of its draws agree on, or the median of its finite
+        // draws.
+        for k in 0..len {
+            let draws = &self.mem.gram[k * VOTES..k * VOTES + counts[k]];
+            self.mem.stage_f[start + k] = if agreed[k] {
+                draws[counts[k] - 1]
+            } else {
+                let mut finite = [T::ZERO; VOTES];
+                let mut m = 0;
+                for &d in draws.iter().filter(|d| d.is_finite()) {
+                    finite[m] = d;
+                    m += 1;
+                }
+                if m > 0 {
+                    lower_median(&finite[..m])
+                } else {
+                    draws[0]
+                }
+            };
+        }
+        Ok(doubled)
+    }
+
+    /// The unseeded noise's scale: the median |f − f′| over pairs of remembered draws at
+    /// one point (θ's, and earlier θ's), about its standard deviation for Gaussian
+    /// noise and zero where most draws are exact (sparse outliers), with `sw` as scratch;
+    /// `None` when the memory holds fewer than three such pairs (the median of two is
+    /// their larger, which one outlier sets). O(m²n) for m remembered points.
+    pub(super) fn repeat_spread(&mut self) -> Option<T> {
+        let pairs = self.repeat_differences();
+        (pairs >= 3).then(|| lower_median(&self.mem.sw[..pairs]))
+    }
+
+    /// The scale of unseeded noise that every draw carries: [`Auto::repeat_spread`]
+    /// where the check found the noise dense and no two remembered draws at one point
+    /// agree exactly, `None` otherwise. Sparse outliers (most draws exact) have no such
+    /// scale: their pairs' median is zero, or an outlier's where θ was drawn again
+    /// because its draw was one, and a trial's shortfall measured against it says
+    /// nothing of the step. O(m²n).
+    pub(super) fn dense_noise_scale(&mut self) -> Option<T> {
+        if !self.st.dense {
+            return None;
+        }
+        let pairs = self.repeat_differences();
+        let exact = self.mem.sw[..pairs].contains(&T::ZERO);
+        (pairs >= 3 && !exact).then(|| lower_median(&self.mem.sw[..pairs]))
+    }
+
+    /// The unseeded noise is sparse: outliers on values that are mostly exact — the
+    /// check's three draws did not all differ, or two remembered draws at one point
+    /// agree exactly. O(m²n) for m remembered points.
+    pub(super) fn sparse_noise(&mut self) -> bool {
+        self.st.unseeded
+            && (!self.st.dense || {
+                let pairs = self.repeat_differences();
+                self.mem.sw[..pairs].contains(&T::ZERO)
+            })
+    }
+
+    /// Writes |f − f′| for every pair of remembered draws at one point to `sw` (as many
+    /// as it holds) and returns how many it wrote.
+    pub(super) fn repeat_differences(&mut self) -> usize {
+        let n = self.theta.len();
+        let mut pairs = 0;
+        for a in 0..self.st.count {
+            let xa = &self.mem.xs[a * n..(a + 1) * n];
+            for b in 0..a {
+                if pairs < self.mem.sw.len() && *xa == self.mem.xs[b * n..(b + 1) * n] {
+                    self.mem.sw[pairs] = (self.mem.fs[a] - self.mem.fs[b]).abs();
+                    pairs += 1;
+                }
+            }
+        }
+        pairs
+    }
+
+    /// Copies the draws of f at θ the memory holds (its points equal to θ) to `sw`, the
+    /// fit's scratch, and returns how many there are.
+    pub(super) fn draws_at_theta(&mut self) -> usize {
+        let n = self.theta.len();
+        let mut draws = 0;
+        for k in 0..self.st.count {
+            if self.mem.xs[k * n..(k + 1) * n] == *self.theta {
+                self.mem.sw[draws] = self.mem.fs[k];
+                draws += 1;
+            }
+        }
+        draws
+    }
+}

@@ -1,0 +1,197 @@
+//! Auto's public vocabulary: its options ([`AutoOptions`], [`NonFinite`]), what each
+//! iteration reports ([`AutoReport`], [`AutoStep`]) and how a run ends
+//! ([`AutoTermination`]).
+
+use core::fmt;
+
+use crate::error::Error;
+use crate::real::Real;
+
+/// What to do with an objective value that is NaN or ±∞.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum NonFinite {
+    /// The point counts as worse than any finite value: it is not fitted, a trial point
+    /// there is rejected. Default.
+    #[default]
+    Worst,
+    /// [`Auto::step`](super::Auto::step) returns [`Error::NonFiniteObjective`]; θ is unchanged.
+    Error,
+}
+
+/// Auto's options. Every one has a default; none is required.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct AutoOptions<T> {
+    /// The run converges (and restarts, see [`AutoOptions::restarts`]) once every
+    /// coordinate's spread σ√Cᵢᵢ is below `tolerance` times its spread at the start (a
+    /// deterministic objective), or once σ < `tolerance`·σ₀ (a noisy one). Default:
+    /// `None`, meaning [`TOLERANCE`](super::TOLERANCE) for a deterministic objective and
+    /// [`NOISY_TOLERANCE`](super::NOISY_TOLERANCE) for a noisy one.
+    pub tolerance: Option<T>,
+    /// Iterations without a lower f(θ) after which the run restarts from the best point
+    /// (see [`AutoOptions::restarts`]) or ends stagnated. Default: `None`, meaning
+    /// 20 + 10n.
+    pub patience: Option<usize>,
+    /// A descent restarts from its best point whenever it converges or stagnates with a
+    /// lower f(θ) since its last restart (or its start); once a restart has found none,
+    /// `restarts` more in a row without a lower f(θ) are made before the descent ends.
+    /// The k-th restart of a run is at σ₀·2^(k mod 5): σ₀, 2σ₀, …, [`PLATEAU_WIDTH`](super::PLATEAU_WIDTH)·σ₀
+    /// (and, with bounds, at most half the box's widest side), then σ₀ again. Each
+    /// looks around its scale with n antithetic pairs (at most half the memory's
+    /// worth). Default: `None`, meaning [`RESTARTS_BEFORE_FRESH`](super::RESTARTS_BEFORE_FRESH) where a fresh start
+    /// follows the descent (see [`AutoOptions::fresh_starts`]) and [`RESTARTS`](super::RESTARTS) where
+    /// the descent is the run.
+    pub restarts: Option<usize>,
+    /// Objective evaluations after which the run stops; never exceeded. Default: none.
+    pub max_evaluations: Option<usize>,
+    /// Whether a run with a budget ([`AutoOptions::max_evaluations`]) on a
+    /// deterministic objective spends what its descent leaves: once a descent ends
+    /// (converged, or stagnated after its [`AutoOptions::restarts`]), another starts
+    /// from a point about the best one, as basin hopping does (each coordinate moved
+    /// by its start scale times 2^(k mod 5) times a standard normal draw at the k-th
+    /// fresh start, mirrored into the box), with its memory, model, metric and σ
+    /// started over; the best point of all descents is kept, and the run ends with its
+    /// budget. A run without a budget, or on a noisy objective (values of different
+    /// descents would not compare), ends with its first descent. Default: `true`.
+    pub fresh_starts: bool,
+    /// Policy for NaN/±∞ objective values. Default: [`NonFinite::Worst`].
+    pub non_finite: NonFinite,
+}
+
+impl<T: Real> Default for AutoOptions<T> {
+    fn default() -> Self {
+        AutoOptions {
+            tolerance: None,
+            patience: None,
+            restarts: None,
+            max_evaluations: None,
+            fresh_starts: true,
+            non_finite: NonFinite::Worst,
+        }
+    }
+}
+
+impl<T: Real> AutoOptions<T> {
+    /// Sets [`AutoOptions::tolerance`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidSetting`] unless 0 < `tolerance` < 1.
+    pub fn with_tolerance(mut self, tolerance: T) -> Result<Self, Error> {
+        if !(tolerance > T::ZERO && tolerance < T::ONE) {
+            return Err(Error::InvalidSetting { name: "tolerance" });
+        }
+        self.tolerance = Some(tolerance);
+        Ok(self)
+    }
+
+    /// Sets [`AutoOptions::patience`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidSetting`] for 0.
+    pub fn with_patience(mut self, patience: usize) -> Result<Self, Error> {
+        if patience == 0 {
+            return Err(Error::InvalidSetting { name: "patience" });
+        }
+        self.patience = Some(patience);
+        Ok(self)
+    }
+
+    /// Sets [`AutoOptions::restarts`] (0: the descent ends once a restart has found no
+    /// lower f(θ)).
+    pub fn with_restarts(mut self, restarts: usize) -> Self {
+        self.restarts = Some(restarts);
+        self
+    }
+
+    /// Sets [`AutoOptions::max_evaluations`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidSetting`] for 0.
+    pub fn with_max_evaluations(mut self, max: usize) -> Result<Self, Error> {
+        if max == 0 {
+            return Err(Error::InvalidSetting {
+                name: "max_evaluations",
+            });
+        }
+        self.max_evaluations = Some(max);
+        Ok(self)
+    }
+
+    /// Sets [`AutoOptions::fresh_starts`] (false: the run ends with its first descent,
+    /// budget or not).
+    pub fn with_fresh_starts(mut self, fresh_starts: bool) -> Self {
+        self.fresh_starts = fresh_starts;
+        self
+    }
+
+    /// Sets [`AutoOptions::non_finite`].
+    pub fn with_non_finite(mut self, policy: NonFinite) -> Self {
+        self.non_finite = policy;
+        self
+    }
+}
+
+/// Why an Auto run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum AutoTermination {
+    /// The samples' spread fell below [`AutoOptions::tolerance`] of its start, or σ below
+    /// what T resolves at θ.
+    Converged,
+    /// [`AutoOptions::patience`] iterations passed without a lower f(θ).
+    Stagnated,
+    /// [`AutoOptions::max_evaluations`] were used.
+    MaxEvaluations,
+}
+
+impl fmt::Display for AutoTermination {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            AutoTermination::Converged => "converged (spread below tolerance)",
+            AutoTermination::Stagnated => "stagnated (no lower value within the patience)",
+            AutoTermination::MaxEvaluations => "evaluation budget used",
+        })
+    }
+}
+
+/// What an iteration did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AutoStep {
+    /// The values within reach tied: σ widened, no step.
+    Plateau,
+    /// The model's minimum is at θ (no predicted decrease): σ shrank, nothing evaluated.
+    AtModelMinimum,
+    /// The trial point had a lower value and replaced θ.
+    Accepted,
+    /// The trial point was no better; θ stayed.
+    Rejected,
+    /// The trial point was no better, but the run's search centre moved there: after a
+    /// restart, at a scale above σ₀'s, where the model's minimum lies inside the trust
+    /// region (continuation on the smoothed objective). The best point is kept.
+    Continued,
+    /// The budget ran out before the iteration could compare a step.
+    OutOfBudget,
+}
+
+/// One iteration's plain-data report.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AutoReport<T> {
+    /// 1-based iteration number.
+    pub iteration: usize,
+    /// Objective evaluations so far (all iterations).
+    pub evaluations: usize,
+    /// σ this iteration used (its trust radius is σ√n).
+    pub sigma: T,
+    /// σ for the next iteration.
+    pub next_sigma: T,
+    /// f(θ) after the iteration, when known and finite.
+    pub value: Option<T>,
+    /// Distance θ moved (including a move to a lower sample).
+    pub step_length: T,
+    /// Actual over predicted decrease of the trial step, when one was evaluated.
+    pub ratio: Option<T>,
+    /// What the iteration did.
+    pub kind: AutoStep,
+    /// Set when this iteration ended the run.
+    pub termination: Option<AutoTermination>,
+}

@@ -1,0 +1,206 @@
+//! σ between descents and across a run: σ held where samples tie on a plateau
+//! (`Auto::hold_sigma`), widened, or set by the restarts' cycle σ₀·2^k; restarts from
+//! the best point, fresh starts about it, and the best points a continuation move or an
+//! earlier descent left behind.
+
+use rand_core::Rng;
+
+use super::options::AutoStep;
+use super::{Auto, PLATEAU_WIDTH, RESTART_SCALES, RESTARTS, RESTARTS_BEFORE_FRESH, State, reflect};
+use crate::real::Real;
+use crate::sample::normal;
+
+impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
+    /// Keeps σ off the scales where it has already learnt nothing since f(θ) last fell:
+    /// an iteration that began at `sigma` and would end below it keeps `sigma` and draws
+    /// another pair instead:
+    ///
+    /// * when the new σ would be at or under [`State::tie_scale`], where the samples tied
+    ///   (a plateau): there they would only tie again, and the run would cycle between
+    ///   the two scales;
+    /// * on a plateau (a tie scale is set), when its model was blind — it saw no
+    ///   decrease (`AtModelMinimum`), or f rose by more than the decrease it predicted
+    ///   (ρ̂ < −1) — and the new σ would be at or under [`State::rough_scale`], where the
+    ///   model was blind before.
+    ///
+    /// A blind model that is held also widens σ as on a plateau, with `sigma` the new
+    /// rough scale: on a plateau the variation the quadratic cannot see is jitter (a
+    /// rasteriser's pixel counts), and the samples of a wider σ may reach a slope. Off
+    /// plateaus a blind model shrinks σ as before: on a rugged f the lower values lie
+    /// at finer scales. A gain or a restart clears both scales.
+    pub(super) fn hold_sigma(&mut self, sigma: T, kind: AutoStep, ratio: Option<T>) {
+        if self.st.gained {
+            self.forget_scales();
+            return;
+        }
+        let next = self.st.sigma;
+        if next >= sigma {
+            return;
+        }
+        let blind = kind == AutoStep::AtModelMinimum || ratio.is_some_and(|r| r < -T::ONE);
+        let tied = next <= self.st.tie_scale;
+        let rough = blind && self.st.tie_scale > T::ZERO && next <= self.st.rough_scale;
+        if !tied && !rough {
+            return;
+        }
+        self.st.sigma = sigma;
+        self.st.resample = true;
+        if blind {
+            self.st.rough_scale = sigma;
+            self.st.sigma = self.widened_sigma(PLATEAU_WIDTH);
+        }
+    }
+
+    /// Clears the tie and rough scales (`Auto::hold_sigma`): f(θ) fell, or the run
+    /// restarts, so what they recorded no longer describes θ's surroundings.
+    pub(super) fn forget_scales(&mut self) {
+        self.st.tie_scale = T::ZERO;
+        self.st.rough_scale = T::ZERO;
+    }
+
+    /// 2σ, capped at `width`·σ₀ and, with bounds, at half the box's widest side.
+    pub(super) fn widened_sigma(&self, width: f64) -> T {
+        let mut cap = self.st.sigma0 * T::from_f64(width);
+        if self.st.bounded {
+            let width = (0..self.theta.len())
+                .fold(T::ZERO, |w, i| w.max(self.mem.upper[i] - self.mem.lower[i]));
+            if width > T::ZERO && width.is_finite() {
+                cap = cap.min(T::HALF * width);
+            }
+        }
+        (self.st.sigma * T::TWO).min(cap).max(self.st.sigma)
+    }
+
+    /// σ₀·2^(k mod [`RESTART_SCALES`]) for the k-th restart of the run, at most
+    /// [`PLATEAU_WIDTH`]·σ₀ and, with bounds, half the box's widest side.
+    pub(super) fn restart_sigma(&self) -> T {
+        let doublings = (self.st.cycle % RESTART_SCALES) as i32;
+        let sigma = self.st.sigma0 * T::from_f64(libm::pow(2.0, f64::from(doublings)));
+        let mut cap = self.st.sigma0 * T::from_f64(PLATEAU_WIDTH);
+        if self.st.bounded {
+            let width = (0..self.theta.len())
+                .fold(T::ZERO, |w, i| w.max(self.mem.upper[i] - self.mem.lower[i]));
+            if width > T::ZERO && width.is_finite() {
+                cap = cap.min(T::HALF * width);
+            }
+        }
+        sigma.min(cap).max(self.st.sigma0.min(cap))
+    }
+
+    /// Whether f(θ) is below the best point's value, or θ is the best point. A gain made
+    /// by a centre that a continuation move left above the best point resets the
+    /// staleness count (the centre is still descending) but earns no further restart:
+    /// it is no progress of the run.
+    pub(super) fn below_best(&self) -> bool {
+        match (self.st.best_value, self.st.value) {
+            (Some(b), Some(v)) => v < b,
+            (Some(_), None) => false,
+            (None, _) => true,
+        }
+    }
+
+    /// Clears the continuation's record once θ is below the best point again.
+    pub(super) fn keep_best(&mut self) {
+        if self.st.best_value.is_some() && self.below_best() {
+            self.st.best_value = None;
+        }
+    }
+
+    /// Moves θ back to the best point a continuation move left.
+    pub(super) fn restore_best(&mut self) {
+        if let Some(b) = self.st.best_value.take() {
+            self.theta.copy_from_slice(self.mem.best);
+            self.st.value = Some(b);
+        }
+    }
+
+    /// Moves θ to the best point of the earlier descents where that is at least as good
+    /// as the current descent's.
+    pub(super) fn restore_record(&mut self) {
+        if self.record_leads() {
+            self.theta.copy_from_slice(self.mem.record);
+            self.st.value = self.st.record;
+        }
+    }
+
+    /// Restarts in a row without a gain, after the first such one, before the descent
+    /// ends ([`AutoOptions::restarts`](super::AutoOptions::restarts), or its default for this run).
+    pub(super) fn restarts(&self) -> usize {
+        self.options.restarts.unwrap_or(if self.may_start_fresh() {
+            RESTARTS_BEFORE_FRESH
+        } else {
+            RESTARTS
+        })
+    }
+
+    /// Whether a descent that ended (converged, or stagnated after its restarts) is
+    /// followed by a fresh one ([`AutoOptions::fresh_starts`](super::AutoOptions::fresh_starts)): the run has a budget
+    /// and the objective is deterministic (values on different seeds, or draws of
+    /// unseeded noise, would make one descent's best point incomparable with
+    /// another's).
+    pub(super) fn may_start_fresh(&self) -> bool {
+        self.options.fresh_starts
+            && self.options.max_evaluations.is_some()
+            && !self.st.noisy
+            && !self.st.unseeded
+    }
+
+    /// Begins a new descent from a fresh start about the run's best point, as basin
+    /// hopping does: each coordinate moved by its start scale times 2^(k mod
+    /// [`RESTART_SCALES`]) times a standard normal draw for the k-th fresh start, and
+    /// mirrored into the box. The best point so far is kept as the record; the memory,
+    /// the model, the metric and σ start over as in [`Auto::new`].
+    pub(super) fn fresh_start(&mut self) {
+        self.restore_best();
+        self.restore_record();
+        if let Some(v) = self.st.value {
+            self.mem.record.copy_from_slice(self.theta);
+            self.st.record = Some(v);
+        }
+        let n = self.theta.len();
+        let widen = T::from_f64(libm::pow(2.0, f64::from(self.st.fresh % RESTART_SCALES)));
+        self.st.fresh = self.st.fresh.wrapping_add(1);
+        let least = self.least_start_scale();
+        for i in 0..n {
+            let spread = self.start_scale(i).max(least) * widen;
+            let x = self.theta[i] + spread * normal::quantile(T::uniform_open(&mut self.rng));
+            self.theta[i] = reflect(x, self.mem.lower[i], self.mem.upper[i]);
+        }
+        let run = self.st;
+        self.st = State {
+            iteration: run.iteration,
+            evaluations: run.evaluations,
+            bounded: run.bounded,
+            noisy: run.noisy,
+            // A descent may end held by noise: check again, as a restart does.
+            checked: run.unseeded,
+            unseeded: run.unseeded,
+            dense: run.dense,
+            voting: run.voting,
+            groups: run.groups,
+            metric_changes: run.metric_changes.wrapping_add(1),
+            record: run.record,
+            fresh: run.fresh,
+            ..State::start(run.sigma0, n)
+        };
+        self.shape_scales();
+        self.mem.path.fill(T::ZERO);
+    }
+
+    /// Starts over from the best point at `sigma` with the memory of points and the
+    /// sampling metric, but without the model learnt at the scale the run had shrunk to.
+    /// The metric is kept: it is a shape, not a scale, and the shape that a narrow valley
+    /// or ridge taught is what the next descent along it needs.
+    pub(super) fn restart(&mut self, sigma: T) {
+        self.restore_best();
+        self.forget_scales();
+        self.st.may_restart = false;
+        self.st.stale = 0;
+        self.st.sigma = sigma;
+        self.st.survey = true;
+        self.st.has_prior = false;
+        // A run that ends its descent may have been held by noise: a lucky draw of
+        // f(θ) that no later step can beat. Check, until noise is found.
+        self.st.checked = self.st.unseeded;
+    }
+}
