@@ -230,9 +230,9 @@ def minimize(
     budget : int, optional
         At most this many evaluations (never exceeded). With a budget, a deterministic
         ``fun`` gets it all: once a descent converges or stagnates, another starts
-        about the best point (basin hopping; ``options["fresh_starts"]``), and the
-        best point of all descents is returned, with status 1. Default: until the
-        first descent converges.
+        about the best point (about x0 while no value has been finite; basin hopping;
+        ``options["fresh_starts"]``), and the best point of all descents is returned,
+        with status 1. Default: until the first descent converges.
     method : str
         ``"auto"`` (the only one).
     seed : int

@@ -76,7 +76,9 @@ pub(super) struct Memory<'b, T> {
     pub(super) best: &'b mut [T],
     /// The evolution path of θ's accepted model steps in units of σ ([`Auto::follow_path`]).
     pub(super) path: &'b mut [T],
-    /// The best point of the run's earlier descents ([`State::record`](super::State::record)).
+    /// The best point of the run's earlier descents ([`State::record`](super::State::record));
+    /// until a finite value is found, the run's start, about which fresh starts then
+    /// jump (`Auto::fresh_start`).
     pub(super) record: &'b mut [T],
 }
 

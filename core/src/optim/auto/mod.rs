@@ -145,12 +145,13 @@
 //!   small steps some gain is always found there); after [`AutoOptions::restarts`]
 //!   restarts in a row without a gain its descent ends, converged or stagnated.
 //! * **Fresh starts.** A run with a budget on a deterministic objective then starts a
-//!   new descent about its best point, as basin hopping does
-//!   ([`AutoOptions::fresh_starts`]): each coordinate moves by its start scale times
-//!   2^(k mod 5) times a normal draw at the k-th fresh start, mirrored into the box,
-//!   and the memory, model, metric and σ start over. A descent's end is as likely a
-//!   local minimum (a disc hidden under another, a lattice cell beside the optimum's)
-//!   as the global one, and nothing in the values tells which; the budget says how
+//!   new descent about its best point (about x₀ while no value has been finite), as
+//!   basin hopping does ([`AutoOptions::fresh_starts`]): each coordinate moves by its
+//!   start scale times 2^(k mod 5) times a normal draw at the k-th fresh start,
+//!   mirrored into the box, and the memory, model, metric and σ start over. A
+//!   descent's end is as likely a local minimum (a disc hidden under another, a
+//!   lattice cell beside the optimum's) as the global one, and nothing in the values
+//!   tells which; the budget says how
 //!   much more the caller will spend to find out. [`Auto::theta`] is the best point of
 //!   all descents. Without a budget, or on a noisy objective, the run ends with its
 //!   first descent.

@@ -149,10 +149,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// hopping does: each coordinate moved by its start scale times 2^(k mod
     /// [`RESTART_SCALES`]) times a standard normal draw for the k-th fresh start, and
     /// mirrored into the box. The best point so far is kept as the record; the memory,
-    /// the model, the metric and σ start over as in [`Auto::new`].
+    /// the model, the metric and σ start over as in [`Auto::new`]. Where no evaluation
+    /// has been finite yet (a start where the objective fails, NaN all around), the jump
+    /// is from the run's start, not from the last jump's end: the search spreads about
+    /// x₀ instead of wandering off in a random walk.
     pub(super) fn fresh_start(&mut self) {
         self.restore_best();
         self.restore_record();
+        if self.st.value.is_none() && self.st.record.is_none() {
+            self.theta.copy_from_slice(self.mem.record);
+        }
         if let Some(v) = self.st.value {
             self.mem.record.copy_from_slice(self.theta);
             self.st.record = Some(v);
