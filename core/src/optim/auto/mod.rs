@@ -837,7 +837,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let scale = self.theta.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
         let resolvable = T::from_f64(8.0) * T::EPSILON * scale;
         let converged = self.sigma_converged() || self.st.sigma <= resolvable;
-        let stagnated = self.st.stale >= patience;
+        // A descent that has found no finite value has nothing to wait for once σ has
+        // widened to its cap: a fresh start about x₀ looks at the finer scales again.
+        let lost = self.st.value.is_none()
+            && self.st.record.is_none()
+            && self.widened_sigma(PLATEAU_WIDTH) <= self.st.sigma;
+        let stagnated = self.st.stale >= patience || lost;
         // Before a restart or the end moves θ back to the best point: a centre that
         // continuation left above it may have just stepped below it.
         self.keep_best();

@@ -152,7 +152,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// the model, the metric and σ start over as in [`Auto::new`]. Where no evaluation
     /// has been finite yet (a start where the objective fails, NaN all around), the jump
     /// is from the run's start, not from the last jump's end: the search spreads about
-    /// x₀ instead of wandering off in a random walk.
+    /// x₀ instead of wandering off in a random walk (and such a descent ends once σ has
+    /// widened to its cap, `Auto::step`).
     pub(super) fn fresh_start(&mut self) {
         self.restore_best();
         self.restore_record();
