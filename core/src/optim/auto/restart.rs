@@ -58,8 +58,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.rough_scale = T::ZERO;
     }
 
-    /// 2σ, capped at `width`·σ₀ and, with bounds, at half the box's widest side.
-    pub(super) fn widened_sigma(&self, width: f64) -> T {
+    /// The widest σ: `width`·σ₀ and, with bounds, at most half the box's widest side.
+    fn sigma_cap(&self, width: f64) -> T {
         let mut cap = self.st.sigma0 * T::from_f64(width);
         if self.st.bounded {
             let width = (0..self.theta.len())
@@ -68,7 +68,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 cap = cap.min(T::HALF * width);
             }
         }
-        (self.st.sigma * T::TWO).min(cap).max(self.st.sigma)
+        cap
+    }
+
+    /// 2σ, capped at `width`·σ₀ and, with bounds, at half the box's widest side.
+    pub(super) fn widened_sigma(&self, width: f64) -> T {
+        (self.st.sigma * T::TWO)
+            .min(self.sigma_cap(width))
+            .max(self.st.sigma)
     }
 
     /// σ₀·2^(k mod [`RESTART_SCALES`]) for the k-th restart of the run, at most
@@ -76,14 +83,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     pub(super) fn restart_sigma(&self) -> T {
         let doublings = (self.st.cycle % RESTART_SCALES) as i32;
         let sigma = self.st.sigma0 * T::from_f64(libm::pow(2.0, f64::from(doublings)));
-        let mut cap = self.st.sigma0 * T::from_f64(PLATEAU_WIDTH);
-        if self.st.bounded {
-            let width = (0..self.theta.len())
-                .fold(T::ZERO, |w, i| w.max(self.mem.upper[i] - self.mem.lower[i]));
-            if width > T::ZERO && width.is_finite() {
-                cap = cap.min(T::HALF * width);
-            }
-        }
+        let cap = self.sigma_cap(PLATEAU_WIDTH);
         sigma.min(cap).max(self.st.sigma0.min(cap))
     }
 
