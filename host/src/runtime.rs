@@ -146,7 +146,6 @@ pub fn run(
     let h = task.run_hyper(preset).with_common_random_numbers(crn);
     let method = preset.method(&h);
     let n = task.dim();
-    let optimum = task.optimum();
     let mut theta = task.start(seed);
     let mut buffer = vec![0.0; method.buffer_len(n)];
     let est = Estimator::new(
@@ -166,13 +165,7 @@ pub fn run(
     let (mut wb, mut seeds) = (vec![0.0; method.workspace_len(n, rows)], vec![0; rows]);
     let mut ws = Workspace::new(n, &mut wb, &mut seeds)?;
     let mut objective = task.objective()?;
-    let error = |t: &[f64]| {
-        t.iter()
-            .zip(&optimum)
-            .map(|(a, b)| (a - b) * (a - b))
-            .sum::<f64>()
-            .sqrt()
-    };
+    let error = |t: &[f64]| task.param_error(t);
     let mut samples = vec![Sample {
         time: 0.0,
         evaluations: 0,

@@ -21,7 +21,8 @@
 //!
 //! **SHAPES truth**: circle 0 at (2, 2), radius u, colour (0.9, 0.2, 0.2); circle 1 at
 //! (5.75, 2.5), radius 1.25u, (0.2, 0.7, 0.3); circle 2 at (3.5, 5.75), radius 1.1u,
-//! (0.2, 0.3, 0.9). **Start**: radius r₀ ~ U[0.6, 0.9) u, each colour channel ~
+//! (0.2, 0.3, 0.9) — or any ordering of the three: they do not overlap, so every
+//! ordering renders the target, and the parameter error is to the nearest one. **Start**: radius r₀ ~ U[0.6, 0.9) u, each colour channel ~
 //! U[0.3, 0.7), centre at distance d ~ U[r* + r₀ + 0.25, r* + r₀ + 1) u from the target
 //! centre in a uniformly random direction, redrawn (up to 64 times, then the first
 //! direction of 32 evenly spaced ones that fits) until the circle lies inside the image:
@@ -100,6 +101,9 @@ pub struct Task {
     map: ParamMap,
     theta_true: Vec<f64>,
     settings: Settings,
+    /// Parameters per shape where the shapes are interchangeable (every ordering of
+    /// them renders θ*'s image), `None` where order matters.
+    interchangeable: Option<usize>,
 }
 
 /// The task `name` (one of [`NAMES`], case-insensitive) at the default size.
@@ -128,13 +132,22 @@ impl Task {
             });
         }
         let u = size as f32 / 8.0;
-        let (name, truth, bindings, settings) = match name.to_ascii_lowercase().as_str() {
-            "tri1d" => ("tri1d", tri1d(size, u)?, tri1d_map(u), TRI1D),
-            "box2" => ("box2", box2(size, u)?, box_map(1, u, 1.5), BOX2),
-            "box10" => ("box10", box10(size, u)?, box_map(5, u, 1.0), BOX10),
-            "shapes" => ("shapes", shapes(size, u)?, shapes_map(u), SHAPES),
-            _ => return Err(Error::UnknownTask(name.to_string())),
-        };
+        // SHAPES's circles share one binding layout and do not overlap at θ*, so any
+        // ordering of them renders the target; BOX10's squares keep their colours.
+        let (name, truth, bindings, settings, interchangeable) =
+            match name.to_ascii_lowercase().as_str() {
+                "tri1d" => ("tri1d", tri1d(size, u)?, tri1d_map(u), TRI1D, None),
+                "box2" => ("box2", box2(size, u)?, box_map(1, u, 1.5), BOX2, None),
+                "box10" => ("box10", box10(size, u)?, box_map(5, u, 1.0), BOX10, None),
+                "shapes" => (
+                    "shapes",
+                    shapes(size, u)?,
+                    shapes_map(u),
+                    SHAPES,
+                    Some(SHAPES_PARAMETERS),
+                ),
+                _ => return Err(Error::UnknownTask(name.to_string())),
+            };
         let map = ParamMap::new(bindings, &truth)?;
         let theta_true = map.read(&truth);
         Ok(Task {
@@ -144,6 +157,7 @@ impl Task {
             map,
             theta_true,
             settings,
+            interchangeable,
         })
     }
 
@@ -229,15 +243,50 @@ impl Task {
         }
     }
 
-    /// Root-mean-square distance of θ to θ*, in θ units.
-    pub fn parameter_error(&self, theta: &[f64]) -> f64 {
-        let sum: f64 = theta
-            .iter()
-            .zip(&self.theta_true)
-            .map(|(a, b)| (a - b).powi(2))
-            .sum();
-        (sum / self.theta_true.len().max(1) as f64).sqrt()
+    /// Euclidean distance of θ to θ*, in θ units. Where the task's shapes are
+    /// interchangeable (SHAPES), to the nearest of θ*'s orderings — all of which render
+    /// the target — minimised over the k! assignments of θ's k shapes to the target's.
+    pub fn parameter_distance(&self, theta: &[f64]) -> f64 {
+        let block = self.interchangeable.unwrap_or(self.theta_true.len()).max(1);
+        let shapes = self.theta_true.len() / block;
+        nearest_assignment(theta, &self.theta_true, block, 0, &mut vec![false; shapes]).sqrt()
     }
+
+    /// Root-mean-square distance of θ to θ*, in θ units: [`Task::parameter_distance`]
+    /// over √n.
+    pub fn parameter_error(&self, theta: &[f64]) -> f64 {
+        self.parameter_distance(theta) / (self.theta_true.len().max(1) as f64).sqrt()
+    }
+}
+
+/// The least Σ of squared differences between θ's shapes from `shape` on (blocks of
+/// `block` parameters) and the target's shapes not yet `taken`, each used once.
+fn nearest_assignment(
+    theta: &[f64],
+    truth: &[f64],
+    block: usize,
+    shape: usize,
+    taken: &mut [bool],
+) -> f64 {
+    let Some(own) = theta
+        .chunks(block)
+        .nth(shape)
+        .filter(|_| shape < taken.len())
+    else {
+        return 0.0;
+    };
+    let mut best = f64::INFINITY;
+    for (target, params) in truth.chunks(block).enumerate() {
+        if taken[target] {
+            continue;
+        }
+        let here: f64 = own.iter().zip(params).map(|(a, b)| (a - b).powi(2)).sum();
+        taken[target] = true;
+        let rest = nearest_assignment(theta, truth, block, shape + 1, taken);
+        taken[target] = false;
+        best = best.min(here + rest);
+    }
+    best
 }
 
 const TRI1D: Settings = Settings {
@@ -373,6 +422,9 @@ fn box_map(squares: usize, u: f32, side: f64) -> Vec<Binding> {
         .collect()
 }
 
+/// Parameters per SHAPES circle: centre x, y, 2r (all in u) and R, G, B.
+const SHAPES_PARAMETERS: usize = 6;
+
 /// (centre x, centre y, radius) in u, and colour, of the SHAPES circles.
 const CIRCLES: [(f32, f32, f32, Rgba); 3] = [
     (2.0, 2.0, 1.0, Rgba::rgb(0.9, 0.2, 0.2)),
@@ -413,7 +465,8 @@ fn shapes_map(u: f32) -> Vec<Binding> {
 /// SHAPES start: θ is (x, y, 2r, R, G, B) per circle, positions and radii in u.
 fn shapes_start(truth: &[f64], uniform: &mut impl FnMut(f64, f64) -> f64) -> Vec<f64> {
     let mut theta = truth.to_vec();
-    for (c, t) in truth.chunks_exact(6).zip(theta.chunks_exact_mut(6)) {
+    let chunks = truth.chunks_exact(SHAPES_PARAMETERS);
+    for (c, t) in chunks.zip(theta.chunks_exact_mut(SHAPES_PARAMETERS)) {
         let (x, y, r_true) = (c[0], c[1], c[2] / 2.0);
         let r = uniform(0.6, 0.9);
         let d = uniform(r_true + r + 0.25, r_true + r + 1.0);

@@ -133,3 +133,43 @@ fn tri1d_loss_is_exactly_flat_away_from_the_target() {
     }
     assert!(objective.loss(&[2.5]).unwrap() < plateau);
 }
+
+/// SHAPES's circles render the target in any order, and its parameter error is zero at
+/// every ordering; BOX10's squares keep their colours, so swapping two is an error.
+#[test]
+fn the_parameter_error_is_zero_exactly_where_the_render_is_the_target() {
+    let shapes = tasks::by_name("shapes").unwrap();
+    let mut objective = shapes.objective().unwrap();
+    let truth = shapes.theta_true();
+    for order in [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ] {
+        let permuted: Vec<f64> = order
+            .iter()
+            .flat_map(|&c| truth[6 * c..6 * c + 6].iter().copied())
+            .collect();
+        assert_eq!(objective.loss(&permuted).unwrap(), 0.0, "{order:?}");
+        assert_eq!(shapes.parameter_error(&permuted), 0.0, "{order:?}");
+    }
+    // One circle moved by 0.5 in x: √(0.25 / n) whatever the ordering.
+    let mut moved: Vec<f64> = [2, 0, 1]
+        .iter()
+        .flat_map(|&c| truth[6 * c..6 * c + 6].iter().copied())
+        .collect();
+    moved[6] += 0.5;
+    let expected = (0.25 / truth.len() as f64).sqrt();
+    assert!((shapes.parameter_error(&moved) - expected).abs() < 1e-12);
+    assert!((shapes.parameter_distance(&moved) - 0.5).abs() < 1e-12);
+
+    let box10 = tasks::by_name("box10").unwrap();
+    let mut swapped = box10.theta_true().to_vec();
+    swapped.swap(0, 2);
+    swapped.swap(1, 3);
+    assert!(box10.objective().unwrap().loss(&swapped).unwrap() > 0.0);
+    assert!(box10.parameter_distance(&swapped) > 1.0);
+}

@@ -185,18 +185,11 @@ pub fn run_observed(
         interrupt,
     };
     let mut probe = task.objective()?;
-    let optimum = task.optimum();
     let start = task.start(seed);
     let budget = settings
         .budget
         .unwrap_or_else(|| task.budget(settings.quick));
-    let param_error = |t: &[f64]| {
-        t.iter()
-            .zip(&optimum)
-            .map(|(a, b)| (a - b) * (a - b))
-            .sum::<f64>()
-            .sqrt()
-    };
+    let param_error = |t: &[f64]| task.param_error(t);
     let mut points = vec![Point {
         time: 0.0,
         evaluations: 0,

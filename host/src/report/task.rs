@@ -23,6 +23,17 @@ pub trait Task: Send + Sync {
     fn dim(&self) -> usize;
     /// θ*.
     fn optimum(&self) -> Vec<f64>;
+    /// The parameter error of θ, the distance the report's reductions are measured in.
+    /// Default: ‖θ − θ*‖; a task whose θ* is one of several equivalent points (MUG's
+    /// periodic angle, SHAPES's orderings of its circles) measures to the nearest.
+    fn param_error(&self, theta: &[f64]) -> f64 {
+        theta
+            .iter()
+            .zip(self.optimum())
+            .map(|(a, b)| (a - b) * (a - b))
+            .sum::<f64>()
+            .sqrt()
+    }
     /// A start from the task's start distribution, fixed by `seed`.
     fn start(&self, seed: u64) -> Vec<f64>;
     /// Per-task hyper-parameters of `preset` (docs/design.md §3; data, overridable).
@@ -284,6 +295,9 @@ impl Task for RasterTask {
     fn optimum(&self) -> Vec<f64> {
         self.task.theta_true().to_vec()
     }
+    fn param_error(&self, theta: &[f64]) -> f64 {
+        self.task.parameter_distance(theta)
+    }
     fn start(&self, seed: u64) -> Vec<f64> {
         self.task.start(seed)
     }
@@ -371,6 +385,9 @@ impl Task for PathTask {
     }
     fn optimum(&self) -> Vec<f64> {
         self.task.true_params()
+    }
+    fn param_error(&self, theta: &[f64]) -> f64 {
+        self.task.parameter_error(theta)
     }
     fn start(&self, seed: u64) -> Vec<f64> {
         self.task.start(seed)
@@ -468,4 +485,29 @@ pub fn select(names: &[String], quick: bool) -> Result<Vec<Box<dyn Task>>> {
         chosen.push(all.remove(k));
     }
     Ok(chosen)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The report measures each task's parameter error as the task defines it: to the
+    /// nearest ordering of SHAPES's circles, to the nearest turn of MUG's angle.
+    #[test]
+    fn the_parameter_error_is_the_tasks_own() {
+        let shapes = RasterTask::new("shapes").unwrap();
+        let truth = shapes.optimum();
+        let mut reordered = truth[6..].to_vec();
+        reordered.extend_from_slice(&truth[..6]);
+        assert_eq!(shapes.param_error(&reordered), 0.0);
+        assert!(shapes.param_error(&truth.iter().map(|t| t + 0.1).collect::<Vec<_>>()) > 0.4);
+
+        let mug = PathTask::new(crate::tasks::by_name("mug").unwrap(), true);
+        let turn = std::f64::consts::TAU / crate::tasks::Mug::RADIANS_PER_UNIT;
+        let mut theta = mug.optimum();
+        theta[0] += turn;
+        assert!(mug.param_error(&theta) < 1e-9);
+        theta[0] += 0.5;
+        assert!((mug.param_error(&theta) - 0.5).abs() < 1e-9);
+    }
 }
