@@ -2,14 +2,15 @@
 does not say so (a renderer whose seed is not passed on), for BENCHMARKS.md.
 
 f(x) = sum_i (i + 1)(x_i - c_i)^2 + noise, c = (0.5, -1, 2, 0.3, ...), from x0 = 0 with
-sigma0 = 1, either with sparse Cauchy spikes on a constant offset (+1, and with probability
-0.2 a standard Cauchy draw) or with multiplicative noise (times exp(N/2)). Each library
+sigma0 = 1, with sparse Cauchy spikes on a constant offset (+1, and with probability 0.2 a
+standard Cauchy draw), multiplicative noise (times exp(N/2)) or additive noise (+ N/100,
+which does not vanish at c, as a Monte Carlo render's variance does not). Each library
 gets the plain function and a budget; the result is the distance of its returned point
 (hodr: `x`; pycma: the distribution mean `xfavorite`) from c, over seeds.
 
     pip install ./python cma
     python python/bench/noisy_closure.py [--dim 4] [--seeds 10] [--budget 2000]
-                                         [--noise cauchy,multiplicative]
+                                         [--noise cauchy,multiplicative,additive]
 """
 
 import argparse
@@ -33,6 +34,8 @@ def problem(n, noise, seed):
         q = float(np.sum(weights * (np.asarray(x) - c) ** 2))
         if noise == "cauchy":
             return q + 1.0 + (rng.standard_cauchy() if rng.random() < 0.2 else 0.0)
+        if noise == "additive":
+            return q + 0.01 * float(rng.standard_normal())
         return q * float(np.exp(0.5 * rng.standard_normal()))
 
     return f, c
@@ -57,13 +60,13 @@ def main():
     parser.add_argument("--dim", type=int, default=4)
     parser.add_argument("--seeds", type=int, default=10)
     parser.add_argument("--budget", type=int, default=2000)
-    parser.add_argument("--noise", default="cauchy,multiplicative")
+    parser.add_argument("--noise", default="cauchy,multiplicative,additive")
     args = parser.parse_args()
     print("| noise | method | runs within 0.01 of c | median distance |")
     print("|---|---|---|---|")
     for noise in args.noise.split(","):
-        if noise not in ("cauchy", "multiplicative"):
-            parser.error(f"unknown noise {noise!r} (cauchy, multiplicative)")
+        if noise not in ("cauchy", "multiplicative", "additive"):
+            parser.error(f"unknown noise {noise!r} (cauchy, multiplicative, additive)")
         for method in ("hodr", "pycma"):
             errors = np.array(
                 [run(method, args.dim, noise, s, args.budget) for s in range(args.seeds)]

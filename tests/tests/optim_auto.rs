@@ -802,6 +802,16 @@ fn convergence_rates_hold() {
         .filter(|&seed| unseeded_noise_solved(seed, UnseededNoise::LogNormal))
         .count();
     assert!(solved >= 38, "multiplicative noise: {solved} of {seeds}");
+    // Additive noise, q + 0.01·N, which does not vanish at the optimum (a Monte Carlo
+    // render's variance), on q(x) = Σᵢ (i + 1)(xᵢ − 1)² in 6-D from 0, to q(θ) < 0.005
+    // (q's own value, at the point returned) within 3 000 evaluations: 154 of 400 while
+    // θ moved to any sample whose single draw came below f(θ)'s, following the noise's
+    // lowest draws (median q 0.0081). Measured: 263 of 400 (median 0.0032).
+    // Bound: P(X < 17 | p = 0.6575, N = 40) = 7.7e-4.
+    let solved = (0..seeds)
+        .filter(|&seed| additive_noise_solved(seed))
+        .count();
+    assert!(solved >= 17, "additive noise: {solved} of {seeds}");
     // Rosenbrock's valley at n = 5 under 1 % multiplicative noise, to f < 1e-8 within
     // 5 000 evaluations: 2 of 200 while every rejection halved σ (the steps shrank until
     // each comparison was the noise's), 164 of 200 while a rejection within twice the
@@ -1111,6 +1121,25 @@ fn unseeded_noise_solved(seed: u64, noise: UnseededNoise) -> bool {
     };
     let (theta, _, _) = minimise(&mut f, &[4.0, -2.0, 3.0], 1.0, None, 1500, seed);
     theta.iter().map(|v| (v - 1.0).powi(2)).sum::<f64>().sqrt() < 0.01
+}
+
+/// Whether Auto brings q(x) = Σᵢ (i + 1)(xᵢ − 1)² in 6-D, observed as q + 0.01·N with N
+/// a standard normal drawn afresh at every call, from 0 to q(θ) < 0.005 within 3 000
+/// evaluations (run seed `seed`).
+fn additive_noise_solved(seed: u64) -> bool {
+    let mut unit = uniforms(4_000_000 + seed);
+    let q = |x: &[f64]| -> f64 {
+        x.iter()
+            .enumerate()
+            .map(|(i, v)| (1.0 + i as f64) * (v - 1.0).powi(2))
+            .sum()
+    };
+    let mut f = |x: &[f64]| {
+        let (b, c) = (unit(), unit());
+        q(x) + 0.01 * standard_normal(b, c)
+    };
+    let (theta, _, _) = minimise(&mut f, &[0.0; 6], 1.0, None, 3000, seed);
+    q(&theta) < 0.005
 }
 
 /// Rosenbrock's function, Σᵢ 100(xᵢ₊₁ − xᵢ²)² + (1 − xᵢ)².

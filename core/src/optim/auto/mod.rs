@@ -82,7 +82,9 @@
 //!   such an outlier, θ is drawn again; and after a rejected trial, where θ's draw lies
 //!   below the robust fit, θ is drawn again beside the next one (until
 //!   [`THETA_DRAWS`] draws), trials being compared with the median of θ's draws, so
-//!   that a draw from the noise's low tail cannot hold θ by itself. Sparse outliers
+//!   that a draw from the noise's low tail cannot hold θ by itself; nor can it move θ:
+//!   where every draw is noisy, a sample takes θ's place only when lower by more than
+//!   the noise's scale. Sparse outliers
 //!   (the check's draws did not all differ, or two remembered draws at one point
 //!   agree) are voted out instead: from then on every point is drawn until two of its
 //!   draws agree exactly (at most [`VOTES`] draws, else their median), which costs

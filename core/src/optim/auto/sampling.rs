@@ -151,8 +151,19 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if axes && allowed == rows {
             self.stretch_flat_axes(first_axis, pairs, usize::from(centre));
         }
-        // Remember the points and move θ to the lowest when it beats f(θ).
+        // Remember the points and move θ to the lowest when it beats f(θ) — on unseeded
+        // noise that every draw carries, by more than the noise's scale
+        // (`Auto::dense_noise_scale`): a draw lower by less is as likely the noise's low
+        // tail as f's, and θ would follow the luckiest draws to where f is no lower, the
+        // run returning a point that the noise chose. Such noise moves θ by the model's
+        // steps only, which its fit averages over many draws. (Where the noise shrinks
+        // with f, the scale shrinks as the remembered points descend.)
         self.remember(allowed, group, survey);
+        let margin = if self.st.unseeded && self.st.value.is_some() {
+            self.dense_noise_scale().unwrap_or(T::ZERO)
+        } else {
+            T::ZERO
+        };
         let mut lowest: Option<(usize, T)> = None;
         for row in 0..allowed {
             let f = self.mem.stage_f[row];
@@ -162,7 +173,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         let trust_samples = !self.st.noisy || self.st.shared.is_some() || self.st.value.is_none();
         if let Some((row, f)) = lowest {
-            if trust_samples && self.st.value.is_none_or(|v| f < v) {
+            if trust_samples && self.st.value.is_none_or(|v| f < v - margin) {
                 let (theta, stage) = (&mut *self.theta, &self.mem.stage);
                 theta.copy_from_slice(&stage[row * n..(row + 1) * n]);
                 self.st.value = Some(f);
