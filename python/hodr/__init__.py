@@ -248,8 +248,9 @@ def minimize(
         in their differences, and compares values only within a seed. Without it, a
         ``fun`` that draws fresh noise at every call is noticed (its point is evaluated
         a second time after each restart, and a third once the two differ) and fitted
-        robustly; where only a few draws are noisy (outliers on exact values), every
-        point is evaluated until two draws agree.
+        robustly, a sampled point replacing the current one only when lower by more
+        than the noise's scale; where only a few draws are noisy (outliers on exact
+        values), every point is evaluated until two draws agree.
     callback : callable, optional
         ``callback(x, f)`` after every iteration with the best point so far and its
         value; returning True stops the run.
