@@ -273,7 +273,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Remembers the staged rows 0 … `rows` − 1 with finite values, in noise group
-    /// `group`. When the memory is full, each replaces the point farthest from θ (by z).
+    /// `group`. When the memory is full, each replaces the point farthest from θ (by z) —
+    /// on unseeded noise that every draw carries, the point whose z lies farthest from
+    /// σ's scale (the largest max(z, 1/z)), θ's own draws kept: a point at z ≪ 1 is one
+    /// more draw of f at θ, whose differences the noise swamps, and a point at z ≫ 1 lies
+    /// beyond the fit's reach, while the model at σ needs points at σ's distance.
     /// With `keep_batch` it replaces the farthest of the points that are neither this
     /// batch's nor θ's own draws, while there is one. A survey asks for that: it is the
     /// geometry a model is fitted from, n lines through θ, and a restart's, drawn at a σ
@@ -291,6 +295,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // A kept point's z is stored as −1 − z until the batch is in (and then
         // computed again: the round trip through −1 − z is not exact).
         let kept = |z: T| -T::ONE - z;
+        let noisy_draws = self.st.unseeded && self.st.dense;
         if self.st.count + rows > cap {
             self.refresh_reach();
             if keep_batch {
@@ -314,8 +319,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 let (mut free, mut held) = ((None, -T::ONE), (0, -T::ONE));
                 for (k, &z) in self.mem.zs[..cap].iter().enumerate() {
                     if z >= T::ZERO {
-                        if z > free.1 {
-                            free = (Some(k), z);
+                        let far = if !noisy_draws || z == T::ZERO {
+                            z
+                        } else {
+                            z.max(T::ONE / z)
+                        };
+                        if far > free.1 {
+                            free = (Some(k), far);
                         }
                     } else if kept(z) > held.1 {
                         held = (k, kept(z));
