@@ -27,12 +27,7 @@ pub trait Task: Send + Sync {
     /// Default: ‖θ − θ*‖; a task whose θ* is one of several equivalent points (MUG's
     /// periodic angle, SHAPES's orderings of its circles) measures to the nearest.
     fn param_error(&self, theta: &[f64]) -> f64 {
-        theta
-            .iter()
-            .zip(self.optimum())
-            .map(|(a, b)| (a - b) * (a - b))
-            .sum::<f64>()
-            .sqrt()
+        crate::tasks::distance(theta, &self.optimum())
     }
     /// A start from the task's start distribution, fixed by `seed`.
     fn start(&self, seed: u64) -> Vec<f64>;

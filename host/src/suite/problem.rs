@@ -135,13 +135,7 @@ pub enum Measure {
 impl Measure {
     /// The parameter error of `x` against `x_opt`.
     pub fn error(&self, x: &[f64], x_opt: &[f64]) -> f64 {
-        let dist = |a: &[f64], b: &[f64]| {
-            a.iter()
-                .zip(b)
-                .map(|(p, q)| (p - q) * (p - q))
-                .sum::<f64>()
-                .sqrt()
-        };
+        let dist = crate::tasks::distance;
         match self {
             Measure::Euclidean => dist(x, x_opt),
             Measure::Rounded => {

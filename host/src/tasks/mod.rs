@@ -129,14 +129,9 @@ pub trait Task3d: Send + Sync {
     /// Only if the task's own constants were invalid (a bug).
     fn scene(&self) -> Result<Box<dyn ParametricScene>, RenderError>;
 
-    /// Distance of θ from θ* (Euclidean unless a task says otherwise).
+    /// Distance of θ from θ* (Euclidean, [`distance`], unless a task says otherwise).
     fn parameter_error(&self, theta: &[f64]) -> f64 {
-        theta
-            .iter()
-            .zip(self.true_params())
-            .map(|(a, b)| (a - b) * (a - b))
-            .sum::<f64>()
-            .sqrt()
+        distance(theta, &self.true_params())
     }
 
     /// Renders θ at `width` × `height` with `spp` samples per pixel and frame seed `seed`
@@ -158,6 +153,16 @@ pub trait Task3d: Send + Sync {
         render(scene.scene(), &mut film, spp, seed)?;
         Ok(film)
     }
+}
+
+/// The Euclidean distance ‖a − b‖ over the pairs of coordinates both have: every task's
+/// parameter error unless the task defines its own.
+pub fn distance(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
 }
 
 /// Every task, in the order of docs/design.md §3.
