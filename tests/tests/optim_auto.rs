@@ -806,12 +806,13 @@ fn convergence_rates_hold() {
     // render's variance), on q(x) = Σᵢ (i + 1)(xᵢ − 1)² in 6-D from 0, to q(θ) < 0.005
     // (q's own value, at the point returned) within 3 000 evaluations: 154 of 400 while
     // θ moved to any sample whose single draw came below f(θ)'s, following the noise's
-    // lowest draws (median q 0.0081). Measured: 263 of 400 (median 0.0032).
-    // Bound: P(X < 17 | p = 0.6575, N = 40) = 7.7e-4.
+    // lowest draws (median q 0.0081); 263 of 400 (median 0.0032) while the memory kept
+    // the points nearest θ, draws at the smaller σ the noise swamps. Measured: 320 of
+    // 400. Bound: P(X < 24 | p = 0.8, N = 40) = 9.9e-4.
     let solved = (0..seeds)
         .filter(|&seed| additive_noise_solved(seed))
         .count();
-    assert!(solved >= 17, "additive noise: {solved} of {seeds}");
+    assert!(solved >= 24, "additive noise: {solved} of {seeds}");
     // Rosenbrock's valley at n = 5 under 1 % multiplicative noise, to f < 1e-8 within
     // 5 000 evaluations: 2 of 200 while every rejection halved σ (the steps shrank until
     // each comparison was the noise's), 164 of 200 while a rejection within twice the
