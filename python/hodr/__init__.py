@@ -139,15 +139,15 @@ def _scales(sigma0: Any, n: int) -> list:
     return array.tolist()
 
 
-OPTIONS = ("tolerance", "patience", "restarts", "fresh_starts", "non_finite")
+OPTIONS = ("tolerance", "patience", "restarts", "fresh_starts", "centre", "non_finite")
 
 
 def _settings(options: Any) -> tuple:
-    """(tolerance, patience, restarts, fresh_starts, non_finite) from the ``options``
-    mapping, each None where it is not given; TypeError/ValueError naming the key. The
+    """(tolerance, patience, restarts, fresh_starts, centre, non_finite) from the
+    ``options`` mapping, each None where it is not given; TypeError/ValueError naming the key. The
     extension checks the ranges."""
     if options is None:
-        return (None, None, None, None, None)
+        return (None, None, None, None, None, None)
     if not hasattr(options, "items"):
         raise TypeError(f"options must be a dict, got {type(options).__name__}")
     unknown = [k for k in options if k not in OPTIONS]
@@ -165,17 +165,22 @@ def _settings(options: Any) -> tuple:
     restarts = options.get("restarts")
     if restarts is not None:
         restarts = _count("options['restarts']", restarts, 0)
-    fresh_starts = options.get("fresh_starts")
-    if fresh_starts is not None:
-        if not isinstance(fresh_starts, (bool, np.bool_)):
-            raise TypeError(
-                f"options['fresh_starts'] must be a bool, got {type(fresh_starts).__name__}"
-            )
-        fresh_starts = bool(fresh_starts)
+    fresh_starts = _flag(options, "fresh_starts")
+    centre = _flag(options, "centre")
     non_finite = options.get("non_finite")
     if non_finite is not None and not isinstance(non_finite, str):
         raise TypeError("options['non_finite'] must be 'worst' or 'error'")
-    return (tolerance, patience, restarts, fresh_starts, non_finite)
+    return (tolerance, patience, restarts, fresh_starts, centre, non_finite)
+
+
+def _flag(options: Any, key: str) -> Any:
+    """options[key] as a bool, None where it is not given; TypeError naming the key."""
+    value = options.get(key)
+    if value is None:
+        return None
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"options[{key!r}] must be a bool, got {type(value).__name__}")
+    return bool(value)
 
 
 def _count(name: str, value: Any, minimum: int) -> int:
@@ -265,6 +270,9 @@ def minimize(
         ``fresh_starts`` (bool): with a ``budget``, spend what the first descent
         leaves on new descents about the best point (default True; False ends the
         run with its first descent);
+        ``centre`` (bool): a descent that ends on a flat piece of ``fun`` (a
+        rasteriser without anti-aliasing, rounded coordinates) moves x to the piece's
+        centre along each axis, probing for its edges (default True);
         ``non_finite``: ``"worst"`` (default: NaN or
         inf counts as worse than any value) or ``"error"`` (raise ValueError, whose
         ``result`` attribute holds the run so far).

@@ -14,7 +14,9 @@ def minimize_auto(
     batch: bool,
     noisy: bool,
     callback: Optional[Callable[[np.ndarray, float], Any]],
-    settings: Tuple[Optional[float], Optional[int], Optional[int], Optional[bool], Optional[str]],
+    settings: Tuple[
+        Optional[float], Optional[int], Optional[int], Optional[bool], Optional[bool], Optional[str]
+    ],
 ) -> dict[str, Any]: ...
 def gradient(
     fun: Callable[..., Any], x: list[float], sigma: float, pairs: int, method: str,
@@ -34,7 +36,10 @@ class AskTell:
         self, x0: list[float], sigma0: list[float],
         bounds: Optional[Tuple[list[float], list[float]]],
         budget: Optional[int], seed: int, noisy: bool,
-        settings: Tuple[Optional[float], Optional[int], Optional[int], Optional[bool], Optional[str]],
+        settings: Tuple[
+            Optional[float], Optional[int], Optional[int], Optional[bool], Optional[bool],
+            Optional[str],
+        ],
     ) -> None: ...
     def ask(self) -> np.ndarray: ...
     def tell(self, values: np.ndarray) -> None: ...

@@ -131,8 +131,9 @@ pub struct Run {
     pub theta: Vec<f64>,
     /// Why the run stopped early, if it did (a failed iteration or an interrupt).
     pub stopped: Option<String>,
-    /// Index into `points` of the lowest image error (the earliest among equals): the
-    /// point a user would keep, which need not be the last.
+    /// Index into `points` of the lowest image error (the latest among equals, so that a
+    /// method's own answer — Auto's centre of a flat minimum — wins over the first point
+    /// that reached that error): the point a user would keep, which need not be the last.
     #[serde(skip)]
     pub best: usize,
     /// θ at `points[best]`.
@@ -212,7 +213,7 @@ pub fn run_observed(
             sigma: Some(sigma),
         };
         observe(&p);
-        if p.image_error < points[best.0].image_error {
+        if p.image_error <= points[best.0].image_error {
             best = (points.len(), theta.to_vec());
         }
         points.push(p);

@@ -80,10 +80,20 @@ pub(super) struct Memory<'b, T> {
     /// until a finite value is found, the run's start, about which fresh starts then
     /// jump (`Auto::fresh_start`).
     pub(super) record: &'b mut [T],
+    /// Where fresh starts jump about: the record as its descent left it, before
+    /// `Auto::centre` moved it to its flat piece's centre (the record itself
+    /// otherwise). The centre is the run's answer, not a step of its search: a shape
+    /// hidden under another is no nearer to its target at the middle of its cover.
+    pub(super) origin: &'b mut [T],
+    /// The search for a flat minimum's centre (`Auto::centre`): per side k = 2i + s of
+    /// coordinate i (s = 0 below θ, 1 above), five runs of 2n — the inner bound, the
+    /// outer bound, the first probe's distance, the room to the box's face, the probe
+    /// in flight.
+    pub(super) bracket: &'b mut [T],
 }
 
 /// Region lengths for dimension n, in [`Memory`]'s order.
-pub(super) const fn regions(n: usize) -> [usize; 42] {
+pub(super) const fn regions(n: usize) -> [usize; 44] {
     let shape = Shape::for_dim(n);
     let m = history_len(n);
     let hl = shape.hessian_len(n);
@@ -137,12 +147,14 @@ pub(super) const fn regions(n: usize) -> [usize; 42] {
         n,
         n,
         n,
+        n,
+        10 * n,
     ]
 }
 
 /// Floats of buffer an [`Auto`] run needs in dimension n, for m = [`Auto::history_len`]
 /// points remembered:
-/// m(2n + 7) + m² + mp + p² + p + 17n + 7h + r(n + 1) + n² + 2f,
+/// m(2n + 7) + m² + mp + p² + p + 28n + 7h + r(n + 1) + n² + 2f,
 /// with, for the full model (n ≤ [`FULL_MODEL_MAX_DIM`](super::FULL_MODEL_MAX_DIM)), h = f = n² and p = n + 1, and
 /// for the diagonal one h = n, f = 0 and p = 1; r = 2·min(n, ⌊m/2⌋) + 2 staged points.
 /// A `const fn`, so that storage can be sized at compile time ([`FixedAuto`](super::FixedAuto)).
@@ -262,6 +274,8 @@ pub(super) fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         best: take(),
         path: take(),
         record: take(),
+        origin: take(),
+        bracket: take(),
     }
 }
 

@@ -157,6 +157,15 @@
 //!   much more the caller will spend to find out. [`Auto::theta`] is the best point of
 //!   all descents. Without a budget, or on a noisy objective, the run ends with its
 //!   first descent.
+//! * **Centre.** A descent that ends on a flat piece of f (a remembered point other than
+//!   θ ties with f(θ), on exact values, f(θ) below every earlier descent's) spends one
+//!   more iteration ([`AutoStep::Centred`]) moving θ to the piece's centre along the
+//!   parameter axes (the `centre` module; [`AutoOptions::centre`]): a rasteriser
+//!   without anti-aliasing, or rounded coordinates, leaves θ anywhere within a pixel's
+//!   or a cell's width of the truth, and the centre is where the smoothed objective's
+//!   minimum tends as σ → 0. The centre is the run's answer; fresh starts still jump
+//!   about where the descent left θ. A probe below f(θ) instead moves θ there and
+//!   restarts the descent.
 //! * **Continuation.** At such a restart, while σ > [`CONTINUATION_SCALE`]·σ₀, a
 //!   rejected trial whose step ends inside the trust region still moves θ, now the
 //!   search centre, and halves σ ([`AutoStep::Continued`]): the model fitted at a wide
@@ -181,10 +190,11 @@
 //! `sampling` (an iteration's points and their evaluation), `model` (the quadratic fit),
 //! `step` and `trust` (the trust-region step inside the box), `metric`, `eigen` and
 //! `adapt_metric` (the sampling metric and how it learns), `restart` (σ's control,
-//! restarts and fresh starts), `noise` (undeclared noise), `options` (the public types)
+//! restarts and fresh starts), `centre` (a flat minimum's centre), `noise` (undeclared noise), `options` (the public types)
 //! and `fixed` ([`FixedAuto`]).
 
 mod adapt_metric;
+mod centre;
 mod eigen;
 mod fixed;
 mod memory;
@@ -197,6 +207,7 @@ mod sampling;
 mod step;
 mod trust;
 
+use centre::Centring;
 pub use fixed::FixedAuto;
 pub use memory::buffer_len;
 use memory::{Memory, carve, history_len, memory_determines_model, validating};
@@ -465,6 +476,21 @@ struct State<T> {
     record: Option<T>,
     /// Fresh starts so far.
     fresh: u32,
+    /// The descent has ended on a flat piece of f: the next iteration centres θ on it
+    /// (`Auto::centre`), then goes on as this says.
+    centre_then: Option<AfterCentre>,
+    /// `Auto::centre` moved θ, this descent's best point, to its flat piece's centre;
+    /// [`Memory::origin`] holds where the descent left it.
+    centred: bool,
+}
+
+/// How a run goes on after a descent that ended on a flat piece of f is centred.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum AfterCentre {
+    /// A fresh start ([`AutoOptions::fresh_starts`]).
+    FreshStart,
+    /// The run ends.
+    End(AutoTermination),
 }
 
 impl<T: Real> State<T> {
@@ -509,6 +535,8 @@ impl<T: Real> State<T> {
             reach_key: None,
             record: None,
             fresh: 0,
+            centre_then: None,
+            centred: false,
         }
     }
 }
@@ -805,6 +833,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.restore_record();
             return Ok(None);
         }
+        if let Some(then) = self.st.centre_then.take() {
+            return self.centre_step(objective, then).map(Some);
+        }
         let n = self.theta.len();
         let sigma = self.st.sigma;
         self.st.noisy = !objective.deterministic();
@@ -864,13 +895,20 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.restart(self.restart_sigma());
             self.st.cycle += 1;
             None
-        } else if (converged || stagnated) && self.may_start_fresh() {
-            self.fresh_start();
-            None
-        } else if converged {
-            Some(AutoTermination::Converged)
-        } else if stagnated {
-            Some(AutoTermination::Stagnated)
+        } else if converged || stagnated {
+            let then = if self.may_start_fresh() {
+                AfterCentre::FreshStart
+            } else if converged {
+                AfterCentre::End(AutoTermination::Converged)
+            } else {
+                AfterCentre::End(AutoTermination::Stagnated)
+            };
+            if self.rests_on_flat_piece() {
+                self.st.centre_then = Some(then);
+                None
+            } else {
+                self.go_on(then)
+            }
         } else {
             None
         };
@@ -890,6 +928,59 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             kind,
             termination,
         }))
+    }
+
+    /// The iteration that centres θ on the flat piece its descent ended on
+    /// (`Auto::centre`) and then goes on as `then` says — unless a probe found a lower
+    /// value, which moves θ there and restarts the descent, as a gain does.
+    fn centre_step<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        then: AfterCentre,
+    ) -> Result<AutoReport<T>, Error> {
+        let sigma = self.st.sigma;
+        let mut spent = 0;
+        self.mem.tmp.copy_from_slice(self.theta);
+        let outcome = self.centre(objective, &mut spent)?;
+        self.st.iteration += 1;
+        let step_length = distance(self.mem.tmp, self.theta);
+        let (kind, termination) = match outcome {
+            Centring::Lower => {
+                self.st.widenings = 0;
+                self.restart(self.restart_sigma());
+                self.st.cycle += 1;
+                (AutoStep::Accepted, None)
+            }
+            Centring::OutOfBudget => (AutoStep::OutOfBudget, Some(AutoTermination::MaxEvaluations)),
+            Centring::Done => (AutoStep::Centred, self.go_on(then)),
+        };
+        if termination.is_some() {
+            self.restore_best();
+            self.restore_record();
+        }
+        self.st.finished = termination;
+        Ok(AutoReport {
+            iteration: self.st.iteration,
+            evaluations: self.st.evaluations,
+            sigma,
+            next_sigma: self.st.sigma,
+            value: self.value(),
+            step_length,
+            ratio: None,
+            kind,
+            termination,
+        })
+    }
+
+    /// Goes on after a descent's end: a fresh start, or the run's end.
+    fn go_on(&mut self, then: AfterCentre) -> Option<AutoTermination> {
+        match then {
+            AfterCentre::FreshStart => {
+                self.fresh_start();
+                None
+            }
+            AfterCentre::End(termination) => Some(termination),
+        }
     }
 
     /// Whether σ has converged: on a deterministic objective every coordinate's spread

@@ -54,6 +54,20 @@ pub struct AutoOptions<T> {
     /// budget. A run without a budget, or on a noisy objective (values of different
     /// descents would not compare), ends with its first descent. Default: `true`.
     pub fresh_starts: bool,
+    /// Whether a descent that ends on a flat piece of f — some remembered point other
+    /// than θ has exactly f(θ)'s value, on an objective whose values are exact, and
+    /// f(θ) is below every earlier descent's — moves θ to the piece's centre before the run goes on:
+    /// along each parameter axis, the midpoint of the piece's two edges, each found by
+    /// probes that start as far out as a tied point lies, grow ×4 and then bisect to
+    /// 1/16 of the edge's distance (one batch of at most 2n probes per round), where
+    /// that point keeps f(θ). An axis along which f stays flat up to 16 times its start
+    /// scale (and no face of the box bounds it) keeps θ's value.
+    /// A rasteriser without anti-aliasing, or coordinates rounded before f, leaves θ
+    /// anywhere within a pixel's or a cell's width of the truth; the centre is where
+    /// the smoothed objective's minimum tends as σ → 0. The search is one iteration
+    /// ([`AutoStep::Centred`]); a probe below f(θ) moves θ there and the descent goes
+    /// on. Default: `true`.
+    pub centre: bool,
     /// Policy for NaN/±∞ objective values. Default: [`NonFinite::Worst`].
     pub non_finite: NonFinite,
 }
@@ -66,6 +80,7 @@ impl<T: Real> Default for AutoOptions<T> {
             restarts: None,
             max_evaluations: None,
             fresh_starts: true,
+            centre: true,
             non_finite: NonFinite::Worst,
         }
     }
@@ -124,6 +139,13 @@ impl<T: Real> AutoOptions<T> {
         self
     }
 
+    /// Sets [`AutoOptions::centre`] (false: a descent that ends on a flat piece of f
+    /// leaves θ where it entered the piece).
+    pub fn with_centre(mut self, centre: bool) -> Self {
+        self.centre = centre;
+        self
+    }
+
     /// Sets [`AutoOptions::non_finite`].
     pub fn with_non_finite(mut self, policy: NonFinite) -> Self {
         self.non_finite = policy;
@@ -171,6 +193,10 @@ pub enum AutoStep {
     Continued,
     /// The budget ran out before the iteration could compare a step.
     OutOfBudget,
+    /// The descent had ended on a flat piece of f, and θ moved to the piece's centre
+    /// (or stayed, where the piece had no centre or its centre was higher); see
+    /// [`AutoOptions::centre`].
+    Centred,
 }
 
 /// One iteration's plain-data report.

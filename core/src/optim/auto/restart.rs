@@ -156,14 +156,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// widened to its cap, `Auto::step`).
     pub(super) fn fresh_start(&mut self) {
         self.restore_best();
-        self.restore_record();
-        if self.st.value.is_none() && self.st.record.is_none() {
-            self.theta.copy_from_slice(self.mem.record);
-        }
-        if let Some(v) = self.st.value {
+        if !self.record_leads()
+            && let Some(v) = self.st.value
+        {
             self.mem.record.copy_from_slice(self.theta);
             self.st.record = Some(v);
+            if !self.st.centred {
+                self.mem.origin.copy_from_slice(self.theta);
+            }
         }
+        self.theta.copy_from_slice(self.mem.origin);
         let n = self.theta.len();
         let widen = T::from_f64(libm::pow(2.0, f64::from(self.st.fresh % RESTART_SCALES)));
         self.st.fresh = self.st.fresh.wrapping_add(1);

@@ -27,6 +27,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let n = self.theta.len();
         if self.st.evaluations == 0 {
             self.mem.record.copy_from_slice(self.theta);
+            self.mem.origin.copy_from_slice(self.theta);
         }
         let sigma = self.st.sigma;
         let first = !self.st.centre_known;

@@ -1,0 +1,280 @@
+//! The centre of a flat minimum. Where f is constant on a neighbourhood of the point a
+//! descent ends at — a rasteriser without anti-aliasing, whose image does not change
+//! until an edge crosses a pixel centre; coordinates rounded before f — every point of
+//! that piece is as low as θ, and θ is wherever the descent happened to enter it, often
+//! near an edge. The centre of the piece is the better answer: the limit of the
+//! smoothed objective's minimum as σ → 0 where the piece is symmetric about the
+//! truth (a pixel's width about a shape's true edge), and the point farthest from the
+//! higher values around it.
+//!
+//! `Auto::centre` finds the piece's extent along each parameter axis from θ, all axes
+//! and both directions in one batch per round: a probe whose value equals f(θ) exactly
+//! lies inside (the inner bound moves out), a higher or non-finite one outside (the
+//! outer bound moves in); only exact equality counts, so that θ's value stays its own
+//! and no lower point is passed over. A side's first probe goes as far along its axis as the farthest
+//! remembered point with f(θ)'s value lies from θ (an axis no tied point moved along
+//! shows no extent and is not searched); it grows ×4 until a probe lies outside, then
+//! bisects — geometrically while the bounds differ by more than 4×, arithmetically
+//! after — until they agree to [`RESOLUTION`] of the outer one. A side that ties at the
+//! box's face ends there; one still tying at [`PLATEAU_WIDTH`]·sᵢ (sᵢ the coordinate's
+//! start scale) is open, and its coordinate keeps θ's value (a flat direction has no
+//! centre); one whose outer bound falls below [`RESOLUTION`]² of its first probe puts
+//! θ on the edge. θ then moves to the midpoint of the two edges on every axis that has
+//! both, where that point keeps f(θ): a piece that is not a box in the parameter axes
+//! may not hold it. A probe below f(θ) ends the search: the descent was not over
+//! (`Auto::step` restarts it from there). Probes are staged in batches of the stage's
+//! rows, cut to the budget's remainder, which ends the search.
+
+use rand_core::Rng;
+
+use super::{Auto, PLATEAU_WIDTH};
+use crate::error::Error;
+use crate::objective::Objective;
+use crate::real::Real;
+
+/// How closely a side's bounds agree before its edge is taken as their midpoint, as a
+/// fraction of the outer bound: the edge is then known to within 1/32 of its distance
+/// from θ, the centre to within 1/32 of the piece's width.
+const RESOLUTION: f64 = 1.0 / 16.0;
+
+/// What a search for the centre found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Centring {
+    /// θ is at the centre of its flat piece, or stayed (no coordinate's piece had two
+    /// edges, or the centre was higher).
+    Done,
+    /// A probe was below f(θ) and θ moved there.
+    Lower,
+    /// The budget ran out; θ is unchanged.
+    OutOfBudget,
+}
+
+impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
+    /// Whether the descent that just ended rests on a flat piece of f worth centring:
+    /// the objective's values are exact (deterministic, or voted), f(θ) is finite and
+    /// lower than every earlier descent's, and a remembered point other than θ has
+    /// exactly its value (a smooth f almost never does).
+    pub(super) fn rests_on_flat_piece(&self) -> bool {
+        if !self.options.centre || self.st.noisy || (self.st.unseeded && !self.st.voting) {
+            return false;
+        }
+        let Some(value) = self.st.best_value.or(self.st.value) else {
+            return false;
+        };
+        if self.st.record.is_some_and(|r| r <= value) {
+            return false;
+        }
+        let theta: &[T] = if self.st.best_value.is_some() {
+            self.mem.best
+        } else {
+            self.theta
+        };
+        let n = theta.len();
+        (0..self.st.count).any(|k| {
+            let x = &self.mem.xs[k * n..(k + 1) * n];
+            self.mem.fs[k] == value && x != theta
+        })
+    }
+
+    /// Moves θ (the descent's best point) to the centre of the flat piece of f it lies
+    /// on, as the module says, within the budget.
+    ///
+    /// # Errors
+    /// As [`Auto::step`]: a non-finite value under [`NonFinite::Error`](super::NonFinite::Error), a cancelled
+    /// objective.
+    pub(super) fn centre<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        spent: &mut usize,
+    ) -> Result<Centring, Error> {
+        self.restore_best();
+        let Some(value) = self.st.value else {
+            return Ok(Centring::Done);
+        };
+        let n = self.theta.len();
+        let rows = self.mem.stage_f.len();
+        // Per side k = 2i + s ([`Memory::bracket`](super::memory::Memory::bracket)): the
+        // inner bound (ties), the outer bound (higher; T::MAX while none is known), the
+        // first probe's distance, the room to the face.
+        self.tied_extent(value);
+        for i in 0..n {
+            let first = self.mem.bracket[4 * n + 2 * i];
+            for side in 0..2 {
+                let k = 2 * i + side;
+                let room = if side == 0 {
+                    self.theta[i] - self.mem.lower[i]
+                } else {
+                    self.mem.upper[i] - self.theta[i]
+                };
+                self.mem.bracket[k] = T::ZERO;
+                self.mem.bracket[2 * n + k] = T::MAX;
+                self.mem.bracket[4 * n + k] = first;
+                self.mem.bracket[6 * n + k] = room;
+            }
+        }
+        loop {
+            // Every open side's next probe, in chunks of the stage's rows; side k's
+            // probe distance is kept at 8n + k while its row is out (zero otherwise).
+            let mut pending = false;
+            let mut k = 0;
+            while k < 2 * n {
+                let start = k;
+                let mut staged = 0;
+                let cap = rows.min(self.remaining());
+                while k < 2 * n && staged < cap {
+                    if let Some(t) = self.next_probe(k) {
+                        let i = k / 2;
+                        let row = &mut self.mem.stage[staged * n..(staged + 1) * n];
+                        row.copy_from_slice(self.theta);
+                        let x = if k % 2 == 0 { row[i] - t } else { row[i] + t };
+                        row[i] = x.max(self.mem.lower[i]).min(self.mem.upper[i]);
+                        self.mem.bracket[8 * n + k] = t;
+                        staged += 1;
+                    }
+                    k += 1;
+                }
+                if staged == 0 {
+                    if cap == 0 && k < 2 * n {
+                        return Ok(Centring::OutOfBudget);
+                    }
+                    continue;
+                }
+                pending = true;
+                self.evaluate(objective, staged, spent, |_| 0)?;
+                let mut lowest: Option<(usize, T)> = None;
+                let mut r = 0;
+                for side in start..k {
+                    let t = core::mem::replace(&mut self.mem.bracket[8 * n + side], T::ZERO);
+                    if t == T::ZERO {
+                        continue;
+                    }
+                    let f = self.mem.stage_f[r];
+                    if f == value {
+                        self.mem.bracket[side] = t;
+                    } else if f < value {
+                        if lowest.is_none_or(|(_, l)| f < l) {
+                            lowest = Some((r, f));
+                        }
+                    } else {
+                        self.mem.bracket[2 * n + side] = t;
+                    }
+                    r += 1;
+                }
+                if let Some((r, f)) = lowest {
+                    self.theta
+                        .copy_from_slice(&self.mem.stage[r * n..(r + 1) * n]);
+                    self.st.value = Some(f);
+                    return Ok(Centring::Lower);
+                }
+            }
+            if !pending {
+                break;
+            }
+        }
+        // The centre: on each axis with both edges found, the midpoint of the edges.
+        self.mem.stage[..n].copy_from_slice(self.theta);
+        let mut moved = false;
+        for i in 0..n {
+            let (Some(below), Some(above)) = (self.edge(2 * i), self.edge(2 * i + 1)) else {
+                continue;
+            };
+            let shift = T::HALF * (above - below);
+            if shift != T::ZERO {
+                let x = self.theta[i] + shift;
+                self.mem.stage[i] = x.max(self.mem.lower[i]).min(self.mem.upper[i]);
+                moved = true;
+            }
+        }
+        if !moved {
+            return Ok(Centring::Done);
+        }
+        if self.remaining() == 0 {
+            return Ok(Centring::OutOfBudget);
+        }
+        self.evaluate(objective, 1, spent, |_| 0)?;
+        let f = self.mem.stage_f[0];
+        if f == value {
+            self.mem.origin.copy_from_slice(self.theta);
+            self.theta.copy_from_slice(&self.mem.stage[..n]);
+            self.st.centred = true;
+        } else if f < value {
+            self.theta.copy_from_slice(&self.mem.stage[..n]);
+            self.st.value = Some(f);
+            return Ok(Centring::Lower);
+        }
+        Ok(Centring::Done)
+    }
+
+    /// The first probes' distance along each coordinate i, written to both its sides'
+    /// slots (4n + 2i, 4n + 2i + 1): the farthest that a remembered point whose value
+    /// is exactly f(θ) = `value` lies from θ along it. Zero where no tied point moved it: f's piece
+    /// shows no extent along that axis, which is then not searched.
+    fn tied_extent(&mut self, value: T) {
+        let n = self.theta.len();
+        self.mem.bracket[4 * n..6 * n].fill(T::ZERO);
+        for k in 0..self.st.count {
+            if self.mem.fs[k] != value {
+                continue;
+            }
+            for i in 0..n {
+                let d = (self.mem.xs[k * n + i] - self.theta[i]).abs();
+                let slot = &mut self.mem.bracket[4 * n + 2 * i];
+                *slot = slot.max(d);
+            }
+        }
+        for i in 0..n {
+            self.mem.bracket[4 * n + 2 * i + 1] = self.mem.bracket[4 * n + 2 * i];
+        }
+    }
+
+    /// The distance of side k's next probe, or `None` once the side is settled.
+    fn next_probe(&self, k: usize) -> Option<T> {
+        let n = self.theta.len();
+        let inner = self.mem.bracket[k];
+        let outer = self.mem.bracket[2 * n + k];
+        let first = self.mem.bracket[4 * n + k];
+        let room = self.mem.bracket[6 * n + k];
+        let open = T::from_f64(PLATEAU_WIDTH) * self.start_scale(k / 2);
+        let resolution = T::from_f64(RESOLUTION);
+        if first == T::ZERO || inner >= room || inner >= open {
+            return None;
+        }
+        if outer == T::MAX {
+            let t = if inner == T::ZERO {
+                first
+            } else {
+                T::from_f64(4.0) * inner
+            };
+            return Some(t.min(room));
+        }
+        if outer - inner <= resolution * outer || outer <= resolution * resolution * first {
+            return None;
+        }
+        Some(if inner == T::ZERO {
+            outer * T::HALF * T::HALF
+        } else if outer > T::from_f64(4.0) * inner {
+            (inner * outer).sqrt()
+        } else {
+            T::HALF * (inner + outer)
+        })
+    }
+
+    /// Side k's edge, its distance from θ: the face where the side tied there, the
+    /// midpoint of its bounds, or `None` where it is open (still tying at its widest).
+    fn edge(&self, k: usize) -> Option<T> {
+        let n = self.theta.len();
+        let inner = self.mem.bracket[k];
+        let outer = self.mem.bracket[2 * n + k];
+        let room = self.mem.bracket[6 * n + k];
+        let first = self.mem.bracket[4 * n + k];
+        if first == T::ZERO {
+            None
+        } else if inner >= room {
+            Some(room)
+        } else if outer == T::MAX {
+            None
+        } else {
+            Some(T::HALF * (inner + outer))
+        }
+    }
+}
