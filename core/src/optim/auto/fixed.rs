@@ -94,7 +94,7 @@ mod tests {
                 + m * p
                 + p * p
                 + p
-                + 17 * n
+                + 28 * n
                 + 7 * h
                 + r * (n + 1)
                 + n * n
