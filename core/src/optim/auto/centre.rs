@@ -227,13 +227,26 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
     }
 
+    /// Side k's bracket ([`Memory::bracket`](super::memory::Memory::bracket)).
+    fn side(&self, k: usize) -> Side<T> {
+        let n = self.theta.len();
+        let b = &self.mem.bracket;
+        Side {
+            inner: b[k],
+            outer: b[2 * n + k],
+            first: b[4 * n + k],
+            room: b[6 * n + k],
+        }
+    }
+
     /// The distance of side k's next probe, or `None` once the side is settled.
     fn next_probe(&self, k: usize) -> Option<T> {
-        let n = self.theta.len();
-        let inner = self.mem.bracket[k];
-        let outer = self.mem.bracket[2 * n + k];
-        let first = self.mem.bracket[4 * n + k];
-        let room = self.mem.bracket[6 * n + k];
+        let Side {
+            inner,
+            outer,
+            first,
+            room,
+        } = self.side(k);
         let open = T::from_f64(PLATEAU_WIDTH) * self.start_scale(k / 2);
         let resolution = T::from_f64(RESOLUTION);
         if first == T::ZERO || inner >= room || inner >= open {
@@ -260,21 +273,31 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Side k's edge, its distance from θ: the face where the side tied there, the
-    /// midpoint of its bounds, or `None` where it is open (still tying at its widest).
+    /// midpoint of its bounds, or `None` where it is open (still tying at its widest) or
+    /// was not searched.
     fn edge(&self, k: usize) -> Option<T> {
-        let n = self.theta.len();
-        let inner = self.mem.bracket[k];
-        let outer = self.mem.bracket[2 * n + k];
-        let room = self.mem.bracket[6 * n + k];
-        let first = self.mem.bracket[4 * n + k];
-        if first == T::ZERO {
+        let Side {
+            inner,
+            outer,
+            first,
+            room,
+        } = self.side(k);
+        if first == T::ZERO || (outer == T::MAX && inner < room) {
             None
         } else if inner >= room {
             Some(room)
-        } else if outer == T::MAX {
-            None
         } else {
             Some(T::HALF * (inner + outer))
         }
     }
+}
+
+/// One side of one axis in the search for a flat piece's edges: the inner bound (a probe
+/// there tied), the outer bound (higher; `T::MAX` while none is known), the first
+/// probe's distance (zero: the side is not searched) and the room to the box's face.
+struct Side<T> {
+    inner: T,
+    outer: T,
+    first: T,
+    room: T,
 }

@@ -912,12 +912,31 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             None
         };
+        Ok(Some(self.end_iteration(
+            sigma,
+            step_length,
+            ratio,
+            kind,
+            termination,
+        )))
+    }
+
+    /// Ends an iteration that began at `sigma`: where it ends the run, puts the best point
+    /// back into θ; returns its report.
+    fn end_iteration(
+        &mut self,
+        sigma: T,
+        step_length: T,
+        ratio: Option<T>,
+        kind: AutoStep,
+        termination: Option<AutoTermination>,
+    ) -> AutoReport<T> {
         if termination.is_some() {
             self.restore_best();
             self.restore_record();
         }
         self.st.finished = termination;
-        Ok(Some(AutoReport {
+        AutoReport {
             iteration: self.st.iteration,
             evaluations: self.st.evaluations,
             sigma,
@@ -927,7 +946,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             ratio,
             kind,
             termination,
-        }))
+        }
     }
 
     /// The iteration that centres θ on the flat piece its descent ended on
@@ -954,22 +973,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             Centring::OutOfBudget => (AutoStep::OutOfBudget, Some(AutoTermination::MaxEvaluations)),
             Centring::Done => (AutoStep::Centred, self.go_on(then)),
         };
-        if termination.is_some() {
-            self.restore_best();
-            self.restore_record();
-        }
-        self.st.finished = termination;
-        Ok(AutoReport {
-            iteration: self.st.iteration,
-            evaluations: self.st.evaluations,
-            sigma,
-            next_sigma: self.st.sigma,
-            value: self.value(),
-            step_length,
-            ratio: None,
-            kind,
-            termination,
-        })
+        Ok(self.end_iteration(sigma, step_length, None, kind, termination))
     }
 
     /// Goes on after a descent's end: a fresh start, or the run's end.
