@@ -158,7 +158,7 @@
 //!   all descents. Without a budget, or on a noisy objective, the run ends with its
 //!   first descent.
 //! * **Centre.** A descent that ends on a flat piece of f (a remembered point other than
-//!   θ ties with f(θ), on exact values, f(θ) below every earlier descent's) spends one
+//!   θ has exactly f(θ)'s value, f(θ) below every earlier descent's) spends one
 //!   more iteration ([`AutoStep::Centred`]) moving θ to the piece's centre along the
 //!   parameter axes (the `centre` module; [`AutoOptions::centre`]): a rasteriser
 //!   without anti-aliasing, or rounded coordinates, leaves θ anywhere within a pixel's
@@ -190,8 +190,8 @@
 //! `sampling` (an iteration's points and their evaluation), `model` (the quadratic fit),
 //! `step` and `trust` (the trust-region step inside the box), `metric`, `eigen` and
 //! `adapt_metric` (the sampling metric and how it learns), `restart` (σ's control,
-//! restarts and fresh starts), `centre` (a flat minimum's centre), `noise` (undeclared noise), `options` (the public types)
-//! and `fixed` ([`FixedAuto`]).
+//! restarts and fresh starts), `centre` (a flat minimum's centre), `noise` (undeclared
+//! noise), `options` (the public types) and `fixed` ([`FixedAuto`]).
 
 mod adapt_metric;
 mod centre;

@@ -148,7 +148,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// Begins a new descent from a fresh start about the run's best point, as basin
     /// hopping does: each coordinate moved by its start scale times 2^(k mod
     /// [`RESTART_SCALES`]) times a standard normal draw for the k-th fresh start, and
-    /// mirrored into the box. The best point so far is kept as the record; the memory,
+    /// mirrored into the box. The best point so far is kept as the record; the jump is
+    /// from where its descent left it ([`Memory::origin`](super::memory::Memory::origin),
+    /// before `Auto::centre` moved it). The memory,
     /// the model, the metric and σ start over as in [`Auto::new`]. Where no evaluation
     /// has been finite yet (a start where the objective fails, NaN all around), the jump
     /// is from the run's start, not from the last jump's end: the search spreads about
