@@ -122,7 +122,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 let mut staged = 0;
                 let cap = rows.min(self.remaining());
                 while k < 2 * n && staged < cap {
-                    if let Some(t) = self.next_probe(k) {
+                    if let Some(t) = self.side(k).next_probe(self.open_width(k / 2)) {
                         let i = k / 2;
                         let row = &mut self.mem.stage[staged * n..(staged + 1) * n];
                         row.copy_from_slice(self.theta);
@@ -175,7 +175,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.mem.stage[..n].copy_from_slice(self.theta);
         let mut moved = false;
         for i in 0..n {
-            let (Some(below), Some(above)) = (self.edge(2 * i), self.edge(2 * i + 1)) else {
+            let (Some(below), Some(above)) = (self.side(2 * i).edge(), self.side(2 * i + 1).edge())
+            else {
                 continue;
             };
             let shift = T::HALF * (above - below);
@@ -227,6 +228,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
     }
 
+    /// How far a side of coordinate i's axis may still tie before it counts as open:
+    /// [`PLATEAU_WIDTH`] times the coordinate's start scale.
+    fn open_width(&self, i: usize) -> T {
+        T::from_f64(PLATEAU_WIDTH) * self.start_scale(i)
+    }
+
     /// Side k's bracket ([`Memory::bracket`](super::memory::Memory::bracket)).
     fn side(&self, k: usize) -> Side<T> {
         let n = self.theta.len();
@@ -238,16 +245,31 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             room: b[6 * n + k],
         }
     }
+}
 
-    /// The distance of side k's next probe, or `None` once the side is settled.
-    fn next_probe(&self, k: usize) -> Option<T> {
+/// One side of one axis in the search for a flat piece's edges: the inner bound (a probe
+/// there tied), the outer bound (higher; `T::MAX` while none is known), the first
+/// probe's distance (zero: the side is not searched) and the room to the box's face.
+#[derive(Clone, Copy)]
+struct Side<T> {
+    inner: T,
+    outer: T,
+    first: T,
+    room: T,
+}
+
+impl<T: Real> Side<T> {
+    /// The distance of the side's next probe, or `None` once it is settled: not
+    /// searched, tied at the box's face or at `open` (its widest), or its bounds agree
+    /// to [`RESOLUTION`] of the outer one (or the outer fell below [`RESOLUTION`]² of the
+    /// first probe: θ is on the edge).
+    fn next_probe(&self, open: T) -> Option<T> {
         let Side {
             inner,
             outer,
             first,
             room,
-        } = self.side(k);
-        let open = T::from_f64(PLATEAU_WIDTH) * self.start_scale(k / 2);
+        } = *self;
         let resolution = T::from_f64(RESOLUTION);
         if first == T::ZERO || inner >= room || inner >= open {
             return None;
@@ -272,32 +294,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         })
     }
 
-    /// Side k's edge, its distance from θ: the face where the side tied there, the
+    /// The side's edge, its distance from θ: the face where the side tied there, the
     /// midpoint of its bounds, or `None` where it is open (still tying at its widest) or
     /// was not searched.
-    fn edge(&self, k: usize) -> Option<T> {
-        let Side {
-            inner,
-            outer,
-            first,
-            room,
-        } = self.side(k);
-        if first == T::ZERO || (outer == T::MAX && inner < room) {
+    fn edge(&self) -> Option<T> {
+        if self.first == T::ZERO || (self.outer == T::MAX && self.inner < self.room) {
             None
-        } else if inner >= room {
-            Some(room)
+        } else if self.inner >= self.room {
+            Some(self.room)
         } else {
-            Some(T::HALF * (inner + outer))
+            Some(T::HALF * (self.inner + self.outer))
         }
     }
-}
-
-/// One side of one axis in the search for a flat piece's edges: the inner bound (a probe
-/// there tied), the outer bound (higher; `T::MAX` while none is known), the first
-/// probe's distance (zero: the side is not searched) and the room to the box's face.
-struct Side<T> {
-    inner: T,
-    outer: T,
-    first: T,
-    room: T,
 }
