@@ -139,15 +139,17 @@ def _scales(sigma0: Any, n: int) -> list:
     return array.tolist()
 
 
-OPTIONS = ("tolerance", "patience", "restarts", "fresh_starts", "centre", "non_finite")
+OPTIONS = (
+    "tolerance", "patience", "restarts", "fresh_starts", "centre", "probes", "non_finite",
+)
 
 
 def _settings(options: Any) -> tuple:
-    """(tolerance, patience, restarts, fresh_starts, centre, non_finite) from the
+    """(tolerance, patience, restarts, fresh_starts, centre, probes, non_finite) from the
     ``options`` mapping, each None where it is not given; TypeError/ValueError naming the key. The
     extension checks the ranges."""
     if options is None:
-        return (None, None, None, None, None, None)
+        return (None, None, None, None, None, None, None)
     if not hasattr(options, "items"):
         raise TypeError(f"options must be a dict, got {type(options).__name__}")
     unknown = [k for k in options if k not in OPTIONS]
@@ -167,10 +169,13 @@ def _settings(options: Any) -> tuple:
         restarts = _count("options['restarts']", restarts, 0)
     fresh_starts = _flag(options, "fresh_starts")
     centre = _flag(options, "centre")
+    probes = options.get("probes")
+    if probes is not None:
+        probes = _count("options['probes']", probes, 0)
     non_finite = options.get("non_finite")
     if non_finite is not None and not isinstance(non_finite, str):
         raise TypeError("options['non_finite'] must be 'worst' or 'error'")
-    return (tolerance, patience, restarts, fresh_starts, centre, non_finite)
+    return (tolerance, patience, restarts, fresh_starts, centre, probes, non_finite)
 
 
 def _flag(options: Any, key: str) -> Any:
@@ -273,6 +278,10 @@ def minimize(
         ``centre`` (bool): a descent that ends on a flat piece of ``fun`` (a
         rasteriser without anti-aliasing, rounded coordinates) moves x to the piece's
         centre along each axis, probing for its edges (default True);
+        ``probes`` (int >= 0): before each fresh start, up to probes * n points that
+        move one block of adjacent coordinates of the best point (one object's
+        parameters: a shape hidden under another, a coordinate in the wrong cell), the
+        first lower one starting the next descent (default 20; 0: none);
         ``non_finite``: ``"worst"`` (default: NaN or
         inf counts as worse than any value) or ``"error"`` (raise ValueError, whose
         ``result`` attribute holds the run so far).

@@ -15,7 +15,8 @@ def minimize_auto(
     noisy: bool,
     callback: Optional[Callable[[np.ndarray, float], Any]],
     settings: Tuple[
-        Optional[float], Optional[int], Optional[int], Optional[bool], Optional[bool], Optional[str]
+        Optional[float], Optional[int], Optional[int], Optional[bool], Optional[bool],
+        Optional[int], Optional[str],
     ],
 ) -> dict[str, Any]: ...
 def gradient(
@@ -38,7 +39,7 @@ class AskTell:
         budget: Optional[int], seed: int, noisy: bool,
         settings: Tuple[
             Optional[float], Optional[int], Optional[int], Optional[bool], Optional[bool],
-            Optional[str],
+            Optional[int], Optional[str],
         ],
     ) -> None: ...
     def ask(self) -> np.ndarray: ...

@@ -187,20 +187,21 @@ pub(crate) fn positive(name: &str, sigma: f64) -> PyResult<f64> {
 }
 
 /// Auto's options from Python's `options` dict, its keys checked by the Python half:
-/// (tolerance, patience, restarts, fresh_starts, centre, non_finite), each `None` for
-/// the default.
+/// (tolerance, patience, restarts, fresh_starts, centre, probes, non_finite), each `None`
+/// for the default.
 pub(crate) type Settings = (
     Option<f64>,
     Option<usize>,
     Option<usize>,
     Option<bool>,
     Option<bool>,
+    Option<usize>,
     Option<String>,
 );
 
 /// The options `settings` asks for, or a `ValueError` naming the one out of range.
 fn apply_settings(settings: Settings, mut options: AutoOptions<f64>) -> PyResult<AutoOptions<f64>> {
-    let (tolerance, patience, restarts, fresh_starts, centre, non_finite) = settings;
+    let (tolerance, patience, restarts, fresh_starts, centre, probes, non_finite) = settings;
     if let Some(t) = tolerance {
         options = options.with_tolerance(t).map_err(|_| {
             PyValueError::new_err(format!(
@@ -221,6 +222,9 @@ fn apply_settings(settings: Settings, mut options: AutoOptions<f64>) -> PyResult
     }
     if let Some(c) = centre {
         options = options.with_centre(c);
+    }
+    if let Some(p) = probes {
+        options = options.with_probes(p);
     }
     match non_finite.as_deref() {
         None | Some("worst") => {}

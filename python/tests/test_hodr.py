@@ -285,6 +285,8 @@ def test_options_change_the_run():
         (lambda: hodr.minimize(quadratic, X, 1.0, options={"restarts": 1.5}), TypeError, "restarts"),
         (lambda: hodr.minimize(quadratic, X, 1.0, options={"fresh_starts": 1}), TypeError, "fresh_starts"),
         (lambda: hodr.minimize(quadratic, X, 1.0, options={"centre": "yes"}), TypeError, "centre"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, options={"probes": -1}), ValueError, "probes"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, options={"probes": 2.5}), TypeError, "probes"),
         (lambda: hodr.minimize(quadratic, X, 1.0, options={"non_finite": "skip"}), ValueError, "non_finite"),
         (lambda: hodr.Optimizer(X, 1.0, options={"patience": -2}), ValueError, "patience"),
         (lambda: hodr.minimize(3, X, 1.0), TypeError, "fun"),

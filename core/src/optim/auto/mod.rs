@@ -157,6 +157,15 @@
 //!   much more the caller will spend to find out. [`Auto::theta`] is the best point of
 //!   all descents. Without a budget, or on a noisy objective, the run ends with its
 //!   first descent.
+//! * **Probes.** Before each fresh start, up to [`AutoOptions::probes`] points per
+//!   coordinate ([`AutoStep::Probed`], n per iteration), each the best point with one
+//!   contiguous block of 1, 2, 4, … ≤ n/2 coordinates moved by their start scales times
+//!   2^k·N(0, 1), k uniform over 0 … 4 (the `probe` module). The first batch with a
+//!   point below the best starts the next descent there. A descent that ends with one
+//!   object wrong and the rest right — a shape hidden under another or stranded off its
+//!   target, one coordinate in the wrong cell of a lattice — is left by moving that
+//!   object's parameters alone, and its value says so at once; a fresh start moves them
+//!   all and loses what was right.
 //! * **Centre.** A descent that ends on a flat piece of f (a remembered point other than
 //!   θ has exactly f(θ)'s value, f(θ) below every earlier descent's) spends one
 //!   more iteration ([`AutoStep::Centred`]) moving θ to the piece's centre along the
@@ -190,8 +199,9 @@
 //! `sampling` (an iteration's points and their evaluation), `model` (the quadratic fit),
 //! `step` and `trust` (the trust-region step inside the box), `metric`, `eigen` and
 //! `adapt_metric` (the sampling metric and how it learns), `restart` (σ's control,
-//! restarts and fresh starts), `centre` (a flat minimum's centre), `noise` (undeclared
-//! noise), `options` (the public types) and `fixed` ([`FixedAuto`]).
+//! restarts and fresh starts), `probe` (the probes before a fresh start), `centre` (a
+//! flat minimum's centre), `noise` (undeclared noise), `options` (the public types) and
+//! `fixed` ([`FixedAuto`]).
 
 mod adapt_metric;
 mod centre;
@@ -202,6 +212,7 @@ mod metric;
 mod model;
 mod noise;
 mod options;
+mod probe;
 mod restart;
 mod sampling;
 mod step;
@@ -238,6 +249,9 @@ pub const FULL_MODEL_MAX_DIM: usize = 40;
 /// coefficients the fit corrects the model carried from earlier iterations along the
 /// directions of the recent points.
 pub const MAX_MEMORY: usize = 128;
+
+/// Default of [`AutoOptions::probes`]: probes per coordinate before each fresh start.
+pub const PROBES: usize = 20;
 
 /// σ/σ₀ above which a restart follows the smoothed model past a rejected trial
 /// ([`AutoStep::Continued`]).
@@ -482,6 +496,8 @@ struct State<T> {
     /// `Auto::centre` moved θ, this descent's best point, to its flat piece's centre;
     /// [`Memory::origin`] holds where the descent left it.
     centred: bool,
+    /// Probes left before the next fresh start (the `probe` module).
+    probes: usize,
 }
 
 /// How a run goes on after a descent that ended on a flat piece of f is centred.
@@ -537,6 +553,7 @@ impl<T: Real> State<T> {
             fresh: 0,
             centre_then: None,
             centred: false,
+            probes: 0,
         }
     }
 }
@@ -836,6 +853,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if let Some(then) = self.st.centre_then.take() {
             return self.centre_step(objective, then).map(Some);
         }
+        if self.st.probes > 0 {
+            return self.probe_step(objective).map(Some);
+        }
         let n = self.theta.len();
         let sigma = self.st.sigma;
         self.st.noisy = !objective.deterministic();
@@ -976,11 +996,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         Ok(self.end_iteration(sigma, step_length, None, kind, termination))
     }
 
-    /// Goes on after a descent's end: a fresh start, or the run's end.
+    /// Goes on after a descent's end: probes and a fresh start, or the run's end.
     fn go_on(&mut self, then: AfterCentre) -> Option<AutoTermination> {
         match then {
             AfterCentre::FreshStart => {
-                self.fresh_start();
+                self.begin_probes();
                 None
             }
             AfterCentre::End(termination) => Some(termination),

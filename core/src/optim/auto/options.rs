@@ -68,6 +68,19 @@ pub struct AutoOptions<T> {
     /// ([`AutoStep::Centred`]); a probe below f(θ) moves θ there and the descent goes
     /// on. Default: `true`.
     pub centre: bool,
+    /// Probes per coordinate before each fresh start ([`AutoOptions::fresh_starts`]):
+    /// up to `probes`·n points, n per iteration ([`AutoStep::Probed`]), each the best
+    /// point so far with one contiguous block of 1, 2, 4, … ≤ n/2 of its coordinates
+    /// (its length and then its place, aligned to the length, drawn uniformly) moved by
+    /// their start scales times 2^k (k uniform over 0 … 4) times standard normal draws,
+    /// mirrored into the box. The first batch with a point below the best one moves θ
+    /// there and starts the next descent from it; where none is, the fresh start
+    /// follows. A descent that ends with one object wrong and the rest right (a shape
+    /// hidden under another, one coordinate in the wrong cell of a lattice) is left by
+    /// moving that object's parameters alone, which a fresh start, moving all of them,
+    /// rarely does; the parameters of one object usually sit side by side in θ. 0: no
+    /// probes. Default: [`PROBES`](super::PROBES).
+    pub probes: usize,
     /// Policy for NaN/±∞ objective values. Default: [`NonFinite::Worst`].
     pub non_finite: NonFinite,
 }
@@ -81,6 +94,7 @@ impl<T: Real> Default for AutoOptions<T> {
             max_evaluations: None,
             fresh_starts: true,
             centre: true,
+            probes: super::PROBES,
             non_finite: NonFinite::Worst,
         }
     }
@@ -146,6 +160,12 @@ impl<T: Real> AutoOptions<T> {
         self
     }
 
+    /// Sets [`AutoOptions::probes`] (0: a fresh start follows a descent at once).
+    pub fn with_probes(mut self, probes: usize) -> Self {
+        self.probes = probes;
+        self
+    }
+
     /// Sets [`AutoOptions::non_finite`].
     pub fn with_non_finite(mut self, policy: NonFinite) -> Self {
         self.non_finite = policy;
@@ -197,6 +217,10 @@ pub enum AutoStep {
     /// (or stayed, where the piece had no centre or its centre was higher); see
     /// [`AutoOptions::centre`].
     Centred,
+    /// Probes about the best point before a fresh start ([`AutoOptions::probes`]): none
+    /// was below it (more follow, or the fresh start), or θ moved to the lowest, where
+    /// the next descent starts.
+    Probed,
 }
 
 /// One iteration's plain-data report.

@@ -157,16 +157,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// x₀ instead of wandering off in a random walk (and such a descent ends once σ has
     /// widened to its cap, `Auto::step`).
     pub(super) fn fresh_start(&mut self) {
-        self.restore_best();
-        if !self.record_leads()
-            && let Some(v) = self.st.value
-        {
-            self.mem.record.copy_from_slice(self.theta);
-            self.st.record = Some(v);
-            if !self.st.centred {
-                self.mem.origin.copy_from_slice(self.theta);
-            }
-        }
+        self.keep_record();
         self.theta.copy_from_slice(self.mem.origin);
         let n = self.theta.len();
         let widen = T::from_f64(libm::pow(2.0, f64::from(self.st.fresh % RESTART_SCALES)));
@@ -177,6 +168,30 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             let x = self.theta[i] + spread * normal::quantile(T::uniform_open(&mut self.rng));
             self.theta[i] = reflect(x, self.mem.lower[i], self.mem.upper[i]);
         }
+        self.new_descent();
+    }
+
+    /// Keeps the descent's best point as the run's record where it beats the record
+    /// ([`Memory::record`](super::memory::Memory::record)), and where the descent left it
+    /// as the fresh start's origin ([`Memory::origin`](super::memory::Memory::origin)).
+    pub(super) fn keep_record(&mut self) {
+        self.restore_best();
+        if !self.record_leads()
+            && let Some(v) = self.st.value
+        {
+            self.mem.record.copy_from_slice(self.theta);
+            self.st.record = Some(v);
+            if !self.st.centred {
+                self.mem.origin.copy_from_slice(self.theta);
+            }
+        }
+    }
+
+    /// Begins a new descent from θ as it stands: the memory, the model, the metric and σ
+    /// start over as in [`Auto::new`], and what the run as a whole has learnt (the
+    /// record, the noise's kind, the fresh starts' count) is kept.
+    pub(super) fn new_descent(&mut self) {
+        let n = self.theta.len();
         let run = self.st;
         self.st = State {
             iteration: run.iteration,

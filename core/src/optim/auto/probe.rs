@@ -1,0 +1,114 @@
+//! Sparse probes about the best point before a fresh start.
+//!
+//! A descent's end is often a minimum where one part of θ is wrong and the rest right: a
+//! shape hidden under another or stranded off its target while the others sit on theirs,
+//! one coordinate of a lattice in the wrong cell, one term of a separable sum in the
+//! wrong well. A fresh start moves every coordinate and loses what was right; a probe
+//! moves one block of coordinates and keeps the rest, and its value alone says whether
+//! the block found a better place (a hidden shape moved onto its own target lowers f at
+//! once, however far it had to go). The parameters of one object usually sit side by
+//! side in θ (a position's x and y, a colour's channels), so a probe's block is
+//! contiguous: its length L = 2^j with j uniform over 0 … ⌊log₂ n⌋ − 1 (L ≤ n/2: moving
+//! everything is the fresh start's part), its start uniform over the multiples of L. Each
+//! coordinate i of the block moves by sᵢ·2^k·ξᵢ, sᵢ its start scale, k uniform over
+//! 0 … 4 (as a restart's and a fresh start's scales cycle) and ξᵢ ~ N(0, 1), mirrored
+//! into the box.
+//!
+//! Once a descent has ended, `Auto::begin_probes` keeps the best point as the record
+//! and allots [`AutoOptions::probes`](super::AutoOptions::probes) probes per coordinate;
+//! `Auto::probe_step` evaluates them n at a time (one iteration each, at least two
+//! probes), and the first batch with a value below the record's moves θ to its lowest
+//! point and starts the next descent there, without a jump. When the allotment is spent
+//! without one, the fresh start follows as before. Probes cost no buffer: they are staged
+//! in the rows a survey uses.
+
+use rand_core::Rng;
+
+use super::options::{AutoStep, AutoTermination};
+use super::{Auto, AutoReport, RESTART_SCALES, reflect};
+use crate::error::Error;
+use crate::objective::Objective;
+use crate::optim::vector::distance;
+use crate::real::Real;
+use crate::sample::normal;
+
+impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
+    /// Ends a descent before a fresh start: keeps its best point as the record and
+    /// allots the probes, or starts fresh at once where [`AutoOptions::probes`](super::AutoOptions::probes) is 0.
+    pub(super) fn begin_probes(&mut self) {
+        self.keep_record();
+        let allotted = self.options.probes.saturating_mul(self.theta.len());
+        if allotted == 0 || self.st.record.is_none() {
+            self.fresh_start();
+        } else {
+            self.st.probes = allotted;
+        }
+    }
+
+    /// One batch of probes about the record (see the module's header).
+    ///
+    /// # Errors
+    /// As [`Auto::step`]: a non-finite value under [`NonFinite::Error`](super::NonFinite::Error), a cancelled
+    /// objective.
+    pub(super) fn probe_step<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+    ) -> Result<AutoReport<T>, Error> {
+        let n = self.theta.len();
+        let sigma = self.st.sigma;
+        let rows = n
+            .max(2)
+            .min(self.st.probes)
+            .min(self.mem.stage_f.len())
+            .min(self.remaining());
+        for row in 0..rows {
+            self.stage_probe(row);
+        }
+        let mut spent = 0;
+        self.evaluate(objective, rows, &mut spent, |_| 0)?;
+        self.st.iteration += 1;
+        self.st.probes -= rows;
+        let record = self.st.record.unwrap_or(T::MAX);
+        let mut lowest: Option<(usize, T)> = None;
+        for (row, &f) in self.mem.stage_f[..rows].iter().enumerate() {
+            if f.is_finite() && f < record && lowest.is_none_or(|(_, l)| f < l) {
+                lowest = Some((row, f));
+            }
+        }
+        let mut step_length = T::ZERO;
+        if let Some((row, _)) = lowest {
+            self.st.probes = 0;
+            self.theta
+                .copy_from_slice(&self.mem.stage[row * n..(row + 1) * n]);
+            step_length = distance(self.mem.record, self.theta);
+            self.new_descent();
+        } else if self.st.probes == 0 && self.remaining() > 0 {
+            self.fresh_start();
+        }
+        let termination = (self.remaining() == 0).then_some(AutoTermination::MaxEvaluations);
+        Ok(self.end_iteration(sigma, step_length, None, AutoStep::Probed, termination))
+    }
+
+    /// Writes stage row `row`: the record with one block of its coordinates moved.
+    fn stage_probe(&mut self, row: usize) {
+        let n = self.theta.len();
+        // Block lengths 1, 2, …, 2^(levels − 1) ≤ n/2 (1 alone for n ≤ 3).
+        let levels = (usize::BITS - (n / 2).max(1).leading_zeros()) as usize;
+        let length = 1 << self.uniform_below(levels);
+        let start = length * self.uniform_below(n.div_ceil(length));
+        let doublings = self.uniform_below(RESTART_SCALES as usize);
+        let widen = T::from_f64(libm::pow(2.0, doublings as f64));
+        let least = self.least_start_scale();
+        self.mem.stage[row * n..(row + 1) * n].copy_from_slice(self.mem.record);
+        for i in start..(start + length).min(n) {
+            let spread = self.start_scale(i).max(least) * widen;
+            let x = self.mem.record[i] + spread * normal::quantile(T::uniform_open(&mut self.rng));
+            self.mem.stage[row * n + i] = reflect(x, self.mem.lower[i], self.mem.upper[i]);
+        }
+    }
+
+    /// A uniform draw from 0 … k − 1 (k ≥ 1).
+    fn uniform_below(&mut self, k: usize) -> usize {
+        (self.rng.next_u64() % k as u64) as usize
+    }
+}
