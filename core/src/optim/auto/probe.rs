@@ -18,7 +18,9 @@
 //! and allots [`AutoOptions::probes`](super::AutoOptions::probes) probes per coordinate;
 //! `Auto::probe_step` evaluates them n at a time (one iteration each, at least two
 //! probes), and the first batch with a value below the record's moves θ to its lowest
-//! point and starts the next descent there, without a jump. When the allotment is spent
+//! point and starts the next descent there, without a jump (its first iteration
+//! evaluates θ again beside its survey, as every descent's first iteration does, so that
+//! the new memory holds it). When the allotment is spent
 //! without one, the fresh start follows as before. Probes cost no buffer: they are staged
 //! in the rows a survey uses.
 
