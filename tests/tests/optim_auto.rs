@@ -674,20 +674,18 @@ fn probes_free_hidden_and_stranded_discs() {
         let bounds = p.bounds.as_ref().unwrap();
         for index in 0..8 {
             let seed = problem::run_seed(&p.name, index);
-            let mut theta = p.start(seed);
-            let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(8)];
-            let rng = Xoshiro256PlusPlus::seed_from_u64(random::seed_of("auto", &[seed]));
             let options = AutoOptions::default()
                 .with_max_evaluations(p.budget)
                 .unwrap();
-            let mut auto = Auto::new(&mut theta, p.sigma0, &mut buffer, rng)
-                .unwrap()
-                .with_bounds(&bounds.lower, &bounds.upper)
-                .unwrap()
-                .with_options(options);
-            let mut f = |x: &[f64]| p.value(x);
-            auto.run(&mut f, |_, _| {}).unwrap();
-            solved += usize::from(auto.value() == Some(0.0));
+            let (_, value, _) = minimise_with(
+                &mut |x: &[f64]| p.value(x),
+                &p.start(seed),
+                p.sigma0,
+                Some((&bounds.lower, &bounds.upper)),
+                options,
+                random::seed_of("auto", &[seed]),
+            );
+            solved += usize::from(value == Some(0.0));
         }
     }
     assert!(solved >= 19, "four discs: {solved} of 40");
