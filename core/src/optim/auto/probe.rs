@@ -8,8 +8,9 @@
 //! the block found a better place (a hidden shape moved onto its own target lowers f at
 //! once, however far it had to go). The parameters of one object usually sit side by
 //! side in θ (a position's x and y, a colour's channels), so a probe's block is
-//! contiguous: its length L = 2^j with j uniform over 0 … ⌊log₂ n⌋ − 1 (L ≤ n/2: moving
-//! everything is the fresh start's part), its start uniform over the multiples of L. Each
+//! contiguous: its length L = 2^j with j uniform over 0 … max(⌊log₂ n⌋ − 1, 0) (so L ≤ n/2
+//! from n = 2 on: moving everything is the fresh start's part), its start uniform over the
+//! multiples of L. Each
 //! coordinate i of the block moves by sᵢ·2^k·ξᵢ, sᵢ its start scale, k uniform over
 //! 0 … 4 (as a restart's and a fresh start's scales cycle) and ξᵢ ~ N(0, 1), mirrored
 //! into the box.
@@ -20,9 +21,8 @@
 //! probes), and the first batch with a value below the record's moves θ to its lowest
 //! point and starts the next descent there, without a jump (its first iteration
 //! evaluates θ again beside its survey, as every descent's first iteration does, so that
-//! the new memory holds it). When the allotment is spent
-//! without one, the fresh start follows as before. Probes cost no buffer: they are staged
-//! in the rows a survey uses.
+//! the new memory holds it). When the allotment is spent without one, the fresh start
+//! follows as before. Probes cost no buffer: they are staged in the rows a survey uses.
 
 use rand_core::Rng;
 
