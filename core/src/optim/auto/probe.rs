@@ -27,12 +27,11 @@
 use rand_core::Rng;
 
 use super::options::{AutoStep, AutoTermination};
-use super::{Auto, AutoReport, RESTART_SCALES, reflect};
+use super::{Auto, AutoReport, RESTART_SCALES};
 use crate::error::Error;
 use crate::objective::Objective;
 use crate::optim::vector::distance;
 use crate::real::Real;
-use crate::sample::normal;
 
 impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// Ends a descent before a fresh start: keeps its best point as the record and
@@ -103,9 +102,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let least = self.least_start_scale();
         self.mem.stage[row * n..(row + 1) * n].copy_from_slice(self.mem.record);
         for i in start..(start + length).min(n) {
-            let spread = self.start_scale(i).max(least) * widen;
-            let x = self.mem.record[i] + spread * normal::quantile(T::uniform_open(&mut self.rng));
-            self.mem.stage[row * n + i] = reflect(x, self.mem.lower[i], self.mem.upper[i]);
+            self.mem.stage[row * n + i] = self.jumped(i, self.mem.record[i], widen, least);
         }
     }
 

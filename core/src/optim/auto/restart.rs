@@ -164,11 +164,18 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.fresh = self.st.fresh.wrapping_add(1);
         let least = self.least_start_scale();
         for i in 0..n {
-            let spread = self.start_scale(i).max(least) * widen;
-            let x = self.theta[i] + spread * normal::quantile(T::uniform_open(&mut self.rng));
-            self.theta[i] = reflect(x, self.mem.lower[i], self.mem.upper[i]);
+            self.theta[i] = self.jumped(i, self.theta[i], widen, least);
         }
         self.new_descent();
+    }
+
+    /// Coordinate i moved from `from` by its start scale (at least `least`) times `widen`
+    /// times a standard normal draw, mirrored into the box: a fresh start's jump and a
+    /// probe's move.
+    pub(super) fn jumped(&mut self, i: usize, from: T, widen: T, least: T) -> T {
+        let spread = self.start_scale(i).max(least) * widen;
+        let x = from + spread * normal::quantile(T::uniform_open(&mut self.rng));
+        reflect(x, self.mem.lower[i], self.mem.upper[i])
     }
 
     /// Keeps the descent's best point as the run's record where it beats the record
