@@ -150,7 +150,10 @@
 //!   new descent about its best point (about x₀ while no value has been finite), as
 //!   basin hopping does ([`AutoOptions::fresh_starts`]): each coordinate moves by its
 //!   start scale times 2^(k mod 5) times a normal draw at the k-th fresh start,
-//!   mirrored into the box, and the memory, model, metric and σ start over. A
+//!   mirrored into the box; the memory, model and metric start over, and σ starts at
+//!   that restart's scale σ₀·2^(k mod 5), continuation allowed, so that successive
+//!   descents look at ever wider smoothings, as IPOP-CMA-ES's growing populations
+//!   average over ever more of a multi-modal surface. A
 //!   descent's end is as likely a local minimum (a disc hidden under another, a
 //!   lattice cell beside the optimum's) as the global one, and nothing in the values
 //!   tells which; the budget says how
@@ -175,7 +178,8 @@
 //!   minimum tends as σ → 0. The centre is the run's answer; fresh starts still jump
 //!   about where the descent left θ. A probe below f(θ) instead moves θ there and
 //!   restarts the descent.
-//! * **Continuation.** At such a restart, while σ > [`CONTINUATION_SCALE`]·σ₀, a
+//! * **Continuation.** At such a restart, or in a fresh start's descent, while σ >
+//!   [`CONTINUATION_SCALE`]·σ₀, a
 //!   rejected trial whose step ends inside the trust region still moves θ, now the
 //!   search centre, and halves σ ([`AutoStep::Continued`]): the model fitted at a wide
 //!   σ is that of the smoothed objective, whose minimum lies past a local minimum's

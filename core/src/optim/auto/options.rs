@@ -49,8 +49,11 @@ pub struct AutoOptions<T> {
     /// (converged, or stagnated after its [`AutoOptions::restarts`]), another starts
     /// from a point about the best one, as basin hopping does (each coordinate moved
     /// by its start scale times 2^(k mod 5) times a standard normal draw at the k-th
-    /// fresh start, mirrored into the box), with its memory, model, metric and σ
-    /// started over; the best point of all descents is kept, and the run ends with its
+    /// fresh start, mirrored into the box), with its memory, model and metric started
+    /// over and σ at the same σ₀·2^(k mod 5) (at most 16σ₀ or half the box's widest
+    /// side), where continuation applies as after a restart: the wider the jump, the
+    /// wider its descent's first look at the smoothed objective, whose minimum lies past
+    /// the wells of a bowl's multi-modal surface; the best point of all descents is kept, and the run ends with its
     /// budget. A run without a budget, or on a noisy objective (values of different
     /// descents would not compare), ends with its first descent. Default: `true`.
     pub fresh_starts: bool,

@@ -151,7 +151,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// mirrored into the box. The best point so far is kept as the record; the jump is
     /// from where its descent left it ([`Memory::origin`](super::memory::Memory::origin),
     /// before `Auto::centre` moved it). The memory,
-    /// the model, the metric and σ start over as in [`Auto::new`]. Where no evaluation
+    /// the model and the metric start over as in [`Auto::new`]; σ starts at the k-th
+    /// restart's scale σ₀·2^(k mod [`RESTART_SCALES`]) ([`Auto::restart_sigma`]'s cap),
+    /// where continuation applies: the wider the jump, the wider the first look, at
+    /// a smoothed objective whose minimum lies past the wells a descent at σ₀ ends
+    /// in (Griewank's, a rotated Rastrigin's). Where no evaluation
     /// has been finite yet (a start where the objective fails, NaN all around), the jump
     /// is from the run's start, not from the last jump's end: the search spreads about
     /// x₀ instead of wandering off in a random walk (and such a descent ends once σ has
@@ -160,13 +164,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.keep_record();
         self.theta.copy_from_slice(self.mem.origin);
         let n = self.theta.len();
-        let widen = T::from_f64(libm::pow(2.0, f64::from(self.st.fresh % RESTART_SCALES)));
+        let k = self.st.fresh % RESTART_SCALES;
+        let widen = T::from_f64(libm::pow(2.0, f64::from(k)));
         self.st.fresh = self.st.fresh.wrapping_add(1);
         let least = self.least_start_scale();
         for i in 0..n {
             self.theta[i] = self.jumped(i, self.theta[i], widen, least);
         }
         self.new_descent();
+        self.st.cycle = k;
+        self.st.sigma = self.restart_sigma();
     }
 
     /// Coordinate i moved from `from` by its start scale (at least `least`) times `widen`
