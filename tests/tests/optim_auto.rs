@@ -688,25 +688,9 @@ fn wide_fresh_descents_see_the_bowl_under_the_wells() {
     let solved = (0..seeds)
         .filter(|&seed| {
             let mut unit = uniforms(3_000_000 + seed);
-            let mut theta: Vec<f64> = (0..n).map(|_| 6.0 * unit() - 3.0).collect();
-            let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)];
-            let mut auto = Auto::new(
-                &mut theta,
-                3.0,
-                &mut buffer,
-                Xoshiro256PlusPlus::seed_from_u64(seed),
-            )
-            .unwrap()
-            .with_bounds(&lower, &upper)
-            .unwrap()
-            .with_options(AutoOptions::default().with_max_evaluations(20_000).unwrap());
-            let mut f = |x: &[f64]| griewank(x);
-            while auto.step(&mut f).unwrap().is_some() {
-                if auto.value().is_some_and(|v| v < 1e-6) {
-                    return true;
-                }
-            }
-            false
+            let x0: Vec<f64> = (0..n).map(|_| 6.0 * unit() - 3.0).collect();
+            let bounds = Some((&lower[..], &upper[..]));
+            reaches(griewank, &x0, 3.0, bounds, 20_000, 1e-6, seed)
         })
         .count();
     assert!(solved >= 28, "rotated Griewank: {solved} of {seeds}");
@@ -1260,20 +1244,36 @@ fn the_vote_batches_its_draws() {
 /// per seed in 0..`seeds`, reach f < 1e-8.
 /// Whether a run of Auto from `x0` with σ₀ = 1 reaches f < 1e-8 within `budget`
 /// evaluations; it stops there, since the rest of a solved run proves nothing.
-fn reaches_1e8(mut f: impl FnMut(&[f64]) -> f64, x0: &[f64], budget: usize, seed: u64) -> bool {
+fn reaches_1e8(f: impl FnMut(&[f64]) -> f64, x0: &[f64], budget: usize, seed: u64) -> bool {
+    reaches(f, x0, 1.0, None, budget, 1e-8, seed)
+}
+
+/// Whether Auto, from `x0` at scale `sigma0` in `bounds`, evaluates a point below
+/// `target` within `budget` evaluations.
+fn reaches(
+    mut f: impl FnMut(&[f64]) -> f64,
+    x0: &[f64],
+    sigma0: f64,
+    bounds: Option<(&[f64], &[f64])>,
+    budget: usize,
+    target: f64,
+    seed: u64,
+) -> bool {
     let mut theta = x0.to_vec();
     let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(x0.len())];
-    let options = AutoOptions::default().with_max_evaluations(budget).unwrap();
     let mut auto = Auto::new(
         &mut theta,
-        1.0,
+        sigma0,
         &mut buffer,
         Xoshiro256PlusPlus::seed_from_u64(seed),
     )
-    .unwrap()
-    .with_options(options);
+    .unwrap();
+    if let Some((lower, upper)) = bounds {
+        auto = auto.with_bounds(lower, upper).unwrap();
+    }
+    let mut auto = auto.with_options(AutoOptions::default().with_max_evaluations(budget).unwrap());
     while let Ok(Some(_)) = auto.step(&mut f) {
-        if auto.value().is_some_and(|v| v < 1e-8) {
+        if auto.value().is_some_and(|v| v < target) {
             return true;
         }
     }
