@@ -52,9 +52,9 @@ pub struct AutoOptions<T> {
     /// fresh start, mirrored into the box), with its memory, model and metric started
     /// over and σ at the same σ₀·2^(k mod 5) (at most 16σ₀ or half the box's widest
     /// side), where continuation applies as after a restart: the wider the jump, the
-    /// wider its descent's first look at the smoothed objective, whose minimum lies past
-    /// the wells of a bowl's multi-modal surface; the best point of all descents is kept, and the run ends with its
-    /// budget. A run without a budget, or on a noisy objective (values of different
+    /// wider its descent's first look at the smoothed objective, whose minimum lies
+    /// past the wells of a bowl's multi-modal surface. The best point of all descents
+    /// is kept, and the run ends with its budget. A run without a budget, or on a noisy objective (values of different
     /// descents would not compare), ends with its first descent. Default: `true`.
     pub fresh_starts: bool,
     /// Whether a descent that ends on a flat piece of f — some remembered point other
