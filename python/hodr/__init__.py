@@ -274,8 +274,9 @@ def minimize(
         follows, else 8);
         ``fresh_starts`` (bool): with a ``budget``, spend what the first descent
         leaves on new descents about the best point, each jumping farther and
-        starting at a wider sigma than the last, sigma0 to 16 * sigma0 (default
-        True; False ends the run with its first descent);
+        starting at a wider sigma than the last, sigma0 to 16 * sigma0, until a
+        probe has found a lower point or two wide descents end on the same value
+        (default True; False ends the run with its first descent);
         ``centre`` (bool): a descent that ends on a flat piece of ``fun`` (a
         rasteriser without anti-aliasing, rounded coordinates) moves x to the piece's
         centre along each axis, probing for its edges (default True);

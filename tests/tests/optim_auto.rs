@@ -598,12 +598,13 @@ fn a_flat_piece_is_centred_between_its_edges_only() {
 /// a run without a budget is its first descent. Rastrigin's function
 /// f(x) = Σ (xᵢ² − 10 cos 2πxᵢ + 10) in 2-D from (3.3, −2.2) with σ₀ = 1 in [−5.12, 5.12]²
 /// (a local minimum at every integer point), to f < 1e-8 within 3 000 evaluations.
-/// Measured on 400 seeds: 398 of 400 with fresh starts and the probes before them (395
-/// with every fresh descent at σ₀ rather than at its jump's scale; 354
+/// Measured on 400 seeds: 396 of 400 with fresh starts and the probes before them (398
+/// while every fresh descent began at its jump's scale, whatever the earlier ones found; 395
+/// while every one began at σ₀; 354
 /// without the probes — Rastrigin is a sum of one-coordinate terms, and a probe moves one
 /// coordinate to its next well; 340 while 8 more restarts came before each fresh start,
 /// 343 while 2), 216 of 400 with the first descent only. Bound:
-/// P(X < 36 | p = 0.995, N = 40) = 1.8e-6.
+/// P(X < 36 | p = 0.99, N = 40) = 4.9e-5.
 #[test]
 fn fresh_starts_leave_a_local_minimum() {
     let seeds = 40;
@@ -666,9 +667,10 @@ fn rastrigin_run(
 /// f < 1e-6 within 20 000 evaluations. Smoothed at σ ≳ 3 the product of cosines fades
 /// and the bowl remains, so a descent that begins wide and follows the smoothed model
 /// down reaches the bottom; one that begins at σ₀ ends in the first well with two
-/// cosines at −1. Measured on seeds 0–399: 349 of 400 (205 with every descent at σ₀).
-/// Bound over seeds 0–39: P(X < 28 | p = 0.8725, N = 40) = 9.8e-4, while with every
-/// descent at σ₀ P(X ≥ 28 | p = 0.5125, N = 40) = 0.013.
+/// cosines at −1. Measured on seeds 0–399: 346 of 400 (349 while every fresh descent
+/// began wide, whatever earlier ones found; 205 with every descent at σ₀). Bound over
+/// seeds 0–39: P(X < 28 | p = 0.865, N = 40) = 1.7e-3, while with every descent at σ₀
+/// P(X ≥ 28 | p = 0.5125, N = 40) = 0.013.
 #[test]
 fn wide_fresh_descents_see_the_bowl_under_the_wells() {
     let n = 10;
@@ -696,14 +698,59 @@ fn wide_fresh_descents_see_the_bowl_under_the_wells() {
     assert!(solved >= 28, "rotated Griewank: {solved} of {seeds}");
 }
 
+/// Once two wide fresh descents in a row have ended on the same value, later fresh
+/// descents start at σ₀: the smoothed objective leads every wide descent to one point,
+/// which is then known. On a bowl with one minimum, f(x) = 1 + ‖x − 0.3‖² in 3-D, every
+/// descent ends on f = 1, so the k-th fresh start's descent begins at σ₀·2^k for
+/// k = 1 and 2 (the first wide descent has no other to match; the run's first descent and
+/// the 0th fresh start's are at σ₀) and at σ₀ from then on, where it would otherwise
+/// cycle on through 8σ₀ and 16σ₀: of the run's descents and restarts (several dozen in
+/// 20 000 evaluations), at most four begin above 1.5σ₀ (the two wide fresh descents,
+/// and a restart of each), where four in five fresh starts would without the rule.
+#[test]
+fn wide_descents_that_end_alike_stop_widening() {
+    let sigma0 = 0.5;
+    let mut f = |x: &[f64]| 1.0 + x.iter().map(|v| (v - 0.3) * (v - 0.3)).sum::<f64>();
+    for seed in 0..4 {
+        let mut theta = vec![2.0, -1.0, 1.5];
+        let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(3)];
+        let mut auto = Auto::new(
+            &mut theta,
+            sigma0,
+            &mut buffer,
+            Xoshiro256PlusPlus::seed_from_u64(seed),
+        )
+        .unwrap()
+        .with_options(AutoOptions::default().with_max_evaluations(20_000).unwrap());
+        // σ of each descent's first iteration (a restart's too): where σ jumps up from a
+        // converged descent.
+        let mut starts = Vec::new();
+        let mut last = f64::INFINITY;
+        while let Some(report) = auto.step(&mut f).unwrap() {
+            if report.sigma >= sigma0 && last < 1e-3 * sigma0 {
+                starts.push(report.sigma / sigma0);
+            }
+            last = report.sigma;
+        }
+        let wide = starts.iter().filter(|&&s| s > 1.5).count();
+        assert!(
+            starts.len() >= 20 && wide <= 4,
+            "seed {seed}: {wide} of {} descents began wide",
+            starts.len()
+        );
+    }
+}
+
 /// The probes before a fresh start (`AutoOptions::probes`) on the suite's disc plateau
 /// with four discs (n = 8, `hodr_host::suite::plateau::discs`), whose descents end with a
 /// disc hidden under another or stranded in a corner while the rest sit on their
 /// targets, to its exact image within the problem's budget (8 000 evaluations), from the
 /// suite's starts and run seeds. Measured over seeds 0–79 of each of its five instances:
-/// 251 of 400 with the probes, 77 of 400 without (a fresh start moves every disc, the
-/// placed ones too); 281 and 137 while every fresh descent began at σ₀ rather than at
-/// its jump's scale. Bound over seeds 0–15: P(X < 37 | p = 0.6275, N = 80) = 9.3e-4; a
+/// 272 of 400 with the probes, 77 of 400 without (a fresh start moves every disc, the
+/// placed ones too; each fresh descent then begins at its jump's scale, 2–3 times as long
+/// as one at σ₀ here, where once a probe has succeeded they begin at σ₀); 251 with the
+/// probes while every fresh descent began at its jump's scale, 281 and 137 while every
+/// one began at σ₀. Bound over seeds 0–15: P(X < 37 | p = 0.68, N = 80) = 1.8e-5; a
 /// run without probes would pass it with probability 4e-8.
 #[test]
 fn probes_free_hidden_and_stranded_discs() {
@@ -1151,8 +1198,9 @@ fn a_rotated_valley_is_learnt_above_twenty_dimensions() {
 /// restart's survey along the axes finds x₂ and x₃ flat and x₀, x₁ not, and stretches
 /// the metric along the former ([`hodr_core::optim::auto::FLAT_STRETCH`]). From
 /// (0.1, −0.1, 0, 0), σ₀ = 1, to f < 1e-8 within 4 000 evaluations: 163 of seeds 0–999
-/// (rate ≥ 0.143 at 95 % confidence), 35 of seeds 0–199 (125 since the probes and the
-/// fresh descents at their jump's scale; 118 with the probes alone); 31 of 1 000 with restarts'
+/// (rate ≥ 0.143 at 95 % confidence), 35 of seeds 0–199 (124 since the probes and the
+/// fresh descents at their jump's scale until a probe succeeds or two end alike; 125 with every fresh
+/// descent at its jump's scale, 118 with every one at σ₀); 31 of 1 000 with restarts'
 /// surveys along random frames and no stretch. Bound, over seeds 0–199:
 /// P(X < 13 | p = 0.143, N = 200) = 1.8e-4, while without the stretch
 /// P(X ≥ 13 | p = 0.031, N = 200) = 0.010.
@@ -1240,8 +1288,6 @@ fn the_vote_batches_its_draws() {
     }
 }
 
-/// How many runs of Auto on `f` from `x0` (σ₀ = 1, no bounds, `budget` evaluations), one
-/// per seed in 0..`seeds`, reach f < 1e-8.
 /// Whether a run of Auto from `x0` with σ₀ = 1 reaches f < 1e-8 within `budget`
 /// evaluations; it stops there, since the rest of a solved run proves nothing.
 fn reaches_1e8(f: impl FnMut(&[f64]) -> f64, x0: &[f64], budget: usize, seed: u64) -> bool {
@@ -1280,6 +1326,8 @@ fn reaches(
     false
 }
 
+/// How many runs of Auto on `f` from `x0` (σ₀ = 1, no bounds, `budget` evaluations), one
+/// per seed in 0..`seeds`, reach f < 1e-8.
 fn runs_below_1e8(f: impl Fn(&[f64]) -> f64, x0: &[f64], budget: usize, seeds: u64) -> usize {
     (0..seeds)
         .filter(|&seed| {

@@ -153,7 +153,11 @@
 //!   mirrored into the box; the memory, model and metric start over, and σ starts at
 //!   that restart's scale σ₀·2^(k mod 5), continuation allowed, so that successive
 //!   descents look at ever wider smoothings, as IPOP-CMA-ES's growing populations
-//!   average over ever more of a multi-modal surface. A
+//!   average over ever more of a multi-modal surface — until the run shows that a wide
+//!   look adds nothing: a probe (below) has found a point below the best (the run's
+//!   local minima are one object wrong, which the probes fix), or two wide descents in
+//!   a row ended on the same value to √ε (the smoothed objective leads to one point,
+//!   which is then known). Its later fresh descents begin at σ₀. A
 //!   descent's end is as likely a local minimum (a disc hidden under another, a
 //!   lattice cell beside the optimum's) as the global one, and nothing in the values
 //!   tells which; the budget says how
@@ -494,6 +498,15 @@ struct State<T> {
     record: Option<T>,
     /// Fresh starts so far.
     fresh: u32,
+    /// Fresh descents start at σ₀ rather than at their jump's scale from now on
+    /// (`Auto::fresh_start`): a probe of this run has found a point below the record,
+    /// or two wide descents in a row ended on the same value.
+    fresh_narrow: bool,
+    /// The current descent is a fresh start's that began wider than σ₀.
+    fresh_wide: bool,
+    /// The best value of the last descent that began wider than σ₀; `None` before
+    /// one has ended.
+    wide_end: Option<T>,
     /// The descent has ended on a flat piece of f: the next iteration centres θ on it
     /// (`Auto::centre`), then goes on as this says.
     centre_then: Option<AfterCentre>,
@@ -555,6 +568,9 @@ impl<T: Real> State<T> {
             reach_key: None,
             record: None,
             fresh: 0,
+            fresh_narrow: false,
+            fresh_wide: false,
+            wide_end: None,
             centre_then: None,
             centred: false,
             probes: 0,

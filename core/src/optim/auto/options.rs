@@ -53,7 +53,11 @@ pub struct AutoOptions<T> {
     /// over and σ at the same σ₀·2^(k mod 5) (at most 16σ₀ or half the box's widest
     /// side), where continuation applies as after a restart: the wider the jump, the
     /// wider its descent's first look at the smoothed objective, whose minimum lies
-    /// past the wells of a bowl's multi-modal surface. The best point of all descents
+    /// past the wells of a bowl's multi-modal surface. Once a probe
+    /// ([`AutoOptions::probes`]) has found a point below the best, or two wide
+    /// descents in a row have ended on the same value, later fresh descents start at
+    /// σ₀: the run's minima are one object wrong, which the probes fix, or the
+    /// smoothed objective leads to one point, which is then known. The best point of all descents
     /// is kept, and the run ends with its budget. A run without a budget, or on a noisy objective (values of different
     /// descents would not compare), ends with its first descent. Default: `true`.
     pub fresh_starts: bool,

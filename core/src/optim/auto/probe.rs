@@ -83,6 +83,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 .copy_from_slice(&self.mem.stage[row * n..(row + 1) * n]);
             step_length = distance(self.mem.record, self.theta);
             self.new_descent();
+            self.st.fresh_narrow = true;
         } else if self.st.probes == 0 && self.remaining() > 0 {
             self.fresh_start();
         }

@@ -155,13 +155,27 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// restart's scale σ₀·2^(k mod [`RESTART_SCALES`]) ([`Auto::restart_sigma`]'s cap),
     /// where continuation applies: the wider the jump, the wider the first look, at
     /// a smoothed objective whose minimum lies past the wells a descent at σ₀ ends
-    /// in (Griewank's, a rotated Rastrigin's). Where no evaluation
+    /// in (Griewank's, a rotated Rastrigin's). Once a probe of the run has found a
+    /// point below the record (the `probe` module), or two wide descents in a row have
+    /// ended on the same value (|v − w| ≤ √ε·max(|v|, |w|)), σ starts at σ₀ instead:
+    /// the run's minima are one block of θ wrong, which the probes fix, or the
+    /// smoothed objective leads every wide descent to one point (Gallagher's peaks,
+    /// Schwefel's function), and σ₀ descents from scattered jumps sample the basins
+    /// that a wide one averages away. Where no evaluation
     /// has been finite yet (a start where the objective fails, NaN all around), the jump
     /// is from the run's start, not from the last jump's end: the search spreads about
     /// x₀ instead of wandering off in a random walk (and such a descent ends once σ has
     /// widened to its cap, `Auto::step`).
     pub(super) fn fresh_start(&mut self) {
         self.keep_record();
+        if self.st.fresh_wide {
+            if let (Some(v), Some(w)) = (self.st.value, self.st.wide_end)
+                && (v - w).abs() <= T::EPSILON.sqrt() * v.abs().max(w.abs())
+            {
+                self.st.fresh_narrow = true;
+            }
+            self.st.wide_end = self.st.value;
+        }
         self.theta.copy_from_slice(self.mem.origin);
         let n = self.theta.len();
         let k = self.st.fresh % RESTART_SCALES;
@@ -172,8 +186,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.theta[i] = self.jumped(i, self.theta[i], widen, least);
         }
         self.new_descent();
-        self.st.cycle = k;
-        self.st.sigma = self.restart_sigma();
+        self.st.fresh_wide = k > 0 && !self.st.fresh_narrow;
+        if self.st.fresh_wide {
+            self.st.cycle = k;
+            self.st.sigma = self.restart_sigma();
+        }
     }
 
     /// Coordinate i moved from `from` by its start scale (at least `least`) times `widen`
@@ -221,6 +238,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             metric_changes: run.metric_changes.wrapping_add(1),
             record: run.record,
             fresh: run.fresh,
+            fresh_narrow: run.fresh_narrow,
+            fresh_wide: run.fresh_wide,
+            wide_end: run.wide_end,
             ..State::start(run.sigma0, n)
         };
         self.shape_scales();
