@@ -57,9 +57,10 @@ pub struct AutoOptions<T> {
     /// ([`AutoOptions::probes`]) has found a point below the best, or two wide
     /// descents in a row have ended on the same value, later fresh descents start at
     /// σ₀: the run's minima are one object wrong, which the probes fix, or the
-    /// smoothed objective leads to one point, which is then known. The best point of all descents
-    /// is kept, and the run ends with its budget. A run without a budget, or on a noisy objective (values of different
-    /// descents would not compare), ends with its first descent. Default: `true`.
+    /// smoothed objective leads to one point, which is then known. The best point of
+    /// all descents is kept, and the run ends with its budget. A run without a budget,
+    /// or on a noisy objective (values of different descents would not compare), ends
+    /// with its first descent. Default: `true`.
     pub fresh_starts: bool,
     /// Whether a descent that ends on a flat piece of f — some remembered point other
     /// than θ has exactly f(θ)'s value, on an objective whose values are exact, and

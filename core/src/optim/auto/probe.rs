@@ -84,6 +84,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             step_length = distance(self.mem.record, self.theta);
             self.new_descent();
             self.st.fresh_narrow = true;
+            self.st.fresh_wide = false;
         } else if self.st.probes == 0 && self.remaining() > 0 {
             self.fresh_start();
         }
