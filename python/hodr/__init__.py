@@ -281,8 +281,9 @@ def minimize(
         rasteriser without anti-aliasing, rounded coordinates) moves x to the piece's
         centre along each axis, probing for its edges (default True);
         ``probes`` (int >= 0): before each fresh start, up to probes * n points that
-        move one block of adjacent coordinates of the best point (one object's
-        parameters: a shape hidden under another, a coordinate in the wrong cell), the
+        move one block of adjacent coordinates of the best point, anywhere within
+        their bounds where they have them (one object's parameters: a shape hidden
+        under another, a coordinate in the wrong cell), the
         first lower one starting the next descent (default 20; 0: none);
         ``non_finite``: ``"worst"`` (default: NaN or
         inf counts as worse than any value) or ``"error"`` (raise ValueError, whose

@@ -79,9 +79,11 @@ pub struct AutoOptions<T> {
     /// Probes per coordinate before each fresh start ([`AutoOptions::fresh_starts`]):
     /// up to `probes`·n points, n per iteration ([`AutoStep::Probed`]), each the best
     /// point so far with one contiguous block of 1, 2, 4, … ≤ n/2 of its coordinates
-    /// (its length and then its place, aligned to the length, drawn uniformly) moved by
-    /// their start scales times 2^k (k uniform over 0 … 4) times standard normal draws,
-    /// mirrored into the box. The first batch with a point below the best one moves θ
+    /// (its length and then its place, aligned to the length, drawn uniformly) moved: a
+    /// coordinate boxed on both sides drawn uniformly over its box within 32 start
+    /// scales of the best point's, any other moved by its start scale times 2^k (k
+    /// uniform over 0 … 4) times a standard normal draw, mirrored into a bound it has.
+    /// The first batch with a point below the best one moves θ
     /// there and starts the next descent from it; where none is, the fresh start
     /// follows. A descent that ends with one object wrong and the rest right (a shape
     /// hidden under another, one coordinate in the wrong cell of a lattice) is left by

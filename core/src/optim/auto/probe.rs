@@ -11,9 +11,12 @@
 //! contiguous: its length L = 2^j with j uniform over 0 … max(⌊log₂ n⌋ − 1, 0) (so L ≤ n/2
 //! from n = 2 on: moving everything is the fresh start's part), its start uniform over the
 //! multiples of L. Each
-//! coordinate i of the block moves by sᵢ·2^k·ξᵢ, sᵢ its start scale, k uniform over
-//! 0 … 4 (as a restart's and a fresh start's scales cycle) and ξᵢ ~ N(0, 1), mirrored
-//! into the box.
+//! coordinate i of the block that is boxed on both sides is drawn uniformly over its box
+//! within 32·sᵢ of the record's (sᵢ its start scale, 32 the widest fresh start's two
+//! spreads): a hidden object may belong anywhere in the box, and a draw centred on where
+//! it is hidden reaches a target some spreads away too rarely. Any other coordinate moves
+//! by sᵢ·2^k·ξᵢ, k uniform over 0 … 4 (as a restart's and a fresh start's scales cycle)
+//! and ξᵢ ~ N(0, 1), mirrored into a bound it has.
 //!
 //! Once a descent has ended, `Auto::begin_probes` keeps the best point as the record
 //! and allots [`AutoOptions::probes`](super::AutoOptions::probes) probes per coordinate;
@@ -104,8 +107,32 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let least = self.least_start_scale();
         self.mem.stage[row * n..(row + 1) * n].copy_from_slice(self.mem.record);
         for i in start..(start + length).min(n) {
-            self.mem.stage[row * n + i] = self.jumped(i, self.mem.record[i], widen, least);
+            self.mem.stage[row * n + i] = self.probed(i, widen, least);
         }
+    }
+
+    /// Coordinate i of a probe. Boxed on both sides: uniform over the box within
+    /// 2^[`RESTART_SCALES`] start scales (at least `least`) of the record's coordinate.
+    /// Otherwise: the record's coordinate [`jumped`](Auto::jumped) by `widen` start
+    /// scales.
+    fn probed(&mut self, i: usize, widen: T, least: T) -> T {
+        let (lower, upper) = (self.mem.lower[i], self.mem.upper[i]);
+        let from = self.mem.record[i];
+        // Without a bound, `Auto::new` leaves ±T::MAX.
+        if lower <= -T::MAX || upper >= T::MAX {
+            return self.jumped(i, from, widen, least);
+        }
+        let reach = self.start_scale(i).max(least) * T::from_f64(f64::from(1u32 << RESTART_SCALES));
+        let (lo, hi) = (lower.max(from - reach), upper.min(from + reach));
+        let u = T::uniform_open(&mut self.rng);
+        let width = hi - lo;
+        let x = if width.is_finite() {
+            lo + width * u
+        } else {
+            // A box as wide as T's range: its width overflows, its weighted ends do not.
+            lo * (T::ONE - u) + hi * u
+        };
+        x.max(lo).min(hi)
     }
 
     /// A uniform draw from 0 … k − 1 (k ≥ 1).

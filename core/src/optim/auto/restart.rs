@@ -62,10 +62,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     fn sigma_cap(&self, width: f64) -> T {
         let mut cap = self.st.sigma0 * T::from_f64(width);
         if self.st.bounded {
-            let width = (0..self.theta.len())
-                .fold(T::ZERO, |w, i| w.max(self.mem.upper[i] - self.mem.lower[i]));
-            if width > T::ZERO && width.is_finite() {
-                cap = cap.min(T::HALF * width);
+            // Halves before the difference: a box as wide as T's range has a finite half.
+            let half = (0..self.theta.len()).fold(T::ZERO, |w, i| {
+                w.max(T::HALF * self.mem.upper[i] - T::HALF * self.mem.lower[i])
+            });
+            if half > T::ZERO && half.is_finite() {
+                cap = cap.min(half);
             }
         }
         cap
