@@ -791,40 +791,20 @@ fn probes_free_hidden_and_stranded_discs() {
 fn probes_move_one_aligned_block() {
     let n = 8;
     let (lower, upper) = ([-5.12; 8], [5.12; 8]);
-    let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)];
-    let mut theta = [3.3, -2.2, 1.1, 4.0, -3.7, 0.4, 2.6, -1.3];
-    let mut auto = Auto::new(
-        &mut theta,
-        1.0,
-        &mut buffer,
-        Xoshiro256PlusPlus::seed_from_u64(3),
-    )
-    .unwrap()
-    .with_bounds(&lower, &upper)
-    .unwrap()
-    .with_options(AutoOptions::default().with_max_evaluations(6000).unwrap());
-    let mut points: Vec<Vec<f64>> = Vec::new();
+    let x0 = [3.3, -2.2, 1.1, 4.0, -3.7, 0.4, 2.6, -1.3];
+    let steps = record_steps(rastrigin, &x0, 1.0, (&lower, &upper), 6000, 3);
     let (mut probes, mut descents_before) = (0, 0);
     let mut quarters = [0usize; 4];
-    loop {
-        let best = auto.theta().to_vec();
-        let before = points.len();
-        let mut f = |x: &[f64]| {
-            points.push(x.to_vec());
-            rastrigin(x)
-        };
-        let Some(report) = auto.step(&mut f).unwrap() else {
-            break;
-        };
-        if report.kind != AutoStep::Probed {
+    for step in &steps {
+        if step.kind != AutoStep::Probed {
             descents_before += usize::from(probes == 0);
             continue;
         }
-        for x in &points[before..] {
+        for x in &step.points {
             probes += 1;
             assert!(x.iter().zip(&lower).all(|(v, l)| v >= l));
             assert!(x.iter().zip(&upper).all(|(v, u)| v <= u));
-            let moved: Vec<usize> = (0..n).filter(|&i| x[i] != best[i]).collect();
+            let moved: Vec<usize> = (0..n).filter(|&i| x[i] != step.best[i]).collect();
             for &i in &moved {
                 let quarter = (x[i] - lower[i]) / (upper[i] - lower[i]) * 4.0;
                 quarters[(quarter as usize).min(3)] += 1;
@@ -854,39 +834,10 @@ fn probes_move_one_aligned_block() {
 #[test]
 fn probes_in_a_box_wider_than_f64_are_finite() {
     let (lower, upper) = ([-1e308; 2], [1e308; 2]);
-    let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(2)];
-    let mut theta = [3.3, -2.2];
-    let mut auto = Auto::new(
-        &mut theta,
-        1e307,
-        &mut buffer,
-        Xoshiro256PlusPlus::seed_from_u64(5),
-    )
-    .unwrap()
-    .with_bounds(&lower, &upper)
-    .unwrap()
-    .with_options(AutoOptions::default().with_max_evaluations(2000).unwrap());
-    let mut points: Vec<Vec<f64>> = Vec::new();
-    let (mut probes, mut on_a_face) = (0, 0);
-    loop {
-        let before = points.len();
-        let mut f = |x: &[f64]| {
-            points.push(x.to_vec());
-            rastrigin(&[x[0] * 1e-307, x[1] * 1e-307])
-        };
-        let Some(report) = auto.step(&mut f).unwrap() else {
-            break;
-        };
-        if report.kind == AutoStep::Probed {
-            probes += points.len() - before;
-            on_a_face += points[before..]
-                .iter()
-                .filter(|x| x.iter().any(|v| v.abs() == 1e308))
-                .count();
-        }
-    }
-    let outside: Vec<_> = points
-        .iter()
+    let f = |x: &[f64]| rastrigin(&[x[0] * 1e-307, x[1] * 1e-307]);
+    let steps = record_steps(f, &[3.3, -2.2], 1e307, (&lower, &upper), 2000, 5);
+    let points = || steps.iter().flat_map(|step| &step.points);
+    let outside: Vec<_> = points()
         .filter(|x| !x.iter().all(|v| (-1e308..=1e308).contains(v)))
         .collect();
     assert!(
@@ -895,10 +846,70 @@ fn probes_in_a_box_wider_than_f64_are_finite() {
         outside.len(),
         outside[0]
     );
+    let probed = || {
+        steps
+            .iter()
+            .filter(|step| step.kind == AutoStep::Probed)
+            .flat_map(|step| &step.points)
+    };
+    let probes = probed().count();
+    let on_a_face = probed()
+        .filter(|x| x.iter().any(|v| v.abs() == 1e308))
+        .count();
     assert!(
         probes > 0 && on_a_face * 10 < probes,
         "{on_a_face} of {probes} probes on a face"
     );
+}
+
+/// One iteration of [`record_steps`]: what it did, the best point before it and the
+/// points it evaluated.
+struct RecordedStep {
+    kind: AutoStep,
+    best: Vec<f64>,
+    points: Vec<Vec<f64>>,
+}
+
+/// Every iteration of a run of Auto on `f` from `x0` at scale `sigma0` in the box
+/// `bounds`, to `budget` evaluations, on `seed`.
+fn record_steps(
+    mut f: impl FnMut(&[f64]) -> f64,
+    x0: &[f64],
+    sigma0: f64,
+    (lower, upper): (&[f64], &[f64]),
+    budget: usize,
+    seed: u64,
+) -> Vec<RecordedStep> {
+    let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(x0.len())];
+    let mut theta = x0.to_vec();
+    let mut auto = Auto::new(
+        &mut theta,
+        sigma0,
+        &mut buffer,
+        Xoshiro256PlusPlus::seed_from_u64(seed),
+    )
+    .unwrap()
+    .with_bounds(lower, upper)
+    .unwrap()
+    .with_options(AutoOptions::default().with_max_evaluations(budget).unwrap());
+    let mut steps = Vec::new();
+    loop {
+        let best = auto.theta().to_vec();
+        let mut points = Vec::new();
+        let mut recorded = |x: &[f64]| {
+            points.push(x.to_vec());
+            f(x)
+        };
+        let Some(report) = auto.step(&mut recorded).unwrap() else {
+            break;
+        };
+        steps.push(RecordedStep {
+            kind: report.kind,
+            best,
+            points,
+        });
+    }
+    steps
 }
 
 /// A saddle: the run only ever descends (f of the best point never rises) and leaves
