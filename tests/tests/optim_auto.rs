@@ -713,25 +713,16 @@ fn wide_descents_that_end_alike_stop_widening() {
     let sigma0 = 0.5;
     let mut f = |x: &[f64]| 1.0 + x.iter().map(|v| (v - 0.3) * (v - 0.3)).sum::<f64>();
     for seed in 0..4 {
-        let mut theta = vec![2.0, -1.0, 1.5];
-        let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(3)];
-        let mut auto = Auto::new(
-            &mut theta,
-            sigma0,
-            &mut buffer,
-            Xoshiro256PlusPlus::seed_from_u64(seed),
-        )
-        .unwrap()
-        .with_options(AutoOptions::default().with_max_evaluations(20_000).unwrap());
+        let steps = record_steps(&mut f, &[2.0, -1.0, 1.5], sigma0, None, 20_000, seed);
         // σ of each descent's first iteration (a restart's too): where σ jumps up from a
         // converged descent.
         let mut starts = Vec::new();
         let mut last = f64::INFINITY;
-        while let Some(report) = auto.step(&mut f).unwrap() {
-            if report.sigma >= sigma0 && last < 1e-3 * sigma0 {
-                starts.push(report.sigma / sigma0);
+        for step in &steps {
+            if step.sigma >= sigma0 && last < 1e-3 * sigma0 {
+                starts.push(step.sigma / sigma0);
             }
-            last = report.sigma;
+            last = step.sigma;
         }
         let wide = starts.iter().filter(|&&s| s > 1.5).count();
         assert!(
@@ -792,7 +783,7 @@ fn probes_move_one_aligned_block() {
     let n = 8;
     let (lower, upper) = ([-5.12; 8], [5.12; 8]);
     let x0 = [3.3, -2.2, 1.1, 4.0, -3.7, 0.4, 2.6, -1.3];
-    let steps = record_steps(rastrigin, &x0, 1.0, (&lower, &upper), 6000, 3);
+    let steps = record_steps(rastrigin, &x0, 1.0, Some((&lower, &upper)), 6000, 3);
     let (mut probes, mut descents_before) = (0, 0);
     let mut quarters = [0usize; 4];
     for step in &steps {
@@ -835,7 +826,7 @@ fn probes_move_one_aligned_block() {
 fn probes_in_a_box_wider_than_f64_are_finite() {
     let (lower, upper) = ([-1e308; 2], [1e308; 2]);
     let f = |x: &[f64]| rastrigin(&[x[0] * 1e-307, x[1] * 1e-307]);
-    let steps = record_steps(f, &[3.3, -2.2], 1e307, (&lower, &upper), 2000, 5);
+    let steps = record_steps(f, &[3.3, -2.2], 1e307, Some((&lower, &upper)), 2000, 5);
     let points = || steps.iter().flat_map(|step| &step.points);
     let outside: Vec<_> = points()
         .filter(|x| !x.iter().all(|v| (-1e308..=1e308).contains(v)))
@@ -862,21 +853,22 @@ fn probes_in_a_box_wider_than_f64_are_finite() {
     );
 }
 
-/// One iteration of [`record_steps`]: what it did, the best point before it and the
-/// points it evaluated.
+/// One iteration of [`record_steps`]: what it did, its σ, the best point before it and
+/// the points it evaluated.
 struct RecordedStep {
     kind: AutoStep,
+    sigma: f64,
     best: Vec<f64>,
     points: Vec<Vec<f64>>,
 }
 
-/// Every iteration of a run of Auto on `f` from `x0` at scale `sigma0` in the box
-/// `bounds`, to `budget` evaluations, on `seed`.
+/// Every iteration of a run of Auto on `f` from `x0` at scale `sigma0` (in the box
+/// `bounds`, if any), to `budget` evaluations, on `seed`.
 fn record_steps(
     mut f: impl FnMut(&[f64]) -> f64,
     x0: &[f64],
     sigma0: f64,
-    (lower, upper): (&[f64], &[f64]),
+    bounds: Option<(&[f64], &[f64])>,
     budget: usize,
     seed: u64,
 ) -> Vec<RecordedStep> {
@@ -889,9 +881,10 @@ fn record_steps(
         Xoshiro256PlusPlus::seed_from_u64(seed),
     )
     .unwrap()
-    .with_bounds(lower, upper)
-    .unwrap()
     .with_options(AutoOptions::default().with_max_evaluations(budget).unwrap());
+    if let Some((lower, upper)) = bounds {
+        auto = auto.with_bounds(lower, upper).unwrap();
+    }
     let mut steps = Vec::new();
     loop {
         let best = auto.theta().to_vec();
@@ -905,6 +898,7 @@ fn record_steps(
         };
         steps.push(RecordedStep {
             kind: report.kind,
+            sigma: report.sigma,
             best,
             points,
         });
