@@ -37,7 +37,19 @@ pub(super) fn symmetric<T: Real>(a: &mut [T], v: &mut [T], n: usize) {
     let (d, rest) = a.split_at_mut(n);
     let e = &mut rest[..n];
     tridiagonalise(v, n, d, e);
+    // QL rotates pairs of Q's columns: they are rows of Qᵀ, contiguous.
+    transpose(v, n);
     ql(v, n, d, e);
+    transpose(v, n);
+}
+
+/// Transposes the row-major n×n `m` in place.
+fn transpose<T: Real>(m: &mut [T], n: usize) {
+    for i in 0..n {
+        for j in i + 1..n {
+            m.swap(i * n + j, j * n + i);
+        }
+    }
 }
 
 /// Reduces the symmetric `q` (n ≥ 2) to tridiagonal form: on return `d` holds T's
@@ -70,20 +82,27 @@ fn tridiagonalise<T: Real>(q: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
         e[k + 1] = alpha * scale;
         // uᵀu = 2‖x‖(‖x‖ + |x₁|).
         let beta = T::ONE / (norm * (norm + head.abs()));
-        // p = βBu over the trailing block B (rows and columns k + 1 …).
+        // A copy of u in row k (columns k + 1 …), which no later stage reads, so that the
+        // products below run along rows.
         for i in k + 1..n {
-            d[i] = beta * (k + 1..n).fold(T::ZERO, |s, j| s + q[i * n + j] * q[j * n + k]);
+            q[k * n + i] = q[i * n + k];
         }
-        let half = T::HALF * beta * (k + 1..n).fold(T::ZERO, |s, i| s + q[i * n + k] * d[i]);
-        for i in k + 1..n {
-            d[i] -= half * q[i * n + k];
+        let (upper, trailing) = q.split_at_mut((k + 1) * n);
+        let u = &upper[k * n + k + 1..(k + 1) * n];
+        // p = βBu over the trailing block B (rows and columns k + 1 …).
+        for (i, row) in trailing.chunks_exact(n).enumerate() {
+            let row = &row[k + 1..];
+            d[k + 1 + i] = beta * row.iter().zip(u).fold(T::ZERO, |s, (&b, &x)| s + b * x);
+        }
+        let w = &mut d[k + 1..n];
+        let half = T::HALF * beta * u.iter().zip(w.iter()).fold(T::ZERO, |s, (&x, &p)| s + x * p);
+        for (wi, &ui) in w.iter_mut().zip(u) {
+            *wi -= half * ui;
         }
         // B ← B − uwᵀ − wuᵀ, w now in d.
-        for i in k + 1..n {
-            let (ui, wi) = (q[i * n + k], d[i]);
-            for j in k + 1..n {
-                let (uj, wj) = (q[j * n + k], d[j]);
-                q[i * n + j] -= ui * wj + wi * uj;
+        for (row, (&ui, &wi)) in trailing.chunks_exact_mut(n).zip(u.iter().zip(w.iter())) {
+            for (b, (&uj, &wj)) in row[k + 1..].iter_mut().zip(u.iter().zip(w.iter())) {
+                *b -= ui * wj + wi * uj;
             }
         }
     }
@@ -106,11 +125,24 @@ fn tridiagonalise<T: Real>(q: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
             continue;
         }
         let beta = T::TWO / uu;
-        for j in c..n {
-            let t = beta * (c..n).fold(T::ZERO, |s, i| s + q[i * n + k] * q[i * n + j]);
-            for i in c..n {
-                let ui = q[i * n + k];
-                q[i * n + j] -= t * ui;
+        // t = βuᵀQ over columns c …, summed down the rows in row k (columns c …), which
+        // held u's copy and is reset to I's row before it is read again.
+        let (upper, trailing) = q.split_at_mut(c * n);
+        let t = &mut upper[k * n + c..c * n];
+        t.fill(T::ZERO);
+        for i in c..n {
+            let ui = trailing[(i - c) * n + k];
+            for (tj, &x) in t.iter_mut().zip(&trailing[(i - c) * n + c..(i - c + 1) * n]) {
+                *tj += ui * x;
+            }
+        }
+        for tj in t.iter_mut() {
+            *tj *= beta;
+        }
+        for row in trailing.chunks_exact_mut(n) {
+            let ui = row[k];
+            for (x, &tj) in row[c..].iter_mut().zip(t.iter()) {
+                *x -= tj * ui;
             }
         }
     }
@@ -122,9 +154,9 @@ fn tridiagonalise<T: Real>(q: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
 }
 
 /// Diagonalises the symmetric tridiagonal T (diagonal `d`, sub-diagonal `e[1..]`) by
-/// implicit QL iterations, rotating the columns of `q` along: on return `d` holds the
-/// eigenvalues and `q` the eigenvectors of Q T Qᵀ.
-fn ql<T: Real>(q: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
+/// implicit QL iterations, rotating the rows of `qt` (Qᵀ) along: on return `d` holds the
+/// eigenvalues and the rows of `qt` the eigenvectors of Q T Qᵀ.
+fn ql<T: Real>(qt: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
     // e[i] = T[i+1][i] from here on.
     for i in 1..n {
         e[i - 1] = e[i];
@@ -166,10 +198,9 @@ fn ql<T: Real>(q: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
                 p = s * t;
                 d[i + 1] = h + p;
                 g = c * t - b;
-                for k in 0..n {
-                    let (x, y) = (q[k * n + i], q[k * n + i + 1]);
-                    q[k * n + i + 1] = s * x + c * y;
-                    q[k * n + i] = c * x - s * y;
+                let (first, second) = qt[i * n..(i + 2) * n].split_at_mut(n);
+                for (x, y) in first.iter_mut().zip(second.iter_mut()) {
+                    (*x, *y) = (c * *x - s * *y, s * *x + c * *y);
                 }
             }
             if !deflated {
