@@ -87,8 +87,8 @@ fn tridiagonalise<T: Real>(q: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
         for i in k + 1..n {
             q[k * n + i] = q[i * n + k];
         }
-        let (upper, trailing) = q.split_at_mut((k + 1) * n);
-        let u = &upper[k * n + k + 1..(k + 1) * n];
+        let (upper, trailing) = q[..n * n].split_at_mut((k + 1) * n);
+        let u = &upper[k * n + k + 1..];
         // p = βBu over the trailing block B (rows and columns k + 1 …).
         for (i, row) in trailing.chunks_exact(n).enumerate() {
             let row = &row[k + 1..];
@@ -127,8 +127,8 @@ fn tridiagonalise<T: Real>(q: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
         let beta = T::TWO / uu;
         // t = βuᵀQ over columns c …, summed down the rows in row k (columns c …), which
         // held u's copy and is reset to I's row before it is read again.
-        let (upper, trailing) = q.split_at_mut(c * n);
-        let t = &mut upper[k * n + c..c * n];
+        let (upper, trailing) = q[..n * n].split_at_mut(c * n);
+        let t = &mut upper[k * n + c..];
         t.fill(T::ZERO);
         for i in c..n {
             let ui = trailing[(i - c) * n + k];
