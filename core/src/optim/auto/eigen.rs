@@ -95,7 +95,11 @@ fn tridiagonalise<T: Real>(q: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
             d[k + 1 + i] = beta * row.iter().zip(u).fold(T::ZERO, |s, (&b, &x)| s + b * x);
         }
         let w = &mut d[k + 1..n];
-        let half = T::HALF * beta * u.iter().zip(w.iter()).fold(T::ZERO, |s, (&x, &p)| s + x * p);
+        let half = T::HALF
+            * beta
+            * u.iter()
+                .zip(w.iter())
+                .fold(T::ZERO, |s, (&x, &p)| s + x * p);
         for (wi, &ui) in w.iter_mut().zip(u) {
             *wi -= half * ui;
         }
@@ -132,7 +136,10 @@ fn tridiagonalise<T: Real>(q: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
         t.fill(T::ZERO);
         for i in c..n {
             let ui = trailing[(i - c) * n + k];
-            for (tj, &x) in t.iter_mut().zip(&trailing[(i - c) * n + c..(i - c + 1) * n]) {
+            for (tj, &x) in t
+                .iter_mut()
+                .zip(&trailing[(i - c) * n + c..(i - c + 1) * n])
+            {
                 *tj += ui * x;
             }
         }
