@@ -784,7 +784,8 @@ fn signals_write_what_finished_and_exit_non_zero() {
     }
 }
 
-/// `optimize` without `--method` runs Auto, which solves QUAD to machine precision.
+/// `optimize` without `--method` runs Auto, which solves QUAD to machine precision; each
+/// iteration's line says what the iteration did.
 #[test]
 fn optimize_defaults_to_auto() {
     let out = hodr(&["optimize", "--task", "QUAD", "--budget", "200"]);
@@ -805,6 +806,22 @@ fn optimize_defaults_to_auto() {
         .and_then(|s| s.parse().ok())
         .expect("a parameter error");
     assert!(error < 1e-8, "{last}");
+    let kinds = [
+        "Plateau",
+        "AtModelMinimum",
+        "Accepted",
+        "Rejected",
+        "Continued",
+        "OutOfBudget",
+        "Centred",
+        "Probed",
+    ];
+    assert!(
+        text.lines()
+            .filter(|l| l.starts_with("iter") && !l.starts_with("iter    0"))
+            .all(|l| kinds.iter().any(|k| l.ends_with(k))),
+        "{text}"
+    );
 }
 
 /// Ctrl-C during an iteration of millions of evaluations stops it within a batch, not

@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result};
 use hodr_core::optim::preset::Preset;
-use hodr_core::optim::{Auto, AutoOptions, Budget, Optimiser};
+use hodr_core::optim::{Auto, AutoOptions, AutoStep, Budget, Optimiser};
 use hodr_core::{Batch, Estimator, NoiseSeed, Objective, Workspace};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
@@ -112,6 +112,10 @@ pub struct Point {
     /// The smoothing width σ of the iteration (CMA-ES: its overall step size); none at
     /// the start.
     pub sigma: Option<f64>,
+    /// What Auto's iteration did (accepted a step, probed, …); none for other methods
+    /// and at the start. Printed by `hodr optimize`, not written to files.
+    #[serde(skip)]
+    pub step: Option<AutoStep>,
 }
 
 /// One run: task × method × seed.
@@ -197,12 +201,14 @@ pub fn run_observed(
         param_error: param_error(&start),
         image_error: task.image_error(probe.as_mut(), &start),
         sigma: None,
+        step: None,
     }];
     observe(&points[0]);
     let mut best = (0, start.clone());
     let mut record = |elapsed: Duration,
                       evaluations: usize,
                       sigma: f64,
+                      step: Option<AutoStep>,
                       theta: &[f64],
                       points: &mut Vec<Point>| {
         let p = Point {
@@ -211,6 +217,7 @@ pub fn run_observed(
             param_error: param_error(theta),
             image_error: task.image_error(probe.as_mut(), theta),
             sigma: Some(sigma),
+            step,
         };
         observe(&p);
         if p.image_error <= points[best.0].image_error {
@@ -274,6 +281,7 @@ pub fn run_observed(
                         elapsed,
                         report.evaluations,
                         report.sigma,
+                        None,
                         opt.theta(),
                         &mut points,
                     ),
@@ -319,6 +327,7 @@ pub fn run_observed(
                         elapsed,
                         report.evaluations,
                         report.sigma,
+                        Some(report.kind),
                         auto.theta(),
                         &mut points,
                     ),
@@ -368,6 +377,7 @@ pub fn run_observed(
                     elapsed,
                     cma.function_evals(),
                     cma.sigma(),
+                    None,
                     &mean,
                     &mut points,
                 );
