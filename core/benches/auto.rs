@@ -1,6 +1,8 @@
-//! Auto's own cost per objective evaluation: whole runs on the sphere f(θ) = θ·θ, whose
-//! evaluation costs nanoseconds, so the time is the optimiser's (model fit, metric,
-//! trust-region step, memory).
+//! Auto's own cost per objective evaluation: whole runs on functions whose evaluation
+//! costs nanoseconds, so the time is the optimiser's (model fit, metric, trust-region
+//! step, memory) — the sphere f(θ) = θ·θ, and the separable ellipsoid
+//! f(θ) = Σᵢ 10^(6i/(n−1)) (θᵢ − 0.3)², on which Auto takes many short iterations (a fit
+//! each) while its metric learns the condition of 10⁶.
 //!
 //! Each measured run starts at θ₀ = (1, …, 1) with σ₀ = 1 and a budget of 100·n
 //! evaluations; throughput is in evaluations, so criterion's "elem/s" inverts to the
@@ -18,8 +20,30 @@ use hodr_core::optim::{Auto, AutoOptions};
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 
+/// The benchmark's objectives.
+#[derive(Clone, Copy)]
+enum Function {
+    Sphere,
+    Ellipsoid,
+}
+
+impl Function {
+    fn value(self, x: &[f64]) -> f64 {
+        match self {
+            Function::Sphere => x.iter().map(|v| v * v).sum(),
+            Function::Ellipsoid => {
+                let last = (x.len() - 1).max(1) as f64;
+                x.iter()
+                    .enumerate()
+                    .map(|(i, v)| 10f64.powf(6.0 * i as f64 / last) * (v - 0.3) * (v - 0.3))
+                    .sum()
+            }
+        }
+    }
+}
+
 /// One run: evaluations spent.
-fn run(n: usize, buffer: &mut [f64]) -> usize {
+fn run(function: Function, n: usize, buffer: &mut [f64]) -> usize {
     let mut theta = vec![1.0; n];
     let options = AutoOptions::default()
         .with_max_evaluations(100 * n)
@@ -32,29 +56,35 @@ fn run(n: usize, buffer: &mut [f64]) -> usize {
     )
     .unwrap()
     .with_options(options);
-    let mut sphere = |x: &[f64]| x.iter().map(|v| v * v).sum::<f64>();
+    let mut f = |x: &[f64]| function.value(x);
     let mut evaluations = 0;
-    while let Ok(Some(report)) = auto.step(&mut sphere) {
+    while let Ok(Some(report)) = auto.step(&mut f) {
         evaluations = report.evaluations;
     }
     evaluations
 }
 
 fn auto(c: &mut Criterion) {
-    let mut group = c.benchmark_group("auto/sphere");
-    group
-        .warm_up_time(Duration::from_millis(500))
-        .measurement_time(Duration::from_secs(3))
-        .sample_size(10);
-    for n in [2usize, 5, 10, 20, 50, 100] {
-        let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)];
-        let evaluations = run(n, &mut buffer);
-        group.throughput(Throughput::Elements(evaluations as u64));
-        group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, &n| {
-            b.iter(|| black_box(run(n, &mut buffer)))
-        });
+    for (name, function) in [
+        ("auto/sphere", Function::Sphere),
+        ("auto/ellipsoid", Function::Ellipsoid),
+    ] {
+        let mut group = c.benchmark_group(name);
+        group
+            .warm_up_time(Duration::from_millis(500))
+            .measurement_time(Duration::from_secs(3))
+            .sample_size(10);
+        // 30 and 40: the full model's dearest dimensions; from 41 on it is diagonal.
+        for n in [2usize, 5, 10, 20, 30, 40, 50, 100] {
+            let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)];
+            let evaluations = run(function, n, &mut buffer);
+            group.throughput(Throughput::Elements(evaluations as u64));
+            group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, &n| {
+                b.iter(|| black_box(run(function, n, &mut buffer)))
+            });
+        }
+        group.finish();
     }
-    group.finish();
 }
 
 criterion_group!(benches, auto);
