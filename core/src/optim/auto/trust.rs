@@ -178,10 +178,10 @@ fn write_step<T: Real>(shape: Shape, v: &[T], n: usize, c: impl Fn(usize) -> T, 
 mod tests {
     use super::*;
 
-    /// The step for a 2-D model (fixed arrays: no heap here).
-    fn run(shape: Shape, g: &[f64; 2], h: &[f64], radius: f64) -> [f64; 2] {
-        let (mut a, mut v, mut gamma, mut lambda) = ([0.0; 4], [0.0; 4], [0.0; 2], [0.0; 2]);
-        let mut s = [0.0; 2];
+    /// The step for an N-dimensional model, N ≤ 6 (fixed arrays: no heap here).
+    fn run<const N: usize>(shape: Shape, g: &[f64; N], h: &[f64], radius: f64) -> [f64; N] {
+        let (mut a, mut v, mut gamma, mut lambda) = ([0.0; 36], [0.0; 36], [0.0; 6], [0.0; 6]);
+        let mut s = [0.0; N];
         let scratch = Scratch {
             a: &mut a,
             v: &mut v,
@@ -221,19 +221,6 @@ mod tests {
         (h, inverse, core::array::from_fn(|i| q(i, 0)))
     }
 
-    fn run6(h: &[f64; 36], g: &[f64; 6], radius: f64) -> [f64; 6] {
-        let (mut a, mut v, mut gamma, mut lambda) = ([0.0; 36], [0.0; 36], [0.0; 6], [0.0; 6]);
-        let mut s = [0.0; 6];
-        let scratch = Scratch {
-            a: &mut a,
-            v: &mut v,
-            gamma: &mut gamma,
-            lambda: &mut lambda,
-        };
-        assert!(solve(Shape::Full, g, h, radius, scratch, &mut s));
-        s
-    }
-
     /// A positive definite H whose Newton step fits gives −H⁻¹g (by its Cholesky
     /// factor); one whose step does not fit, a step to the boundary; a nearly singular
     /// H (κ = 1e14, its soft eigenvalue below 64ε of the largest) with g off its soft direction, the hard case's step to the boundary
@@ -244,20 +231,20 @@ mod tests {
         let (h, inverse, _) = reflected(&[1.0, 3.0, 0.5, 10.0, 2.0, 7.0]);
         let newton: [f64; 6] =
             core::array::from_fn(|i| -(0..6).map(|j| inverse[i * 6 + j] * g[j]).sum::<f64>());
-        let s = run6(&h, &g, 2.0 * norm(&newton));
+        let s = run(Shape::Full, &g, &h, 2.0 * norm(&newton));
         for i in 0..6 {
             assert!(
                 (s[i] - newton[i]).abs() < 1e-12 * norm(&newton),
                 "{s:?} {newton:?}"
             );
         }
-        let s = run6(&h, &g, 0.5 * norm(&newton));
+        let s = run(Shape::Full, &g, &h, 0.5 * norm(&newton));
         assert!((norm(&s) - 0.5 * norm(&newton)).abs() < 1e-9, "{s:?}");
         // λ = 1e-13 along Q's first column; g orthogonal to it.
         let (h, _, soft) = reflected(&[1e-13, 3.0, 0.5, 10.0, 2.0, 7.0]);
         let along = g.iter().zip(&soft).map(|(a, b)| a * b).sum::<f64>();
         let g: [f64; 6] = core::array::from_fn(|i| g[i] - along * soft[i]);
-        let s = run6(&h, &g, 100.0);
+        let s = run(Shape::Full, &g, &h, 100.0);
         assert!((norm(&s) - 100.0).abs() < 1e-6, "{s:?}");
     }
 
