@@ -862,6 +862,31 @@ struct RecordedStep {
     points: Vec<Vec<f64>>,
 }
 
+/// Auto from `theta` (its start, then its best point) at scale `sigma0`, in the box
+/// `bounds` if any, with a budget of `budget` evaluations and its random numbers from
+/// `seed`; `buffer` holds [`Auto::buffer_len`] floats.
+fn budgeted<'a>(
+    theta: &'a mut [f64],
+    buffer: &'a mut [f64],
+    sigma0: f64,
+    bounds: Option<(&[f64], &[f64])>,
+    budget: usize,
+    seed: u64,
+) -> Auto<'a, f64, Xoshiro256PlusPlus> {
+    let auto = Auto::new(
+        theta,
+        sigma0,
+        buffer,
+        Xoshiro256PlusPlus::seed_from_u64(seed),
+    )
+    .unwrap()
+    .with_options(AutoOptions::default().with_max_evaluations(budget).unwrap());
+    match bounds {
+        Some((lower, upper)) => auto.with_bounds(lower, upper).unwrap(),
+        None => auto,
+    }
+}
+
 /// Every iteration of a run of Auto on `f` from `x0` at scale `sigma0` (in the box
 /// `bounds`, if any), to `budget` evaluations, on `seed`.
 fn record_steps(
@@ -874,17 +899,7 @@ fn record_steps(
 ) -> Vec<RecordedStep> {
     let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(x0.len())];
     let mut theta = x0.to_vec();
-    let mut auto = Auto::new(
-        &mut theta,
-        sigma0,
-        &mut buffer,
-        Xoshiro256PlusPlus::seed_from_u64(seed),
-    )
-    .unwrap()
-    .with_options(AutoOptions::default().with_max_evaluations(budget).unwrap());
-    if let Some((lower, upper)) = bounds {
-        auto = auto.with_bounds(lower, upper).unwrap();
-    }
+    let mut auto = budgeted(&mut theta, &mut buffer, sigma0, bounds, budget, seed);
     let mut steps = Vec::new();
     loop {
         let best = auto.theta().to_vec();
@@ -1387,17 +1402,7 @@ fn reaches(
 ) -> bool {
     let mut theta = x0.to_vec();
     let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(x0.len())];
-    let mut auto = Auto::new(
-        &mut theta,
-        sigma0,
-        &mut buffer,
-        Xoshiro256PlusPlus::seed_from_u64(seed),
-    )
-    .unwrap();
-    if let Some((lower, upper)) = bounds {
-        auto = auto.with_bounds(lower, upper).unwrap();
-    }
-    let mut auto = auto.with_options(AutoOptions::default().with_max_evaluations(budget).unwrap());
+    let mut auto = budgeted(&mut theta, &mut buffer, sigma0, bounds, budget, seed);
     while let Ok(Some(_)) = auto.step(&mut f) {
         if auto.value().is_some_and(|v| v < target) {
             return true;
