@@ -14,6 +14,7 @@
 use super::eigen;
 use super::model::Shape;
 use crate::cholesky;
+use crate::optim::vector::norm;
 use crate::real::Real;
 
 /// Bisection steps on μ: each halves the bracket, so 200 reach any precision of T.
@@ -152,7 +153,7 @@ fn newton_inside<T: Real>(g: &[T], h: &[T], radius: T, a: &mut [T], s: &mut [T])
         *si = -gi;
     }
     cholesky::solve(a, n, s);
-    s.iter().fold(T::ZERO, |acc, &x| acc + x.sq()).sqrt() <= radius
+    norm(s) <= radius
 }
 
 /// s = Σᵢ cᵢ vᵢ (the eigenvectors of a full H) or cᵢ eᵢ (diagonal H).
@@ -192,10 +193,6 @@ mod tests {
         s
     }
 
-    fn norm(s: &[f64]) -> f64 {
-        libm::sqrt(s.iter().map(|x| x * x).sum::<f64>())
-    }
-
     #[test]
     fn interior_newton_step() {
         let s = run(Shape::Full, &[2.0, -1.0], &[2.0, 0.0, 0.0, 1.0], 10.0);
@@ -223,8 +220,9 @@ mod tests {
 
     /// A positive definite H whose Newton step fits gives −H⁻¹g (by its Cholesky
     /// factor); one whose step does not fit, a step to the boundary; a nearly singular
-    /// H (κ = 1e14, its soft eigenvalue below 64ε of the largest) with g off its soft direction, the hard case's step to the boundary
-    /// along that direction, not the interior step the factor would give.
+    /// H (κ = 1e14, its soft eigenvalue below 64ε of the largest) with g off its soft
+    /// direction, the hard case's step to the boundary along that direction, not the
+    /// interior step the factor would give.
     #[test]
     fn interior_steps_by_cholesky_and_the_rest_by_eigenvalues() {
         let g = [0.3, -1.0, 2.0, 0.5, -0.7, 1.1];
