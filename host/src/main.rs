@@ -27,9 +27,13 @@ struct Cli {
     command: Option<Command>,
 }
 
+// Every subcommand takes a negative number as an option's value (`allow_negative_numbers`),
+// so that `--budget -1` is refused by that option's parser, which names it, rather than
+// read as an unknown flag.
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Error against run time for every method on every task (report.md, plots, CSV, JSON).
+    #[command(allow_negative_numbers = true)]
     Report {
         /// Tasks to run (comma-separated; default all, see `hodr tasks`).
         #[arg(long, value_delimiter = ',')]
@@ -43,8 +47,9 @@ enum Command {
         /// 5 seeds and smaller budgets: about a minute on 2 cores.
         #[arg(long)]
         quick: bool,
-        /// Objective evaluations per run for every task (default: each task's budget).
-        #[arg(long)]
+        /// Objective evaluations per run for every task, ≥ 1 (default: each task's
+        /// budget).
+        #[arg(long, value_parser = at_least_one)]
         budget: Option<usize>,
         /// Hyper-parameter override for every task, key=value (repeatable): pairs,
         /// sigma_start, sigma_end, trust_radius, ls_iters, recompute, lr, crn,
@@ -57,12 +62,13 @@ enum Command {
         out: PathBuf,
         /// The generalisation suite run after the tasks, into OUT/suite: off, quick
         /// (seconds) or full (tens of minutes; the same as `hodr suite`).
-        #[arg(long, value_enum, default_value_t = report::SuiteScope::Quick)]
+        #[arg(long, value_enum, ignore_case = true, default_value_t = report::SuiteScope::Quick)]
         suite: report::SuiteScope,
     },
     /// Every task with its dimension and a one-line description.
     Tasks,
     /// Render a task at given parameters (default: its true parameters) to a PNG.
+    #[command(allow_negative_numbers = true)]
     Render {
         /// The task.
         #[arg(long)]
@@ -81,6 +87,7 @@ enum Command {
         out: PathBuf,
     },
     /// Optimise one task with one method, printing per-iteration progress.
+    #[command(allow_negative_numbers = true)]
     Optimize {
         /// The task.
         #[arg(long)]
@@ -91,8 +98,8 @@ enum Command {
         /// Seed (start and sampling).
         #[arg(long, default_value_t = 0)]
         seed: u64,
-        /// Objective evaluations (default: the task's budget).
-        #[arg(long)]
+        /// Objective evaluations, ≥ 1 (default: the task's budget).
+        #[arg(long, value_parser = at_least_one)]
         budget: Option<usize>,
         /// Hyper-parameter override, key=value (repeatable), as for `report`.
         #[arg(long = "set")]
@@ -109,6 +116,7 @@ enum Command {
         quiet: bool,
     },
     /// Approximate an image with N shapes; writes PNG (and SVG).
+    #[command(allow_negative_numbers = true)]
     Fit2d {
         /// The target image (PNG or JPEG).
         #[arg(long)]
@@ -138,6 +146,7 @@ enum Command {
         time: Option<f64>,
     },
     /// Variance of every estimator at equal evaluation budgets (Markdown on stdout).
+    #[command(allow_negative_numbers = true)]
     Variance {
         /// Repetitions per table cell.
         #[arg(long, default_value_t = 2000, value_parser = clap::value_parser!(u64).range(2..))]
@@ -146,12 +155,13 @@ enum Command {
     /// Generalisation suite: Auto, CMA-ES, BOBYQA and FR22 on BBOB functions, plateaus,
     /// integer plateaus, a flat direction, BOX2, noisy functions and discs rendered on a
     /// noise seed (suite.md, suite.csv, ecdf.png).
+    #[command(allow_negative_numbers = true)]
     Suite {
         /// Families (comma-separated; default all): bbob, plateau, integer, flat, tasks,
         /// noisy, rendered.
         #[arg(long, value_delimiter = ',')]
         families: Vec<String>,
-        /// Dimensions to run (comma-separated; default every family's own: BBOB 2, 5, 10, 20, plateau 2, 4, 8, integer 2, 5, 10, flat 6, tasks 2, noisy 2, 5, 10, rendered 2, 4, 8). BBOB and noisy run at any n ≥ 2, e.g. 40,100; the other families only at their own.
+        /// Dimensions to run (comma-separated; default every family's own: BBOB 2, 5, 10, 20, plateau 2, 4, 8, integer 2, 5, 10, flat 6, tasks 2, noisy 2, 5, 10, rendered 2, 4, 8). BBOB and noisy run at any n from 2 to 1000, e.g. 40,100; the other families only at their own.
         #[arg(long, value_delimiter = ',')]
         dims: Vec<usize>,
         /// Functions of the bbob and noisy families (comma-separated numbers; default all): bbob 1, 2, 6, 7, 8, 10, 11, 12, 13, 14, 15; noisy 101–112. A selected bbob or noisy family none of whose functions is listed runs none.
@@ -178,6 +188,7 @@ enum Command {
         jobs: usize,
     },
     /// Error against run time of every preset on QUAD, BOX2-REF and stiff quadratics.
+    #[command(allow_negative_numbers = true)]
     Runtime {
         /// Seeds per task and preset.
         #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u64).range(1..))]
@@ -229,6 +240,15 @@ fn main() -> ExitCode {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(2)
+    }
+}
+
+/// A count of at least 1, for clap.
+fn at_least_one(text: &str) -> Result<usize, String> {
+    match text.trim().parse::<i128>() {
+        Ok(n) if n >= 1 => usize::try_from(n).map_err(|_| format!("{n} is too large")),
+        Ok(n) => Err(format!("{n} is below 1")),
+        Err(_) => Err(format!("`{text}` is not a whole number")),
     }
 }
 
@@ -293,16 +313,49 @@ fn check_writable(path: &std::path::Path) -> Result<()> {
     Ok(())
 }
 
-/// The numbers of `--params`: the text itself, or with a leading `@` the contents of
-/// that file; separated by commas and/or whitespace.
+/// Makes sure an image can be written to `path` (given by the option `flag`) in the
+/// format its extension names, before any work is done ([`check_writable`]).
 ///
 /// # Errors
-/// An unreadable file, or a value that is not a finite number (named, with its
-/// position).
+/// An extension that names no image format this build writes (PNG, JPEG), or as
+/// [`check_writable`].
+fn check_image_path(path: &std::path::Path, flag: &str) -> Result<()> {
+    match image::ImageFormat::from_path(path) {
+        Ok(format) if format.writing_enabled() => check_writable(path),
+        _ => bail!(
+            "{flag} {}: name the image .png or .jpg (its extension sets the format)",
+            path.display()
+        ),
+    }
+}
+
+/// Most bytes `--params @FILE` reads: TEXTURE's 1 024 values take about 20 KB.
+const MAX_PARAMS_BYTES: u64 = 1 << 20;
+
+/// The numbers of `--params`: the text itself, or with a leading `@` the contents of
+/// that file (at most [`MAX_PARAMS_BYTES`]); separated by commas and/or whitespace.
+///
+/// # Errors
+/// An unreadable or oversized file, or a value that is not a finite number (named,
+/// with its position).
 fn parse_params(list: &str) -> Result<Vec<f64>> {
     let text = match list.strip_prefix('@') {
-        Some(path) => std::fs::read_to_string(path)
-            .with_context(|| format!("reading the parameters of --params @{path}"))?,
+        Some(path) => {
+            use std::io::Read;
+            let context = || format!("reading the parameters of --params @{path}");
+            let mut text = String::new();
+            std::fs::File::open(path)
+                .with_context(context)?
+                .take(MAX_PARAMS_BYTES + 1)
+                .read_to_string(&mut text)
+                .with_context(context)?;
+            if text.len() as u64 > MAX_PARAMS_BYTES {
+                bail!(
+                    "--params @{path}: the file is larger than {MAX_PARAMS_BYTES} bytes, far more than any task's parameters"
+                );
+            }
+            text
+        }
         None => list.to_string(),
     };
     text.split(|c: char| c == ',' || c.is_whitespace())
@@ -322,6 +375,12 @@ fn brief(theta: &[f64]) -> String {
     } else {
         format!("{:?} … ({} parameters)", &theta[..8], theta.len())
     }
+}
+
+/// Whether `path`'s extension is `ext` (any case).
+fn has_extension(path: &std::path::Path, ext: &str) -> bool {
+    path.extension()
+        .is_some_and(|e| e.to_string_lossy().eq_ignore_ascii_case(ext))
 }
 
 /// The shape kinds `fit2d` places (hodr-raster's fit encodes no polygon or cubic path).
@@ -407,7 +466,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
                     theta.len()
                 );
             }
-            check_writable(&out)?;
+            check_image_path(&out, "--out")?;
             let spp = match (spp, t.image_spp()) {
                 (Some(_), None) => bail!(
                     "--spp applies to the path-traced tasks only; {} renders without sampling noise",
@@ -450,13 +509,14 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
                         path.display()
                     );
                 }
-                check_writable(path)?;
+                check_image_path(path, "--out")?;
             }
             let settings = Settings {
                 quick: false,
                 budget,
                 overrides: overrides(&set)?,
             };
+            settings.check_for(&[m])?;
             println!(
                 "optimize {} (n = {}) with {}, seed {seed}, budget {} evaluations",
                 t.name(),
@@ -495,8 +555,11 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             if !quiet && shown != Some(last) {
                 println!("{}", line(last, &r.points[last]));
             }
-            if let Some(why) = &r.stopped {
-                eprintln!("stopped early: {why}");
+            // An interrupt has its own exit code; any other early stop is a failure,
+            // reported (and the exit code set) once what was found is written.
+            let failure = r.stopped.as_deref().filter(|&why| why != "interrupted");
+            if failure.is_none() && r.stopped.is_some() {
+                eprintln!("stopped early: interrupted");
             }
             let b = &r.points[r.best];
             println!(
@@ -510,6 +573,9 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
                 img.save(path)
                     .with_context(|| format!("writing {}", path.display()))?;
                 println!("result image written to {}", path.display());
+            }
+            if let Some(why) = failure {
+                bail!("{} on {} stopped early: {why}", m.name(), t.name());
             }
         }
         Command::Fit2d {
@@ -533,8 +599,14 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             let kind_name = kind.as_str();
             let kind: hodr_raster::ShapeKind =
                 kind_name.parse().map_err(|e| anyhow::anyhow!("{e}"))?;
+            if !has_extension(&out, "png") {
+                bail!("--out {}: fit2d writes a PNG; name it .png", out.display());
+            }
             check_writable(&out)?;
             if let Some(svg) = &svg {
+                if !has_extension(svg, "svg") {
+                    bail!("--svg {}: name the SVG .svg", svg.display());
+                }
                 check_writable(svg)?;
             }
             let target_image = hodr_raster::Target::open(&target)?;
@@ -564,7 +636,11 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
                 target.display(),
                 target_image.width(),
                 target_image.height(),
-                time.map_or(String::new(), |t| format!(", at most {t} s"))
+                time.map_or(String::new(), |t| if (1e-3..1e6).contains(&t) {
+                    format!(", at most {t} s")
+                } else {
+                    format!(", at most {t:.3e} s")
+                })
             );
             let clock = std::time::Instant::now();
             // Stop before the next shape on a signal or when the time is up.
@@ -612,7 +688,12 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             if interrupt.load(Ordering::Relaxed) {
                 eprintln!("interrupted: wrote the {placed} shapes placed so far");
             } else if placed < shapes {
-                println!("time is up after {placed} of {shapes} shapes");
+                let why = if time.is_some_and(|t| clock.elapsed().as_secs_f64() >= t) {
+                    "time is up"
+                } else {
+                    "no further shape lowers the error"
+                };
+                println!("{why} after {placed} of {shapes} shapes");
             }
             println!(
                 "{placed} shapes, RMSE {:.5}, {:.1} s; wrote {}",

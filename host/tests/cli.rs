@@ -142,7 +142,9 @@ fn skipped_methods_read_as_skipped() {
         row.matches("skipped").count() == 8 && !row.contains("e0"),
         "{row}"
     );
-    assert!(md.contains("Skipped (one estimate exceeds the run's budget): OurH"));
+    assert!(md.contains(
+        "Skipped (one estimate, iteration or generation exceeds the run's budget): OurH"
+    ));
 }
 
 /// A setting whose first estimate cannot fit the budget is refused at once, not run to
@@ -890,4 +892,167 @@ fn newton_cg_recipes_are_named_by_their_options() {
         "{stderr}"
     );
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
+}
+
+/// No method spends more than its budget: a preset's iteration that would overrun it
+/// (a Newton step costs several estimates) is abandoned, CMA-ES stops before a
+/// generation that would, and a run that cannot complete one iteration is skipped.
+#[test]
+fn runs_keep_within_their_budget() {
+    let dir = scratch("budget");
+    let out = hodr(&[
+        "report",
+        "--tasks",
+        "box2,quad",
+        "--methods",
+        "OurHVP,OurHVPA,NCG-kernel,CMA-ES",
+        "--seeds",
+        "2",
+        "--budget",
+        "300",
+        "--suite",
+        "off",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("traces.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = header.iter().position(|&h| h == "evaluations").unwrap();
+    let mut rows = 0;
+    for line in lines {
+        let evaluations: usize = line.split(',').nth(column).unwrap().parse().unwrap();
+        assert!(evaluations <= 300, "{line}");
+        rows += 1;
+    }
+    assert!(rows > 16, "{csv}");
+    let out = hodr(&[
+        "optimize", "--task", "BOX2", "--method", "OurHVP", "--budget", "30",
+    ]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("skipped") && err.contains("30"), "{err}");
+}
+
+/// Values that clap would otherwise misread or that a method would fail on name the
+/// option or key as the user typed it; a failed run exits non-zero after its output.
+#[test]
+fn options_and_settings_are_checked_by_name() {
+    for (args, says) in [
+        (
+            &["optimize", "--task", "BOX2", "--budget", "-1"][..],
+            &["--budget", "-1"][..],
+        ),
+        (
+            &["optimize", "--task", "BOX2", "--budget", "0"],
+            &["--budget", "below 1"],
+        ),
+        (
+            &[
+                "optimize",
+                "--task",
+                "BOX2",
+                "--method",
+                "NewtonCG",
+                "--set",
+                "sigma_shrink=2",
+            ],
+            &["sigma_shrink=2", "between 0 and 1"],
+        ),
+        (
+            &[
+                "optimize", "--task", "BOX2", "--method", "FR22", "--set", "lr=nan",
+            ],
+            &["lr=nan", "above 0"],
+        ),
+        (
+            &["optimize", "--task", "BOX2", "--set", "pairs=4"],
+            &["--set", "Auto takes no hyper-parameters"],
+        ),
+        (
+            &["suite", "--families", "bbob", "--dims", "1001"],
+            &["1001", "2–1000"],
+        ),
+        (
+            &[
+                "optimize",
+                "--task",
+                "BOX2",
+                "--budget",
+                "1000000000",
+                "--out",
+                "no-extension",
+            ],
+            &["--out", "no-extension", ".png"],
+        ),
+        (
+            &["fit2d", "--target", "t.png", "--out", "o.bmp"],
+            &["--out", "o.bmp", ".png"],
+        ),
+    ] {
+        let out = hodr(args);
+        assert!(!out.status.success(), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+        for s in says {
+            assert!(err.contains(s), "{args:?}: {err} lacks {s}");
+        }
+    }
+    let out = hodr(&[
+        "report",
+        "--suite",
+        "OFF",
+        "--tasks",
+        "quad",
+        "--methods",
+        "Auto",
+        "--seeds",
+        "1",
+        "--out",
+        scratch("suite-case").to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // A run that fails at once still prints its header and best point, then exits 2.
+    let out = hodr(&[
+        "optimize",
+        "--task",
+        "BOX2",
+        "--method",
+        "NewtonCG",
+        "--set",
+        "sigma_start=1e308",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("best:"));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("NewtonCG on BOX2 stopped early"), "{err}");
+}
+
+/// `--params @FILE` reads at most a megabyte: /dev/zero is refused, not read forever.
+#[test]
+fn a_params_file_is_read_up_to_a_cap() {
+    let out = hodr(&[
+        "render",
+        "--task",
+        "BOX2",
+        "--params",
+        "@/dev/zero",
+        "--out",
+        "/tmp/x.png",
+    ]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("@/dev/zero") && err.contains("larger than"),
+        "{err}"
+    );
 }

@@ -185,15 +185,17 @@ pub fn run_observed(
     interrupt: &AtomicBool,
     observe: &mut dyn FnMut(&Point),
 ) -> Result<Run> {
-    let mut objective = Interruptible {
-        inner: task.objective()?,
-        interrupt,
-    };
-    let mut probe = task.objective()?;
-    let start = task.start(seed);
     let budget = settings
         .budget
         .unwrap_or_else(|| task.budget(settings.quick));
+    let mut objective = Guarded {
+        inner: task.objective()?,
+        interrupt,
+        left: budget,
+        exhausted: false,
+    };
+    let mut probe = task.objective()?;
+    let start = task.start(seed);
     let param_error = |t: &[f64]| task.param_error(t);
     let mut points = vec![Point {
         time: 0.0,
@@ -272,6 +274,10 @@ pub fn run_observed(
                 let clock = Instant::now();
                 let step = opt.step(&mut objective, &mut ws, 0.0);
                 elapsed += clock.elapsed();
+                if objective.exhausted {
+                    // The iteration that would overrun the budget, abandoned.
+                    break;
+                }
                 match step {
                     Err(failed) if failed.error == hodr_core::Error::Cancelled => {
                         stopped = Some("interrupted".to_string());
@@ -291,6 +297,11 @@ pub fn run_observed(
                         break;
                     }
                 }
+            }
+            if objective.exhausted && points.len() == 1 {
+                stopped = Some(format!(
+                    "{SKIPPED}: its first iteration needs more than the budget of {budget} evaluations"
+                ));
             }
             opt.theta().to_vec()
         }
@@ -364,9 +375,19 @@ pub fn run_observed(
                 .build(&mut f)
                 .map_err(|e| anyhow::anyhow!("CMA-ES options: {e:?}"))?;
             let mut elapsed = Duration::ZERO;
+            let lambda = cma.parameters().lambda();
             loop {
                 if interrupt.load(Ordering::Relaxed) {
                     stopped = Some("interrupted".to_string());
+                    break;
+                }
+                if cma.function_evals() + lambda > budget {
+                    // A generation would overrun the budget.
+                    if cma.function_evals() == 0 {
+                        stopped = Some(format!(
+                            "{SKIPPED}: one generation needs {lambda} evaluations, the budget is {budget}"
+                        ));
+                    }
                     break;
                 }
                 let clock = Instant::now();
@@ -401,20 +422,44 @@ pub fn run_observed(
     })
 }
 
-/// A task's objective that reports the run's interrupt flag after every batch, so Ctrl-C
-/// stops an estimate within one batch ([`Objective::cancelled`]).
-struct Interruptible<'a> {
+/// A task's objective that evaluates at most `left` points and reports the run's
+/// interrupt flag after every batch, so Ctrl-C stops an estimate within one batch
+/// ([`Objective::cancelled`]). Past the budget it evaluates nothing: the points it
+/// skips get NaN and it reports itself cancelled, so the iteration that would overrun
+/// the budget is abandoned (a preset's iteration costs several estimates, which its
+/// optimiser cannot foresee) and the run keeps the iterations that fit.
+struct Guarded<'a> {
     inner: Box<dyn Objective<f64> + Send>,
     interrupt: &'a AtomicBool,
+    /// Evaluations the budget has left.
+    left: usize,
+    /// Whether an evaluation was refused for the budget.
+    exhausted: bool,
 }
 
-impl Objective<f64> for Interruptible<'_> {
+impl Objective<f64> for Guarded<'_> {
     fn evaluate(&mut self, theta: &[f64], seed: NoiseSeed) -> f64 {
+        if self.left == 0 {
+            self.exhausted = true;
+            return f64::NAN;
+        }
+        self.left -= 1;
         self.inner.evaluate(theta, seed)
     }
 
     fn evaluate_batch(&mut self, batch: &Batch<'_, f64>, out: &mut [f64]) {
-        self.inner.evaluate_batch(batch, out);
+        let rows = batch.len().min(self.left);
+        if rows == batch.len() {
+            self.inner.evaluate_batch(batch, out);
+        } else {
+            self.exhausted = true;
+            let n = batch.dim();
+            if let Ok(part) = Batch::new(&batch.points()[..rows * n], &batch.seeds()[..rows], n) {
+                self.inner.evaluate_batch(&part, &mut out[..rows]);
+            }
+            out[rows..batch.len()].fill(f64::NAN);
+        }
+        self.left -= rows;
     }
 
     fn deterministic(&self) -> bool {
@@ -422,6 +467,6 @@ impl Objective<f64> for Interruptible<'_> {
     }
 
     fn cancelled(&mut self) -> bool {
-        self.interrupt.load(Ordering::Relaxed) || self.inner.cancelled()
+        self.exhausted || self.interrupt.load(Ordering::Relaxed) || self.inner.cancelled()
     }
 }

@@ -41,7 +41,7 @@ pub use method::{Method, Point, Run, run, run_observed};
 pub use summary::{ErrorKind, Row};
 
 /// Command-line overrides of the per-task hyper-parameters (applied to every task).
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Overrides {
     /// Antithetic pairs.
     pub pairs: Option<usize>,
@@ -134,33 +134,57 @@ impl Overrides {
         h
     }
 
+    /// Whether no override is set.
+    pub fn is_empty(&self) -> bool {
+        *self == Overrides::default()
+    }
+
     /// Parses one `key=value` override.
     ///
     /// # Errors
-    /// An unknown key or an unparsable value.
+    /// An unknown key, an unparsable value, or one out of the key's range (counts ≥ 1;
+    /// σ, radius and rate finite and > 0; sigma_shrink in (0, 1)), named as typed.
     pub fn set(&mut self, assignment: &str) -> Result<()> {
         let (key, value) = assignment
             .split_once('=')
             .with_context(|| format!("`{assignment}` is not key=value"))?;
         let bad = || format!("bad value `{value}` for `{key}`");
-        match key.trim() {
-            "pairs" => self.pairs = Some(value.parse().with_context(bad)?),
-            "sigma_start" => self.sigma_start = Some(value.parse().with_context(bad)?),
-            "sigma_end" => self.sigma_end = Some(value.parse().with_context(bad)?),
-            "trust_radius" => self.trust_radius = Some(value.parse().with_context(bad)?),
-            "ls_iters" | "line_search_iterations" => {
-                self.line_search_iterations = Some(value.parse().with_context(bad)?)
+        let value = value.trim();
+        let count = || -> Result<usize> {
+            match value.parse().with_context(bad)? {
+                0 => bail!("--set {key}={value}: {key} must be at least 1"),
+                n => Ok(n),
             }
-            "recompute" => self.recompute = Some(value.parse().with_context(bad)?),
-            "lr" | "learning_rate" => self.learning_rate = Some(value.parse().with_context(bad)?),
+        };
+        let positive = || -> Result<f64> {
+            let x: f64 = value.parse().with_context(bad)?;
+            if !(x.is_finite() && x > 0.0) {
+                bail!("--set {key}={value}: {key} must be a finite number above 0");
+            }
+            Ok(x)
+        };
+        match key.trim() {
+            "pairs" => self.pairs = Some(count()?),
+            "sigma_start" => self.sigma_start = Some(positive()?),
+            "sigma_end" => self.sigma_end = Some(positive()?),
+            "trust_radius" => self.trust_radius = Some(positive()?),
+            "ls_iters" | "line_search_iterations" => self.line_search_iterations = Some(count()?),
+            "recompute" => self.recompute = Some(count()?),
+            "lr" | "learning_rate" => self.learning_rate = Some(positive()?),
             "crn" => self.common_random_numbers = Some(value.parse().with_context(bad)?),
-            "sigma_shrink" => self.sigma_shrink = Some(value.parse().with_context(bad)?),
-            "inner_steps" => self.inner_steps = Some(value.parse().with_context(bad)?),
+            "sigma_shrink" => {
+                let x = positive()?;
+                if x >= 1.0 {
+                    bail!("--set {key}={value}: {key} must lie between 0 and 1");
+                }
+                self.sigma_shrink = Some(x);
+            }
+            "inner_steps" => self.inner_steps = Some(count()?),
             "line_curvature" => self.line_curvature = Some(value.parse().with_context(bad)?),
             "negative_curvature" => {
                 let named = NEGATIVE_CURVATURE_NAMES
                     .iter()
-                    .find(|(n, _)| *n == value.trim())
+                    .find(|(n, _)| *n == value)
                     .map(|(_, c)| *c);
                 self.negative_curvature =
                     Some(named.with_context(|| format!("{} (fallback or two-sided)", bad()))?);
@@ -182,6 +206,25 @@ pub struct Settings {
     pub budget: Option<usize>,
     /// Hyper-parameter overrides.
     pub overrides: Overrides,
+}
+
+impl Settings {
+    /// Checks that the overrides tune some method of `methods`: only the presets have
+    /// hyper-parameters.
+    ///
+    /// # Errors
+    /// Overrides set where no method is a preset.
+    pub fn check_for(&self, methods: &[Method]) -> Result<()> {
+        if !self.overrides.is_empty() && !methods.iter().any(|m| matches!(m, Method::Preset(_))) {
+            let names: Vec<String> = methods.iter().map(|m| m.name()).collect();
+            let verb = if names.len() == 1 { "takes" } else { "take" };
+            bail!(
+                "--set tunes the paper's presets; {} {verb} no hyper-parameters",
+                names.join(" and ")
+            );
+        }
+        Ok(())
+    }
 }
 
 /// What to run.
@@ -237,6 +280,7 @@ pub fn report(config: &Config, interrupt: &AtomicBool, progress: bool) -> Result
     if config.seeds == 0 {
         bail!("--seeds must be at least 1");
     }
+    config.settings.check_for(&methods)?;
     std::fs::create_dir_all(&config.out)
         .with_context(|| format!("creating {}", config.out.display()))?;
     let total = tasks.len() as u64 * methods.len() as u64 * config.seeds;
@@ -390,7 +434,7 @@ fn write_outputs(
         if !skipped.is_empty() {
             let _ = writeln!(
                 md,
-                "Skipped (one estimate exceeds the run's budget): {}.\n",
+                "Skipped (one estimate, iteration or generation exceeds the run's budget): {}.\n",
                 skipped.join(", ")
             );
         }

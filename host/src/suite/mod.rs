@@ -42,7 +42,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
 pub use methods::Method;
-pub use problem::{Family, Problem};
+pub use problem::{Family, MAX_DIM, Problem};
 pub use summary::{FamilyRow, Row, Run};
 
 /// Instances per function and dimension (BBOB) or per dimension (the other generated
@@ -54,6 +54,9 @@ pub const SEEDS: usize = 5;
 pub const BUDGET_PER_DIM: usize = 1000;
 /// Seeds per problem with `--quick`.
 pub const QUICK_SEEDS: usize = 2;
+
+/// The most evaluations one run may be given: `--budget-per-dim` × n.
+pub const MAX_BUDGET: usize = 1 << 40;
 /// Evaluations per dimension with `--quick`.
 pub const QUICK_BUDGET_PER_DIM: usize = 200;
 /// Instances per function and dimension with `--quick`.
@@ -173,7 +176,10 @@ impl Config {
                 if !families.iter().any(|f| f.defined_at(d)) {
                     let have: Vec<String> = families
                         .iter()
-                        .map(|f| format!("{f} {:?}", f.dims()))
+                        .map(|f| match f {
+                            Family::Bbob | Family::Noisy => format!("{f} 2–{MAX_DIM}"),
+                            _ => format!("{f} {:?}", f.dims()),
+                        })
                         .collect();
                     bail!(
                         "no selected family has dimension {d} (families: {})",
@@ -194,6 +200,22 @@ impl Config {
         });
         if budget_per_dim == 0 {
             bail!("--budget-per-dim must be at least 1");
+        }
+        let widest = dims
+            .as_deref()
+            .unwrap_or(&[])
+            .iter()
+            .chain(families.iter().flat_map(|f| f.dims()))
+            .copied()
+            .max()
+            .unwrap_or(1);
+        if budget_per_dim
+            .checked_mul(widest)
+            .is_none_or(|b| b > MAX_BUDGET)
+        {
+            bail!(
+                "--budget-per-dim {budget_per_dim}: a run's budget (× n = {widest}) must be at most {MAX_BUDGET}"
+            );
         }
         Ok(Config {
             families,

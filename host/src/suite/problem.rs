@@ -36,6 +36,10 @@ pub enum Observation {
 /// The start distribution: θ₀ as a pure function of a run seed.
 pub type StartFn = Box<dyn Fn(u64) -> Vec<f64> + Send + Sync>;
 
+/// The largest n the BBOB and noisy families run at: each instance holds two n×n
+/// rotations (16 MB at this n), and a run's budget grows with n.
+pub const MAX_DIM: usize = 1000;
+
 /// A family of problems, selected together on the command line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Family {
@@ -88,12 +92,12 @@ impl Family {
             .find(|f| f.name().eq_ignore_ascii_case(name.trim()))
     }
 
-    /// Whether the family has problems of dimension n: any n ≥ 2 for BBOB and its noisy
-    /// variants, whose functions are defined in every dimension; the family's own
-    /// [`Family::dims`] for the others.
+    /// Whether the family has problems of dimension n: any n from 2 to [`MAX_DIM`] for
+    /// BBOB and its noisy variants, whose functions are defined in every dimension; the
+    /// family's own [`Family::dims`] for the others.
     pub fn defined_at(self, n: usize) -> bool {
         match self {
-            Family::Bbob | Family::Noisy => n >= 2,
+            Family::Bbob | Family::Noisy => (2..=MAX_DIM).contains(&n),
             _ => self.dims().contains(&n),
         }
     }
