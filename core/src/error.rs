@@ -9,7 +9,7 @@ use core::fmt;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Error {
-    /// σ was ≤ 0, NaN or infinite.
+    /// σ was ≤ 0, NaN or infinite, or Auto's σ₀ above `Auto::max_scale`.
     InvalidSigma,
     /// The number of antithetic pairs was 0.
     NoSamples,
@@ -54,7 +54,10 @@ pub enum Error {
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
-            Error::InvalidSigma => write!(f, "smoothing width σ must be finite and > 0"),
+            Error::InvalidSigma => write!(
+                f,
+                "smoothing width σ must be finite and > 0 (Auto's σ₀ at most 2⁻⁶⁴ of the largest float)"
+            ),
             Error::NoSamples => write!(f, "at least one antithetic pair is needed"),
             Error::DimensionMismatch { expected, found } => {
                 write!(

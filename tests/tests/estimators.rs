@@ -261,6 +261,39 @@ fn forward_difference_given_the_gradient_halves_the_cost() {
     }
 }
 
+/// A direction of subnormal length (‖v‖ ≈ 1e-320, so ε/‖v‖ overflows) still steps by ε
+/// along v/‖v‖: every point the estimate evaluates is finite, and so is Hv.
+#[test]
+fn a_subnormal_direction_gives_finite_points() {
+    let p = Problem::sin_cos(3, 1);
+    let n = p.dim();
+    let mut mem = Memory::new(n, 8);
+    let mut ws = mem.ws(n);
+    let v = [1e-320, 0.0, -5e-321];
+    for gradient in GRADIENTS {
+        for method in [
+            HvpMethod::CentralDifference {
+                gradient,
+                draws: Draws::Common,
+            },
+            HvpMethod::ForwardDifference { gradient },
+        ] {
+            let mut non_finite = 0;
+            let mut f = |x: &[f64]| {
+                non_finite += usize::from(!x.iter().all(|v| v.is_finite()));
+                p.value(x)
+            };
+            let mut est =
+                Estimator::new(SIGMA, PAIRS, Xoshiro256PlusPlus::seed_from_u64(5)).unwrap();
+            let mut hv = vec![0.0; n];
+            est.hvp(method, &mut f, p.theta(), &v, &mut ws, &mut hv)
+                .unwrap();
+            assert_eq!(non_finite, 0, "{method:?}");
+            assert!(hv.iter().all(|h| h.is_finite()), "{method:?}: {hv:?}");
+        }
+    }
+}
+
 /// Common random numbers and independent draws estimate the same thing; on a smooth
 /// objective the common ones have far smaller variance.
 #[test]

@@ -333,11 +333,26 @@ fn non_finite_values_are_an_error_when_asked() {
 fn bad_input_is_a_typed_error() {
     let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(2)];
     let rng = || Xoshiro256PlusPlus::seed_from_u64(0);
-    for sigma in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+    let too_wide = Auto::<f64, Xoshiro256PlusPlus>::max_scale() * 2.0;
+    for sigma in [0.0, -1.0, f64::NAN, f64::INFINITY, too_wide, f64::MAX] {
         let mut theta = [0.0, 0.0];
         let e = Auto::new(&mut theta, sigma, &mut buffer, rng()).unwrap_err();
         assert_eq!(e, Error::InvalidSigma);
     }
+    // The widest σ₀ accepted evaluates finite points only.
+    let mut theta = [1.0, 2.0];
+    let sigma = Auto::<f64, Xoshiro256PlusPlus>::max_scale();
+    let options = AutoOptions::default().with_max_evaluations(500).unwrap();
+    let mut auto = Auto::new(&mut theta, sigma, &mut buffer, rng())
+        .unwrap()
+        .with_options(options);
+    let mut non_finite = 0;
+    let mut f = |x: &[f64]| {
+        non_finite += usize::from(!x.iter().all(|v| v.is_finite()));
+        x.iter().map(|v| v * v).sum::<f64>()
+    };
+    auto.run(&mut f, |_, _| {}).unwrap();
+    assert_eq!(non_finite, 0);
     let mut theta = [0.0, f64::NAN];
     let e = Auto::new(&mut theta, 1.0, &mut buffer, rng()).unwrap_err();
     assert_eq!(e, Error::NonFiniteInput { index: 1 });

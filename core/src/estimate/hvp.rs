@@ -52,10 +52,11 @@ pub(super) fn difference<T: Real, R: Rng, O: Objective<T> + ?Sized>(
     }
     ws.batch.begin();
     hv.fill(T::ZERO);
-    let norm = norm2(v);
-    if norm == T::ZERO {
+    let (big, scaled) = norm2(v);
+    if big == T::ZERO {
         return Ok(report(&ws.batch, 0, None, false));
     }
+    let norm = big * scaled;
     let sigma = estimator.sigma();
     let eps = T::from_f64(HVP_STEP_RATIO) * sigma;
 
@@ -63,10 +64,12 @@ pub(super) fn difference<T: Real, R: Rng, O: Objective<T> + ?Sized>(
     let scratch = core::mem::take(&mut ws.scratch);
     let (plus, rest) = scratch.split_at_mut(n);
     let minus = &mut rest[..n];
-    let step = eps / norm;
+    // The unit direction v/‖v‖ as (v/max|vᵢ|)/(‖v‖/max|vᵢ|): finite for a subnormal v,
+    // whose ‖v‖ would turn ε/‖v‖ infinite.
     for (((p, m), &x), &d) in plus.iter_mut().zip(minus.iter_mut()).zip(theta).zip(v) {
-        *p = x + step * d;
-        *m = x - step * d;
+        let step = eps * (d / big / scaled);
+        *p = x + step;
+        *m = x - step;
     }
     let (plus, minus): (&[T], &[T]) = (plus, minus);
     let mut sum = |centres: &[&[T]], sign, ws: &mut Workspace<'_, T>, hv: &mut [T], first| {
@@ -97,12 +100,13 @@ pub(super) fn difference<T: Real, R: Rng, O: Objective<T> + ?Sized>(
     Ok(report(&ws.batch, evaluations, None, false))
 }
 
-/// ‖v‖₂ without overflow or underflow: scaled by max |vᵢ|.
-fn norm2<T: Real>(v: &[T]) -> T {
+/// ‖v‖₂ as (max |vᵢ|, ‖v‖/max |vᵢ|), whose product is ‖v‖ and whose parts neither
+/// overflow nor underflow; (0, 0) for v = 0.
+fn norm2<T: Real>(v: &[T]) -> (T, T) {
     let big = v.iter().fold(T::ZERO, |m, &x| m.max(x.abs()));
     if big == T::ZERO {
-        return T::ZERO;
+        return (T::ZERO, T::ZERO);
     }
     let sum = v.iter().fold(T::ZERO, |s, &x| s + (x / big).sq());
-    big * sum.sqrt()
+    (big, sum.sqrt())
 }

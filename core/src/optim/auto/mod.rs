@@ -201,7 +201,7 @@
 //! [`Auto::history_len`] remembered points. Cost per iteration: O(m²n + m³) for the fit
 //! (twice with unseeded noise, and O(m²n) more for the noise's scale after a
 //! rejection), O(mn² + n³) for the full model's linear part and eigen-decomposition;
-//! O(n³) per n pairs for the diagonal model's sampling frames.
+//! O(kn) for the k-th pair of a sampling frame (O(n³) per n pairs).
 //!
 //! This module holds the run itself (an iteration: [`Auto::step`]; the model step and
 //! the fit); its parts: `memory` (the buffer's regions and the remembered points),
@@ -622,6 +622,14 @@ impl<T: Real, R> fmt::Debug for Auto<'_, T, R> {
 }
 
 impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
+    /// The largest σ₀ (or coordinate scale) [`Auto::new`] accepts in precision T: 2⁻⁶⁴
+    /// of T's largest value (9.7e288 in f64, 1.8e19 in f32). σ widens to 16σ₀ on a
+    /// plateau and samples reach several σ along a metric axis stretched by up to 7·10⁶:
+    /// a σ₀ near T's range would put infinite or NaN points into the objective.
+    pub fn max_scale() -> T {
+        T::MAX * T::from_f64(libm::pow(2.0, -64.0))
+    }
+
     /// Floats of buffer [`Auto::new`] needs in dimension n ([`buffer_len`]).
     pub const fn buffer_len(n: usize) -> usize {
         buffer_len(n)
@@ -647,9 +655,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// `sigma0` > 0 and default options, drawing its samples from `rng`.
     ///
     /// # Errors
-    /// [`Error::InvalidSigma`] for σ₀ not finite and positive, [`Error::NonFiniteInput`]
-    /// for a non-finite x₀, [`Error::DimensionMismatch`] for an empty x₀,
-    /// [`Error::WorkspaceTooSmall`] for a buffer shorter than [`Auto::buffer_len`].
+    /// [`Error::InvalidSigma`] for σ₀ not in (0, [`Auto::max_scale`]],
+    /// [`Error::NonFiniteInput`] for a non-finite x₀, [`Error::DimensionMismatch`] for an
+    /// empty x₀, [`Error::WorkspaceTooSmall`] for a buffer shorter than
+    /// [`Auto::buffer_len`].
     pub fn new(theta: &'b mut [T], sigma0: T, buffer: &'b mut [T], rng: R) -> Result<Self, Error> {
         let n = theta.len();
         if n == 0 {
@@ -658,7 +667,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 found: 0,
             });
         }
-        if !(sigma0.is_finite() && sigma0 > T::ZERO) {
+        if !(sigma0 > T::ZERO && sigma0 <= Self::max_scale()) {
             return Err(Error::InvalidSigma);
         }
         if let Some(index) = theta.iter().position(|x| !x.is_finite()) {
@@ -738,7 +747,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     ///
     /// # Errors
     /// [`Error::DimensionMismatch`] for scales of the wrong length,
-    /// [`Error::InvalidSetting`] (`scales`) for a scale not finite and positive.
+    /// [`Error::InvalidSetting`] (`scales`) for a scale not in (0, [`Auto::max_scale`]].
     pub fn with_scales(mut self, scales: &[T]) -> Result<Self, Error> {
         let n = self.theta.len();
         if scales.len() != n {
@@ -747,7 +756,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 found: scales.len(),
             });
         }
-        if !scales.iter().all(|&s| s.is_finite() && s > T::ZERO) {
+        if !scales
+            .iter()
+            .all(|&s| s > T::ZERO && s <= Self::max_scale())
+        {
             return Err(Error::InvalidSetting { name: "scales" });
         }
         self.mem.scale.copy_from_slice(scales);
