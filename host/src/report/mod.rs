@@ -24,7 +24,7 @@
 
 mod method;
 mod output;
-mod plot;
+pub(crate) mod plot;
 mod summary;
 pub mod task;
 

@@ -22,7 +22,7 @@ pub const FONT_PATHS: [&str; 4] = [
 ];
 
 /// True once a font is registered (tried once per process).
-fn font_available() -> bool {
+pub(crate) fn font_available() -> bool {
     static FONT: OnceLock<bool> = OnceLock::new();
     *FONT.get_or_init(|| {
         for path in FONT_PATHS {
@@ -63,6 +63,52 @@ fn decades(lo: f64, hi: f64) -> (f64, f64) {
         10f64.powf(lo.log10().floor()),
         10f64.powf(hi.log10().ceil().max(lo.log10().floor() + 1.0)),
     )
+}
+
+/// The error axis for errors in [lo, hi]: whole decades ([`decades`]) unless they span
+/// under one, then [lo, hi] widened by a fifth of its log-width (at least 1.1× each way).
+fn error_range(lo: f64, hi: f64) -> (f64, f64) {
+    if hi >= 10.0 * lo {
+        return decades(lo, hi);
+    }
+    let pad = (hi / lo).powf(0.2).max(1.1);
+    (lo / pad, hi * pad)
+}
+
+/// Labelled and light ticks of a log axis over [lo, hi]: the powers of ten and, light,
+/// their multiples 2–9 where it spans a decade or more; else the multiples of the
+/// largest step 1, 2 or 5 × 10ᵏ that puts at least three labels in it (plotters labels
+/// no point of a log axis narrower than a decade).
+pub(crate) fn log_ticks(lo: f64, hi: f64) -> (Vec<f64>, Vec<f64>) {
+    let within = |v: &f64| *v >= lo * (1.0 - 1e-9) && *v <= hi * (1.0 + 1e-9);
+    let (first, last) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    if hi >= 10.0 * lo {
+        let powers = (first..=last)
+            .map(|k| 10f64.powi(k))
+            .filter(within)
+            .collect();
+        let light = (first..=last)
+            .flat_map(|k| (2..10).map(move |m| f64::from(m) * 10f64.powi(k)))
+            .filter(within)
+            .collect();
+        return (powers, light);
+    }
+    let multiples = |step: f64| -> Vec<f64> {
+        let start = (lo / step).ceil() as i64;
+        let end = (hi / step).floor() as i64;
+        (start..=end.max(start - 1))
+            .map(|k| k as f64 * step)
+            .collect()
+    };
+    for k in (first - 2..=last).rev() {
+        for m in [5.0, 2.0, 1.0] {
+            let points = multiples(m * 10f64.powi(k));
+            if points.len() >= 3 {
+                return (points, Vec::new());
+            }
+        }
+    }
+    (vec![lo, hi], Vec::new())
 }
 
 /// A log axis' tick label: "10⁻⁴" at a power of ten, "3·10⁻⁴" elsewhere.
@@ -149,9 +195,11 @@ pub fn error_against_time(
     if !(e_lo.is_finite() && e_hi > 0.0) {
         return Ok(());
     }
-    // Whole decades on both axes, so that every axis has labelled ticks.
+    // Whole decades on both axes, so that every axis has labelled ticks; errors that
+    // stay within one decade get the range they span instead, or they would be drawn as
+    // flat lines in one corner of an empty decade.
     let (t_lo, t_hi) = decades(t_lo, t_hi);
-    let (e_lo, e_hi) = decades(e_lo.max(e_hi * 1e-12), e_hi);
+    let (e_lo, e_hi) = error_range(e_lo.max(e_hi * 1e-12), e_hi);
     let text = font_available();
     let root = BitMapBackend::new(path, (1060, 600)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
@@ -169,7 +217,13 @@ pub fn error_against_time(
             .y_label_area_size(70);
     }
     let mut chart = builder
-        .build_cartesian_2d((t_lo..t_hi).log_scale(), (e_lo..e_hi).log_scale())
+        .build_cartesian_2d((t_lo..t_hi).log_scale(), {
+            let (labelled, light) = log_ticks(e_lo, e_hi);
+            (e_lo..e_hi)
+                .log_scale()
+                .with_key_points(labelled)
+                .with_light_points(light)
+        })
         .map_err(|e| anyhow!("{e}"))?;
     let mut mesh = chart.configure_mesh();
     if text {
@@ -267,6 +321,29 @@ mod tests {
         }
         assert_eq!(power_of_ten(0.0), "");
         assert_eq!(power_of_ten(f64::NAN), "");
+    }
+
+    /// A log axis always has labelled ticks inside it: powers of ten over a decade or
+    /// more, evenly spaced values over less (where plotters would label none).
+    #[test]
+    fn log_axes_have_labels_inside_them() {
+        let (labels, light) = log_ticks(1e-6, 0.1);
+        assert_eq!(labels.len(), 6);
+        assert!(
+            labels
+                .iter()
+                .all(|&v| (v.log10() - v.log10().round()).abs() < 1e-12)
+        );
+        assert_eq!(light.len(), 5 * 8);
+        for (lo, hi) in [(0.045, 0.072), (0.0601, 0.0605), (3.0, 7.0), (1.0, 1.2)] {
+            let (labels, _) = log_ticks(lo, hi);
+            assert!(labels.len() >= 3, "{lo}..{hi}: {labels:?}");
+            let inside = |v: f64| v >= lo * (1.0 - 1e-9) && v <= hi * (1.0 + 1e-9);
+            assert!(labels.iter().all(|&v| inside(v)), "{labels:?}");
+        }
+        let (lo, hi) = error_range(0.045, 0.072);
+        assert!(lo < 0.045 && lo > 0.035 && hi > 0.072 && hi < 0.09);
+        assert_eq!(error_range(1e-6, 0.07), (1e-6, 0.1));
     }
 
     #[test]

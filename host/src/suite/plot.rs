@@ -3,11 +3,10 @@
 //! runtime distribution of COCO's reports, averaged over seeds so that each
 //! (problem, target) pair weighs the same.
 //!
-//! Text needs a TrueType font, registered from the first of [`FONT_PATHS`] found;
-//! without one the plot is drawn without text (suite.md holds the same results).
+//! Text needs a TrueType font, registered as the report's plots register it; without
+//! one the plot is drawn without text (suite.md holds the same results).
 
 use std::path::Path;
-use std::sync::OnceLock;
 
 use anyhow::{Result, anyhow};
 use plotters::prelude::*;
@@ -15,27 +14,7 @@ use plotters::prelude::*;
 use super::methods::Method;
 use super::problem::Problem;
 use super::summary::{F_TARGETS, Run};
-
-/// Fonts tried, in order.
-pub const FONT_PATHS: [&str; 4] = [
-    "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
-    "/usr/share/fonts/dejavu/DejaVuSans.ttf",
-    "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
-    "/System/Library/Fonts/Supplemental/Arial.ttf",
-];
-
-/// True once a font is registered (tried once per process).
-fn font() -> bool {
-    static FONT: OnceLock<bool> = OnceLock::new();
-    *FONT.get_or_init(|| {
-        FONT_PATHS.iter().any(|path| {
-            std::fs::read(path).is_ok_and(|bytes| {
-                let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
-                plotters::style::register_font("sans-serif", FontStyle::Normal, bytes).is_ok()
-            })
-        })
-    })
-}
+use crate::report::plot::{font_available, log_ticks};
 
 /// The colour of a method's line: fixed per method, so plots of different runs agree.
 pub fn colour(method: Method) -> RGBColor {
@@ -94,7 +73,7 @@ pub fn ecdf_plot(
         0.01
     };
     let x_hi = x_max.max(x_lo * 10.0);
-    let text = font();
+    let text = font_available();
     let root = BitMapBackend::new(path, (1000, 600)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
     let (left, legend) = root.split_horizontally(780);
@@ -110,7 +89,16 @@ pub fn ecdf_plot(
             .y_label_area_size(60);
     }
     let mut chart = builder
-        .build_cartesian_2d((x_lo..x_hi).log_scale(), 0.0..1.0)
+        .build_cartesian_2d(
+            {
+                let (labelled, light) = log_ticks(x_lo, x_hi);
+                (x_lo..x_hi)
+                    .log_scale()
+                    .with_key_points(labelled)
+                    .with_light_points(light)
+            },
+            0.0..1.0,
+        )
         .map_err(|e| anyhow!("{e}"))?;
     let mut mesh = chart.configure_mesh();
     if text {
