@@ -1021,6 +1021,31 @@ fn options_and_settings_are_checked_by_name() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
+    // The report names a run that failed rather than showing it as a row of dashes.
+    let dir = scratch("failed");
+    let out = hodr(&[
+        "report",
+        "--tasks",
+        "quad",
+        "--methods",
+        "FR22,Auto",
+        "--seeds",
+        "1",
+        "--suite",
+        "off",
+        "--set",
+        "sigma_start=1e308",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    assert!(md.contains("Failed: FR22 seed 0: "), "{md}");
+    assert!(!md.contains("Failed: Auto"), "{md}");
     // A run that fails at once still prints its header and best point, then exits 2.
     let out = hodr(&[
         "optimize",

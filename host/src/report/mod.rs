@@ -438,6 +438,21 @@ fn write_outputs(
                 skipped.join(", ")
             );
         }
+        // Runs that stopped on an error (not the budget, an interrupt or a skip): named,
+        // so that a row of a failed method does not read as one that merely did badly.
+        for r in mine.iter().filter(|r| {
+            r.stopped
+                .as_deref()
+                .is_some_and(|why| why != "interrupted" && !r.skipped())
+        }) {
+            let _ = writeln!(
+                md,
+                "Failed: {} seed {}: {}.\n",
+                r.method,
+                r.seed,
+                r.stopped.as_deref().unwrap_or_default()
+            );
+        }
         for kind in ErrorKind::BOTH {
             let file = format!("plot_{slug}_{}.png", kind.label());
             plot::error_against_time(&out.join(&file), t.name(), kind, &names, &mine)?;
