@@ -20,12 +20,15 @@ Functions:
 
 The objective receives float64 numpy arrays: one point of shape (n,), or with
 ``batch=True`` a (k, n) array of points to evaluate at once (a renderer that renders a
-batch), returning k values. An exception it raises propagates unchanged; Ctrl-C
-(KeyboardInterrupt) stops the work within one batch of evaluations.
+batch), returning k values; anything but real numbers is a TypeError naming ``fun``.
+An exception it raises propagates unchanged; Ctrl-C (KeyboardInterrupt) stops the work
+within one batch of evaluations, the run so far in the exception's ``result``.
 """
 
 from __future__ import annotations
 
+import numbers
+import sys
 from typing import Any, Callable, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -46,18 +49,22 @@ class OptimizeResult(dict):
     x : ndarray
         The best point found.
     fun : float
-        f(x) (NaN if the run ended before evaluating x).
+        f(x). Where ``fun`` never returned a finite value, the first infinite value it
+        returned (NaN where every value was NaN, or before any evaluation).
     nfev : int
-        Objective evaluations.
+        Objective evaluations: the points handed to ``fun`` (after a Ctrl-C, those
+        handed to it before).
     nit : int
         Iterations.
     success : bool
         True when the run converged (the samples' spread fell below its tolerance)
         or stagnated (no lower value within its patience); False when the budget ran
-        out first or the callback stopped it.
+        out first, the callback stopped it, or ``fun`` never returned a finite value.
     status : int
         0 converged, 1 budget used, 2 stagnated, 3 stopped by the callback, 4
-        interrupted (the ``result`` of the KeyboardInterrupt).
+        interrupted (the ``result`` of the KeyboardInterrupt), 5 failed (the
+        ``result`` of the ValueError for a non-finite value under
+        ``options={"non_finite": "error"}``).
     message : str
         Why the run ended.
     history : dict of ndarray
@@ -87,8 +94,9 @@ def _bounds(bounds: Any, n: int) -> Optional[Tuple[list, list]]:
     if bounds is None:
         return None
     if hasattr(bounds, "lb") and hasattr(bounds, "ub"):
+        limits = (_reals(f"bounds.{side}", getattr(bounds, side)) for side in ("lb", "ub"))
         try:
-            lower, upper = (np.broadcast_to(np.asarray(b, dtype=float), (n,)) for b in (bounds.lb, bounds.ub))
+            lower, upper = (np.broadcast_to(b, (n,)) for b in limits)
         except ValueError:
             raise ValueError(f"bounds: lb and ub must be scalars or have {n} elements") from None
         return lower.tolist(), upper.tolist()
@@ -103,17 +111,75 @@ def _bounds(bounds: Any, n: int) -> Optional[Tuple[list, list]]:
             f"bounds must be {n} (low, high) pairs, one (low, high) pair of scalars, or an "
             "object with lb and ub (scipy.optimize.Bounds)"
         )
-    lower = [-np.inf if lo is None else float(lo) for lo, _ in pairs]
-    upper = [np.inf if hi is None else float(hi) for _, hi in pairs]
+
+    def limit(i: int, value: Any, open_side: float) -> float:
+        if value is None:
+            return open_side
+        return _real(f"bounds[{i}]", value, "a pair of real numbers or None")
+
+    lower = [limit(i, lo, -np.inf) for i, (lo, _) in enumerate(pairs)]
+    upper = [limit(i, hi, np.inf) for i, (_, hi) in enumerate(pairs)]
     return lower, upper
+
+
+#: numpy's kinds of real numbers: bool, signed and unsigned int, float.
+_REAL_KINDS = "biuf"
+
+#: What an array of another kind holds, for messages.
+_KIND_NAMES = {"U": "str", "S": "bytes", "c": "complex", "M": "datetime64", "m": "timedelta64"}
+
+
+def _reals(name: str, value: Any, what: str = "a real number or a sequence of them") -> np.ndarray:
+    """``value`` as a float64 array of its own shape: real numbers (Python or numpy
+    floats, ints, bools, or objects with ``__float__`` that are not complex), nested in
+    sequences or arrays. TypeError naming ``name`` for anything else (None, strings,
+    complex numbers), ValueError for an int too large for a float."""
+    if value is None or isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must be {what}, got {type(value).__name__}")
+    try:
+        array = np.asarray(value)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be {what}, got {type(value).__name__}") from None
+    kind = array.dtype.kind
+    if kind in _REAL_KINDS:
+        return array.astype(float)
+    if kind != "O":
+        got = type(value).__name__
+        if array.ndim > 0:
+            got += f" of {_KIND_NAMES.get(kind, str(array.dtype))}"
+        raise TypeError(f"{name} must be {what}, got {got}")
+    floats = np.empty(array.shape)
+    for index in np.ndindex(array.shape):
+        element = array[index]
+        at = name + "".join(f"[{i}]" for i in index)
+        got = type(element).__name__ + (f" at {at}" if index else "")
+        if (
+            element is None
+            or isinstance(element, (str, bytes))
+            or (isinstance(element, numbers.Complex) and not isinstance(element, numbers.Real))
+            or np.ndim(element) != 0
+        ):
+            raise TypeError(f"{name} must be {what}, got {got}")
+        try:
+            floats[index] = float(element)
+        except OverflowError:
+            raise ValueError(f"{at} is too large for a float") from None
+        except (TypeError, ValueError):
+            raise TypeError(f"{name} must be {what}, got {got}") from None
+    return floats
+
+
+def _real(name: str, value: Any, what: str = "a real number") -> float:
+    """``value`` as a float, or TypeError/ValueError naming ``name`` (as ``_reals``)."""
+    array = _reals(name, value, what)
+    if array.ndim != 0:
+        raise TypeError(f"{name} must be {what}, got {type(value).__name__}")
+    return float(array)
 
 
 def _vector(name: str, value: Any) -> list:
     """A 1-D float vector, or TypeError/ValueError naming the argument."""
-    try:
-        array = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name} must be a sequence of real numbers") from None
+    array = _reals(name, value, "a sequence of real numbers")
     if array.ndim != 1:
         raise ValueError(f"{name} must be 1-D, got shape {array.shape}")
     return array.tolist()
@@ -122,12 +188,7 @@ def _vector(name: str, value: Any) -> list:
 def _scales(sigma0: Any, n: int) -> list:
     """sigma0 as n scales: a real number for every coordinate, or one per coordinate;
     TypeError/ValueError naming it. The extension checks that each is finite and > 0."""
-    try:
-        array = np.asarray(sigma0, dtype=float)
-    except (TypeError, ValueError):
-        raise TypeError(
-            f"sigma0 must be a real number or a sequence of them, got {type(sigma0).__name__}"
-        ) from None
+    array = _reals("sigma0", sigma0)
     if array.ndim == 0:
         if not (np.isfinite(array) and array > 0):
             raise ValueError(f"sigma0 must be finite and > 0, got {float(array)}")
@@ -157,10 +218,7 @@ def _settings(options: Any) -> tuple:
         raise ValueError(f"unknown option {unknown[0]!r} (options: {', '.join(OPTIONS)})")
     tolerance = options.get("tolerance")
     if tolerance is not None:
-        try:
-            tolerance = float(tolerance)
-        except (TypeError, ValueError):
-            raise TypeError("options['tolerance'] must be a real number") from None
+        tolerance = _real("options['tolerance']", tolerance)
     patience = options.get("patience")
     if patience is not None:
         patience = _count("options['patience']", patience, 1)
@@ -188,12 +246,38 @@ def _flag(options: Any, key: str) -> Any:
     return bool(value)
 
 
-def _count(name: str, value: Any, minimum: int) -> int:
+#: Bits of the extension's counts (Rust's usize: evaluations, pairs, iterations).
+_USIZE_BITS = (2 * sys.maxsize + 1).bit_length()
+
+
+def _count(name: str, value: Any, minimum: int, bits: int = _USIZE_BITS) -> int:
+    """``value`` as an int from ``minimum`` to 2**bits - 1, or TypeError/ValueError
+    naming ``name``."""
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
         raise TypeError(f"{name} must be an int, got {type(value).__name__}")
+    value = int(value)
     if value < minimum:
         raise ValueError(f"{name} must be at least {minimum}, got {value}")
-    return int(value)
+    if value.bit_length() > bits:
+        got = value if value.bit_length() <= 128 else f"an int of {value.bit_length()} bits"
+        raise ValueError(f"{name} must be from {minimum} to 2**{bits} - 1, got {got}")
+    return value
+
+
+def _seed(seed: Any) -> int:
+    """The seed: an int from 0 to 2**64 - 1."""
+    return _count("seed", seed, 0, 64)
+
+
+def _with_result(error: BaseException, result: Any = None) -> None:
+    """Gives ``error`` the run so far as an OptimizeResult: ``result``, or the fields the
+    extension attached."""
+    if result is not None:
+        error.result = result
+    elif isinstance(getattr(error, "result", None), dict) and not isinstance(
+        error.result, OptimizeResult
+    ):
+        error.result = _result(error.result)
 
 
 def minimize(
@@ -221,8 +305,11 @@ def minimize(
     ----------
     fun : callable
         ``fun(x) -> float`` for x of shape (n,); with ``batch=True``,
-        ``fun(X) -> array of k floats`` for X of shape (k, n). NaN or inf counts as
-        worse than any value.
+        ``fun(X) -> array of k floats`` (a sequence or 1-D array) for X of shape
+        (k, n). A Python or numpy float, int or bool, or a 0-d array, will do; anything
+        else (None, a string, a complex number, an array of shape (1,)) is a TypeError.
+        NaN or inf counts as worse than any value; a run in which every value was
+        non-finite reports the first infinite one as ``fun`` and does not succeed.
     x0 : array_like, shape (n,)
         The start.
     sigma0 : float or array_like, shape (n,)
@@ -236,17 +323,20 @@ def minimize(
         pair of scalars for every coordinate, or an object with ``lb`` and ``ub`` (a
         ``scipy.optimize.Bounds``); None for unbounded. For arrays ``lower`` and
         ``upper``, pass ``list(zip(lower, upper))``: a pair of two arrays reads as
-        per-coordinate pairs when n = 2, as in scipy. Every evaluated point lies inside.
+        per-coordinate pairs when n = 2, as in scipy. Every evaluated point lies inside;
+        each pair must hold a finite point (low <= high, low < inf, high > -inf).
     budget : int, optional
-        At most this many evaluations (never exceeded). With a budget, a deterministic
-        ``fun`` gets it all: once a descent converges or stagnates, another starts
-        about the best point (about x0 while no value has been finite; basin hopping;
-        ``options["fresh_starts"]``), and the best point of all descents is returned,
-        with status 1. Default: until the first descent converges.
+        At most this many evaluations (never exceeded; 1 to 2**64 - 1). With a
+        budget, a deterministic ``fun`` gets it all: once a descent converges or
+        stagnates, another starts about the best point (about x0 while no value has
+        been finite; basin hopping; ``options["fresh_starts"]``), and the best point of
+        all descents is returned, with status 1. Default: until the first descent
+        converges.
     method : str
         ``"auto"`` (the only one).
     seed : int
-        Seed of every random choice: the same seed gives the same points and result.
+        Seed of every random choice (0 to 2**64 - 1): the same seed gives the same
+        points and result.
     batch : bool
         Call ``fun`` with batches of points (see ``fun``).
     noisy : bool
@@ -265,7 +355,7 @@ def minimize(
         ``callback(x, f)`` after every iteration with the best point so far and its
         value; returning True stops the run.
     options : dict, optional
-        Auto's options; none is needed. ``tolerance`` (float > 0): converged once every
+        Auto's options; none is needed. ``tolerance`` (0 < float < 1): converged once every
         coordinate's spread falls below tolerance times its start (with ``noisy``, once
         sigma < tolerance * sigma0; default 1e-9, or 1e-3 with ``noisy``);
         ``patience`` (int >= 1): iterations without a lower value before a restart
@@ -296,12 +386,13 @@ def minimize(
     Raises
     ------
     TypeError, ValueError
-        For bad arguments, naming the argument.
+        For bad arguments, naming the argument, and for a value of ``fun`` that is not
+        a real number.
         With ``options={"non_finite": "error"}``, ValueError when ``fun`` returns NaN
         or inf; its ``result`` attribute holds the run so far.
     KeyboardInterrupt
         On Ctrl-C, within one batch of evaluations; its ``result`` attribute holds the
-        run so far (status 4).
+        run so far (status 4), with every value ``fun`` returned before.
     Exception
         Whatever ``fun`` or ``callback`` raised, unchanged.
     """
@@ -311,7 +402,7 @@ def minimize(
     sigma0 = _scales(sigma0, len(x0))
     if budget is not None:
         budget = _count("budget", budget, 1)
-    seed = _count("seed", seed, 0)
+    seed = _seed(seed)
     if callback is not None and not callable(callback):
         raise TypeError("callback must be callable")
     settings = _settings(options)
@@ -321,8 +412,7 @@ def minimize(
             callback, settings,
         )
     except (KeyboardInterrupt, ValueError) as stopped:
-        if isinstance(getattr(stopped, "result", None), dict):
-            stopped.result = _result(stopped.result)
+        _with_result(stopped)
         raise
     return _result(raw)
 
@@ -351,7 +441,14 @@ class Optimizer:
     ``noisy=True``, render row k of the batch asked with noise seed ``seeds[k]``. The
     optimiser runs on a thread of its own between ``tell`` and the next ``ask``; a
     batch must be told before the next is asked. ``result`` is available at any time
-    (the best point so far). Dropping the object ends the run.
+    (the best point so far). Once the run has ended, ``ask()`` gives a (0, n) array and
+    ``tell([])`` takes its values, so a plain ask/tell loop ends cleanly.
+
+    A Ctrl-C while ``ask`` or ``stop`` waits for the optimiser raises KeyboardInterrupt
+    with the run so far in its ``result``; the next ``ask`` hands out the batch.
+    Under ``options={"non_finite": "error"}``, ``tell`` raises ValueError for a NaN or
+    inf it hands over (``result``: the run so far, status 5), and so do ``ask``,
+    ``tell`` and ``stop`` from then on. Dropping the object ends the run.
     """
 
     def __init__(
@@ -370,14 +467,26 @@ class Optimizer:
         if budget is not None:
             budget = _count("budget", budget, 1)
         self._run = _hodr.AskTell(
-            x0, sigma0, _bounds(bounds, len(x0)), budget, _count("seed", seed, 0), bool(noisy),
+            x0, sigma0, _bounds(bounds, len(x0)), budget, _seed(seed), bool(noisy),
             _settings(options),
         )
 
+    def _call(self, method: Callable, *args: Any) -> Any:
+        """``method(*args)`` of the run; a KeyboardInterrupt while it waits for the
+        optimiser, or the run's failure, carries the run so far in ``result``."""
+        try:
+            return method(*args)
+        except KeyboardInterrupt as stopped:
+            _with_result(stopped, self.result)
+            raise
+        except (ValueError, RuntimeError) as failed:
+            _with_result(failed)
+            raise
+
     def ask(self) -> np.ndarray:
         """The next batch of points, a float64 array of shape (k, n); (0, n) once the
-        run has ended."""
-        return self._run.ask()
+        run has ended (``tell([])`` then takes its values)."""
+        return self._call(self._run.ask)
 
     @property
     def seeds(self) -> np.ndarray:
@@ -386,16 +495,16 @@ class Optimizer:
         return self._run.seeds
 
     def tell(self, values: Sequence[float]) -> None:
-        """The objective's values at the points last asked, in their order."""
-        try:
-            array = np.asarray(values, dtype=float)
-        except (TypeError, ValueError):
-            raise TypeError("values must be a sequence of real numbers") from None
-        self._run.tell(np.ascontiguousarray(array.ravel()))
+        """The objective's values at the points last asked, in their order. With
+        ``options={"non_finite": "error"}``, a NaN or inf among them raises ValueError
+        (its ``result`` the run so far), as does every later call once the run has
+        failed."""
+        array = _reals("values", values, "a sequence of real numbers")
+        self._call(self._run.tell, np.ascontiguousarray(array.ravel()))
 
     def stop(self) -> bool:
         """True once the run has ended (converged, stagnated or out of budget)."""
-        return self._run.stop()
+        return self._call(self._run.stop)
 
     @property
     def result(self) -> OptimizeResult:
@@ -433,8 +542,8 @@ def gradient(
     (g, nfev) : (ndarray of shape (n,), int)
     """
     return _hodr.gradient(
-        fun, _vector("x", x), float(sigma), _count("pairs", pairs, 1), str(method),
-        _count("seed", seed, 0), bool(batch), bool(noisy),
+        fun, _vector("x", x), _real("sigma", sigma), _count("pairs", pairs, 1),
+        str(method), _seed(seed), bool(batch), bool(noisy),
     )
 
 
@@ -459,8 +568,8 @@ def hessian(
     (H, nfev) : (ndarray of shape (n, n), int)
     """
     return _hodr.hessian(
-        fun, _vector("x", x), float(sigma), _count("pairs", pairs, 1), str(method),
-        _count("seed", seed, 0), bool(batch), bool(noisy),
+        fun, _vector("x", x), _real("sigma", sigma), _count("pairs", pairs, 1),
+        str(method), _seed(seed), bool(batch), bool(noisy),
     )
 
 
@@ -487,6 +596,6 @@ def hvp(
     (Hv, nfev) : (ndarray of shape (n,), int)
     """
     return _hodr.hvp(
-        fun, _vector("x", x), _vector("v", v), float(sigma), _count("pairs", pairs, 1),
-        str(method), _count("seed", seed, 0), bool(batch), bool(noisy),
+        fun, _vector("x", x), _vector("v", v), _real("sigma", sigma),
+        _count("pairs", pairs, 1), str(method), _seed(seed), bool(batch), bool(noisy),
     )

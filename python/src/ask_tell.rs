@@ -5,10 +5,15 @@
 //!
 //! Dropping the object (or a value count that does not match) ends the thread: its
 //! objective then reports [`Objective::cancelled`], and Auto stops at once.
+//!
+//! A run that fails (a non-finite value under `options['non_finite'] = 'error'`) says so
+//! from the `tell` that handed over the value, and again from every later `ask`, `tell`
+//! and `stop`, each error carrying the run so far in its `result` attribute.
 
 use std::sync::Mutex;
-use std::sync::mpsc::{Receiver, RecvError, Sender, channel};
+use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, channel};
 use std::thread::JoinHandle;
+use std::time::Duration;
 
 use hodr_core::optim::AutoTermination;
 use hodr_core::{Batch, Error, NoiseSeed, Objective};
@@ -18,16 +23,21 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::values::Seen;
 use crate::{End, Problem, Settings, core_error, result_dict};
+
+/// How long `ask` and `stop` wait for the optimiser between looks for a Ctrl-C.
+const SIGNAL_CHECK: Duration = Duration::from_millis(50);
 
 /// What the Auto thread says.
 enum FromAuto {
     /// Points to evaluate, row-major, and their noise seeds.
     Batch(Vec<f64>, Vec<NoiseSeed>),
-    /// An iteration ended: evaluations so far, f at the best point, σ, the best point.
+    /// An iteration ended: evaluations so far, f at the best point (where Auto has seen
+    /// a finite one), σ, the best point.
     Iteration {
         evaluations: usize,
-        value: f64,
+        value: Option<f64>,
         sigma: f64,
         theta: Vec<f64>,
     },
@@ -111,25 +121,36 @@ pub struct AskTell {
     pending: Option<(Vec<f64>, Vec<NoiseSeed>)>,
     /// The noise seeds of the batch last asked.
     seeds: Vec<NoiseSeed>,
-    best: (Vec<f64>, f64),
+    /// Auto's best point and its value at its last iteration.
+    best: (Vec<f64>, Option<f64>),
+    /// The values told.
+    seen: Seen,
+    /// Values told.
+    told: usize,
+    /// `options['non_finite'] = 'error'`: a non-finite value ends the run.
+    non_finite_error: bool,
     history: (Vec<u64>, Vec<f64>, Vec<f64>),
     done: Option<(Option<AutoTermination>, usize, usize)>,
     error: Option<Failure>,
 }
 
 impl AskTell {
-    /// Reads what the thread says until it asks for a batch or ends.
-    fn advance(&mut self, py: Python<'_>) {
+    /// Reads what the thread says until it asks for a batch or ends; a Ctrl-C meanwhile
+    /// is a KeyboardInterrupt, and the next call goes on waiting.
+    fn advance(&mut self, py: Python<'_>) -> PyResult<()> {
         while self.pending.is_none() && self.done.is_none() {
             let Some(rx) = self.from_auto.take() else {
-                return;
+                return Ok(());
             };
             let (message, rx) = py.detach(move || {
-                let message = rx.lock().map_or(Err(RecvError), |r| r.recv());
+                let message = rx.lock().map_or(Err(RecvTimeoutError::Disconnected), |r| {
+                    r.recv_timeout(SIGNAL_CHECK)
+                });
                 (message, rx)
             });
             self.from_auto = Some(rx);
             match message {
+                Err(RecvTimeoutError::Timeout) => py.check_signals()?,
                 Ok(FromAuto::Batch(points, seeds)) => self.pending = Some((points, seeds)),
                 Ok(FromAuto::Iteration {
                     evaluations,
@@ -137,8 +158,9 @@ impl AskTell {
                     sigma,
                     theta,
                 }) => {
+                    self.seen.settle();
                     self.history.0.push(evaluations as u64);
-                    self.history.1.push(value);
+                    self.history.1.push(self.seen.best(value, &theta).1);
                     self.history.2.push(sigma);
                     self.best = (theta, value);
                 }
@@ -154,12 +176,26 @@ impl AskTell {
                         let _ = thread.join();
                     }
                 }
-                Err(_) => {
+                Err(RecvTimeoutError::Disconnected) => {
                     self.done = Some((None, 0, 0));
                     self.error = Some(Failure::Lost);
                 }
             }
         }
+        Ok(())
+    }
+
+    /// The run's failure as an exception carrying the run so far (`result`), if it failed.
+    fn failure(&self, py: Python<'_>) -> PyResult<Option<PyErr>> {
+        let error = match &self.error {
+            None => return Ok(None),
+            Some(Failure::Core(e)) => core_error(*e),
+            Some(Failure::Lost) => {
+                PyRuntimeError::new_err("the optimiser's thread ended unexpectedly")
+            }
+        };
+        error.value(py).setattr("result", self.result(py)?)?;
+        Ok(Some(error))
     }
 }
 
@@ -176,9 +212,10 @@ impl AskTell {
         noisy: bool,
         settings: Settings,
     ) -> PyResult<Self> {
+        let non_finite_error = settings.6.as_deref() == Some("error");
         let problem = Problem::new(x0, sigma0, bounds, budget, seed, settings)?;
         let n = problem.dim();
-        let best = (problem.memory().0, f64::NAN);
+        let best = (problem.memory().0, None);
         let (to_caller, from_auto) = channel();
         let (values, from_caller) = channel();
         let thread = std::thread::spawn(move || {
@@ -198,7 +235,7 @@ impl AskTell {
                             Ok(Some(report)) => {
                                 let iteration = FromAuto::Iteration {
                                     evaluations: report.evaluations,
-                                    value: report.value.unwrap_or(f64::NAN),
+                                    value: report.value,
                                     sigma: report.sigma,
                                     theta: auto.theta().to_vec(),
                                 };
@@ -238,6 +275,9 @@ impl AskTell {
             pending: None,
             seeds: Vec::new(),
             best,
+            seen: Seen::default(),
+            told: 0,
+            non_finite_error,
             history: (Vec::new(), Vec::new(), Vec::new()),
             done: None,
             error: None,
@@ -251,7 +291,10 @@ impl AskTell {
                 "ask() again before tell(): tell the values of the batch asked first",
             ));
         }
-        self.advance(py);
+        self.advance(py)?;
+        if let Some(error) = self.failure(py)? {
+            return Err(error);
+        }
         let (points, seeds) = self.pending.take().unwrap_or_default();
         self.seeds = seeds;
         let rows = points.len() / self.n;
@@ -263,12 +306,25 @@ impl AskTell {
         Ok(array.into_pyarray(py))
     }
 
-    /// The values of the batch last asked, one per row, in order.
-    fn tell(&mut self, values: PyReadonlyArrayDyn<'_, f64>) -> PyResult<()> {
+    /// The values of the batch last asked, one per row, in order. Once the run has
+    /// ended, the empty batch asked takes no values.
+    fn tell(&mut self, py: Python<'_>, values: PyReadonlyArrayDyn<'_, f64>) -> PyResult<()> {
         let Some(points) = self.asked.take() else {
-            return Err(PyRuntimeError::new_err(
-                "tell() without ask(): nothing was asked",
-            ));
+            if let Some(error) = self.failure(py)? {
+                return Err(error);
+            }
+            if self.done.is_none() {
+                return Err(PyRuntimeError::new_err(
+                    "tell() without ask(): nothing was asked",
+                ));
+            }
+            if values.len() != 0 {
+                return Err(PyValueError::new_err(format!(
+                    "values has {} elements, the batch asked has 0 points (the run has ended)",
+                    values.len()
+                )));
+            }
+            return Ok(());
         };
         let rows = points.len() / self.n;
         if values.len() != rows {
@@ -282,8 +338,20 @@ impl AskTell {
             .as_slice()
             .map(<[f64]>::to_vec)
             .unwrap_or_else(|_| values.as_array().iter().copied().collect());
+        for (x, &value) in points.chunks_exact(self.n).zip(&values) {
+            self.seen.record(x, value);
+        }
+        self.told += rows;
+        let fails = self.non_finite_error && values.iter().any(|v| !v.is_finite());
         if let Some(tx) = &self.values {
             let _ = tx.send(values);
+        }
+        if fails {
+            // Auto refuses the value: say so now, with the run so far.
+            self.advance(py)?;
+            if let Some(error) = self.failure(py)? {
+                return Err(error);
+            }
         }
         Ok(())
     }
@@ -299,31 +367,32 @@ impl AskTell {
         if self.asked.is_some() {
             return Ok(false);
         }
-        self.advance(py);
-        match &self.error {
-            Some(Failure::Core(e)) => Err(core_error(*e)),
-            Some(Failure::Lost) => Err(PyRuntimeError::new_err(
-                "the optimiser's thread ended unexpectedly",
-            )),
+        self.advance(py)?;
+        match self.failure(py)? {
+            Some(error) => Err(error),
             None => Ok(self.done.is_some()),
         }
     }
 
     /// The result so far (the best point and its value) as `OptimizeResult` fields.
     fn result<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let (termination, evaluations, iterations) = self.done.unwrap_or((
-            None,
-            self.history.0.last().copied().unwrap_or(0) as usize,
-            self.history.0.len(),
-        ));
-        let value = Some(self.best.1).filter(|v| !v.is_nan());
+        let (termination, iterations) = match self.done {
+            Some((termination, _, iterations)) => (termination, iterations),
+            None => (None, self.history.0.len()),
+        };
+        let end = match &self.error {
+            Some(Failure::Core(e)) => End::Failed(*e),
+            _ => End::Auto(termination),
+        };
+        let (x, fun) = self.seen.best(self.best.1, &self.best.0);
         let result = result_dict(
             py,
-            End::Auto(termination),
-            &self.best.0,
-            value,
-            evaluations,
+            end,
+            x,
+            fun,
+            self.told,
             iterations,
+            self.seen.any_finite(),
         )?;
         if self.done.is_none() {
             result.set_item("success", false)?;

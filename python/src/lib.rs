@@ -8,7 +8,11 @@
 //! receives the noise seed (with `batch`, a uint64 array of one seed per row): equal
 //! seeds must give equal noise, so that the halves of an antithetic pair share it. An exception raised by
 //! the callable, or a pending KeyboardInterrupt, is kept, ends the work at the next batch
-//! ([`Objective::cancelled`]) and is raised again unchanged to the caller.
+//! ([`Objective::cancelled`]) and is raised again unchanged to the caller; a value that is
+//! not a real number is a `TypeError` naming `fun` ([`values`]).
+//!
+//! numpy's C API is loaded when the module is imported ([`load_numpy`]): loaded on first
+//! use, its import would fail on a pending KeyboardInterrupt, and rust-numpy panics then.
 
 use hodr_core::optim::{Auto, AutoOptions, AutoTermination, NonFinite};
 use hodr_core::{
@@ -16,14 +20,17 @@ use hodr_core::{
     Workspace,
 };
 use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyArray1, PyArray2};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 
+use values::{Seen, fmt_float};
+
 mod ask_tell;
+mod values;
 
 /// Points per batch handed to the objective (with `batch`, rows per call).
 const ROWS: usize = 64;
@@ -39,6 +46,10 @@ struct PyObjective {
     /// The first exception the callable raised (or a KeyboardInterrupt); once set, no
     /// more calls are made.
     error: Option<PyErr>,
+    /// Points handed to the callable (a batch's rows all count, even where it raised).
+    calls: usize,
+    /// The values it returned.
+    seen: Seen,
 }
 
 impl PyObjective {
@@ -51,6 +62,8 @@ impl PyObjective {
             batch,
             noisy,
             error: None,
+            calls: 0,
+            seen: Seen::default(),
         })
     }
 
@@ -59,6 +72,7 @@ impl PyObjective {
         if self.error.is_some() {
             return f64::NAN;
         }
+        self.calls += 1;
         let value = Python::attach(|py| {
             let x = PyArray1::from_slice(py, theta);
             let fun = self.fun.bind(py);
@@ -67,10 +81,13 @@ impl PyObjective {
             } else {
                 fun.call1((x,))
             };
-            value.and_then(|v| v.extract::<f64>())
+            values::one_value(&value?)
         });
         match value {
-            Ok(v) => v,
+            Ok(v) => {
+                self.seen.record(theta, v);
+                v
+            }
             Err(e) => {
                 self.error = Some(e);
                 f64::NAN
@@ -82,6 +99,7 @@ impl PyObjective {
     fn call_batch(&mut self, batch: &Batch<'_, f64>, out: &mut [f64]) -> PyResult<()> {
         let rows = Array2::from_shape_vec((batch.len(), batch.dim()), batch.points().to_vec())
             .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        self.calls += batch.len();
         let values: Vec<f64> = Python::attach(|py| {
             let rows = rows.into_pyarray(py);
             let fun = self.fun.bind(py);
@@ -91,16 +109,12 @@ impl PyObjective {
             } else {
                 fun.call1((rows,))?
             };
-            values.extract()
+            values::batch_values(&values, out.len())
         })?;
-        if values.len() != out.len() {
-            return Err(PyValueError::new_err(format!(
-                "fun returned {} values for a batch of {} points (with batch=True it must return one per row)",
-                values.len(),
-                out.len()
-            )));
-        }
         out.copy_from_slice(&values);
+        for (k, &value) in values.iter().enumerate() {
+            self.seen.record(batch.point(k), value);
+        }
         Ok(())
     }
 
@@ -169,7 +183,7 @@ pub(crate) fn finite_vector(name: &str, values: Vec<f64>) -> PyResult<Vec<f64>> 
     if let Some(i) = values.iter().position(|v| !v.is_finite()) {
         return Err(PyValueError::new_err(format!(
             "{name}[{i}] is not finite ({})",
-            values[i]
+            fmt_float(values[i])
         )));
     }
     Ok(values)
@@ -181,7 +195,8 @@ pub(crate) fn positive(name: &str, sigma: f64) -> PyResult<f64> {
         Ok(sigma)
     } else {
         Err(PyValueError::new_err(format!(
-            "{name} must be finite and > 0, got {sigma}"
+            "{name} must be finite and > 0, got {}",
+            fmt_float(sigma)
         )))
     }
 }
@@ -205,7 +220,8 @@ fn apply_settings(settings: Settings, mut options: AutoOptions<f64>) -> PyResult
     if let Some(t) = tolerance {
         options = options.with_tolerance(t).map_err(|_| {
             PyValueError::new_err(format!(
-                "options['tolerance'] must be finite and > 0, got {t}"
+                "options['tolerance'] must be > 0 and < 1, got {}",
+                fmt_float(t)
             ))
         })?;
     }
@@ -287,7 +303,17 @@ impl Problem {
             if let Some(i) = (0..n).find(|&i| bad(i)) {
                 return Err(PyValueError::new_err(format!(
                     "bounds[{i}]: lower {} must not exceed upper {}",
-                    lower[i], upper[i]
+                    fmt_float(lower[i]),
+                    fmt_float(upper[i])
+                )));
+            }
+            // A box with no finite point in it: a lower limit of +inf or an upper of -inf.
+            let empty = |i: usize| lower[i] == f64::INFINITY || upper[i] == f64::NEG_INFINITY;
+            if let Some(i) = (0..n).find(|&i| empty(i)) {
+                return Err(PyValueError::new_err(format!(
+                    "bounds[{i}] = ({}, {}) holds no finite point (lower must be < inf, upper > -inf)",
+                    fmt_float(lower[i]),
+                    fmt_float(upper[i])
                 )));
             }
         }
@@ -359,19 +385,20 @@ fn minimize_auto<'py>(
     let mut auto = problem.auto(&mut theta, &mut buffer).map_err(core_error)?;
     let callback = callback.map(Bound::unbind);
     let (mut nfev, mut best, mut sigma) = (Vec::new(), Vec::new(), Vec::new());
-    let mut non_finite = false;
+    let mut failure = None;
     // The run holds no GIL; the objective and the callback attach for their calls.
     let end = py.detach(|| -> PyResult<End> {
         loop {
             match auto.step(&mut objective) {
                 Ok(Some(report)) => {
-                    let value = report.value.unwrap_or(f64::NAN);
+                    objective.seen.settle();
+                    let (x, value) = objective.seen.best(report.value, auto.theta());
                     nfev.push(report.evaluations as u64);
                     best.push(value);
                     sigma.push(report.sigma);
                     if let Some(cb) = &callback {
                         let stop = Python::attach(|py| {
-                            let x = PyArray1::from_slice(py, auto.theta());
+                            let x = PyArray1::from_slice(py, x);
                             cb.bind(py).call1((x, value))?.is_truthy()
                         })?;
                         if stop {
@@ -381,19 +408,33 @@ fn minimize_auto<'py>(
                 }
                 Ok(None) => return Ok(End::Auto(auto.termination())),
                 Err(error) => {
-                    non_finite = matches!(error, Error::NonFiniteObjective { .. });
-                    return Err(objective.error_or(error));
+                    // The callable's own exception (its NaN is what Auto refused) goes
+                    // back as it was raised.
+                    if let Some(raised) = objective.error.take() {
+                        return Err(raised);
+                    }
+                    if matches!(error, Error::NonFiniteObjective { .. }) {
+                        failure = Some(error);
+                    }
+                    return Err(core_error(error));
                 }
             }
         }
     });
+    let (x, value) = objective.seen.best(auto.value(), auto.theta());
+    let outcome = match (&end, failure) {
+        (Ok(end), _) => *end,
+        (Err(_), Some(error)) => End::Failed(error),
+        (Err(_), None) => End::Interrupted,
+    };
     let result = result_dict(
         py,
-        end.as_ref().map_or(End::Interrupted, |e| *e),
-        auto.theta(),
-        auto.value(),
-        auto.evaluations(),
+        outcome,
+        x,
+        value,
+        objective.calls,
         auto.iteration(),
+        objective.seen.any_finite(),
     )?;
     result.set_item("history_nfev", nfev.into_pyarray(py))?;
     result.set_item("history_fun", best.into_pyarray(py))?;
@@ -403,7 +444,7 @@ fn minimize_auto<'py>(
         Err(error) => {
             // A Ctrl-C, or a non-finite value under options['non_finite'] = 'error',
             // carries the run so far, for the Python half to hand back.
-            if error.is_instance_of::<PyKeyboardInterrupt>(py) || non_finite {
+            if error.is_instance_of::<PyKeyboardInterrupt>(py) || failure.is_some() {
                 error.value(py).setattr("result", result)?;
             }
             Err(error)
@@ -420,32 +461,46 @@ pub(crate) enum End {
     Callback,
     /// Ctrl-C (KeyboardInterrupt) stopped it.
     Interrupted,
+    /// Auto refused to go on: a non-finite value under `options['non_finite'] = 'error'`.
+    Failed(Error),
 }
 
-/// The `OptimizeResult` fields of a run, history aside.
+/// The `OptimizeResult` fields of a run, history aside: `x` and `fun` the best point and
+/// its value, `nfev` the evaluations, `nit` the iterations. A run in which `fun` never
+/// returned a finite value (`finite` false) has not succeeded, whatever ended it.
 pub(crate) fn result_dict<'py>(
     py: Python<'py>,
     end: End,
-    theta: &[f64],
-    value: Option<f64>,
-    evaluations: usize,
-    iterations: usize,
+    x: &[f64],
+    fun: f64,
+    nfev: usize,
+    nit: usize,
+    finite: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (success, status, message) = match end {
+    let (success, status, mut message) = match end {
         End::Callback => (false, 3, "stopped by the callback".to_string()),
         End::Interrupted => (false, 4, "interrupted (KeyboardInterrupt)".to_string()),
+        End::Failed(error @ Error::NonFiniteObjective { .. }) => (
+            false,
+            5,
+            format!("{error} (options['non_finite'] = 'error')"),
+        ),
+        End::Failed(error) => (false, 5, error.to_string()),
         End::Auto(Some(AutoTermination::MaxEvaluations)) | End::Auto(None) => {
             (false, 1, AutoTermination::MaxEvaluations.to_string())
         }
         End::Auto(Some(t @ AutoTermination::Converged)) => (true, 0, t.to_string()),
         End::Auto(Some(t)) => (true, 2, t.to_string()),
     };
+    if !finite && nfev > 0 {
+        message.push_str("; fun returned no finite value");
+    }
     let result = PyDict::new(py);
-    result.set_item("x", PyArray1::from_slice(py, theta))?;
-    result.set_item("fun", value.unwrap_or(f64::NAN))?;
-    result.set_item("nfev", evaluations)?;
-    result.set_item("nit", iterations)?;
-    result.set_item("success", success)?;
+    result.set_item("x", PyArray1::from_slice(py, x))?;
+    result.set_item("fun", fun)?;
+    result.set_item("nfev", nfev)?;
+    result.set_item("nit", nit)?;
+    result.set_item("success", success && finite)?;
     result.set_item("status", status)?;
     result.set_item("message", message)?;
     Ok(result)
@@ -602,9 +657,23 @@ fn hvp<'py>(
     Ok((hv.into_pyarray(py), report.evaluations))
 }
 
+/// Loads numpy's C API and everything else of rust-numpy's that loads on first use (the
+/// borrow checker's shared state, the type that owns a vector handed to numpy). Loaded
+/// later, the import of `numpy._core.multiarray` behind them could meet a pending
+/// KeyboardInterrupt, which rust-numpy turns into a panic; at import it is an
+/// ordinary exception.
+fn load_numpy(py: Python<'_>) -> PyResult<()> {
+    numpy::get_array_module(py)?;
+    PyArray1::from_slice(py, &[0 as NoiseSeed]);
+    vec![0u64].into_pyarray(py);
+    Array2::<f64>::zeros((1, 1)).into_pyarray(py).readonly();
+    Ok(())
+}
+
 /// The extension module.
 #[pymodule]
 fn _hodr(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    load_numpy(m.py())?;
     m.add_function(wrap_pyfunction!(minimize_auto, m)?)?;
     m.add_function(wrap_pyfunction!(gradient, m)?)?;
     m.add_function(wrap_pyfunction!(hessian, m)?)?;
