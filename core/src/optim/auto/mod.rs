@@ -337,8 +337,11 @@ pub const RESTARTS: usize = 8;
 /// that no longer hold the basin that held the last.
 pub const RESTARTS_BEFORE_FRESH: usize = 0;
 
-/// σ/σ₀ beyond which a confirmed step to the trust boundary no longer widens σ.
-const GROWTH_WIDTH: f64 = 1_048_576.0;
+/// σ/σ₀ beyond which a confirmed step to the trust boundary no longer widens σ: none.
+/// A run of confirmed steps to the boundary is evidence that σ₀ understated the distance
+/// to go (σ₀ = 10⁻¹² for a minimum a unit away), so σ grows as CMA-ES's step size
+/// does on a slope, bounded only by the box and [`Auto::max_scale`].
+const GROWTH_WIDTH: f64 = f64::INFINITY;
 
 /// The fraction of the metric's rate at which a model moves it when its points
 /// determine it (more fitted points than coefficients, residual scatter within
@@ -482,6 +485,8 @@ struct State<T> {
     shared: Option<(NoiseSeed, T)>,
     /// θ moved this iteration to a point of lower value on a common seed.
     gained: bool,
+    /// θ has moved to a value below f(x₀) at some point of the run.
+    improved: bool,
     finished: Option<AutoTermination>,
     /// Changes of the sampling metric so far.
     metric_changes: u32,
@@ -562,6 +567,7 @@ impl<T: Real> State<T> {
             groups: 0,
             shared: None,
             gained: false,
+            improved: false,
             finished: None,
             metric_changes: 0,
             unconfirmed: 0,
@@ -652,7 +658,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// A run from `theta` (x₀; updated in place to the best point found) with scale
-    /// `sigma0` > 0 and default options, drawing its samples from `rng`.
+    /// `sigma0` > 0 and default options, drawing its samples from `rng`. A σ₀ below twice
+    /// x₀'s resolution 8ε·maxᵢ|x₀ᵢ| is raised to it: a smaller one samples x₀ itself.
     ///
     /// # Errors
     /// [`Error::InvalidSigma`] for σ₀ not in (0, [`Auto::max_scale`]],
@@ -673,6 +680,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if let Some(index) = theta.iter().position(|x| !x.is_finite()) {
             return Err(Error::NonFiniteInput { index });
         }
+        // A scale below what x₀'s floats resolve samples x₀ itself: every value ties.
+        let largest = theta.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
+        let sigma0 = sigma0.max(T::TWO * resolution(largest));
         let needed = Self::buffer_len(n);
         if buffer.len() < needed {
             return Err(Error::WorkspaceTooSmall {
@@ -921,8 +931,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         let patience = self.options.patience.unwrap_or(20 + 10 * n);
         let scale = self.theta.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
-        let resolvable = T::from_f64(8.0) * T::EPSILON * scale;
-        let converged = self.sigma_converged() || self.st.sigma <= resolvable;
+        // Before the run has found any value below f(x₀) the tolerance relative to σ₀
+        // does not apply (on a deterministic objective): σ₀ may overstate the scale at
+        // which f varies (σ₀ = 10¹² for a minimum a unit away), and σ shrinks until it
+        // finds that scale or θ's resolution.
+        let tolerated = self.st.improved || self.st.noisy;
+        let converged = tolerated && self.sigma_converged() || self.st.sigma <= resolution(scale);
         // A descent that has found no finite value has nothing to wait for once σ has
         // widened to its cap: a fresh start about x₀ looks at the finer scales again.
         let lost = self.st.value.is_none()
@@ -1349,6 +1363,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.theta.copy_from_slice(&self.mem.stage[..n]);
             self.st.value = Some(trial);
             self.st.gained |= trial < reference;
+            self.st.improved |= trial < reference;
             Ok((AutoStep::Accepted, Some(ratio)))
         } else {
             Ok((AutoStep::Rejected, Some(ratio)))
@@ -1515,6 +1530,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             .zip(self.mem.lower.iter().zip(self.mem.upper.iter()))
             .any(|(&t, (&lo, &hi))| t <= lo || t >= hi)
     }
+}
+
+/// The smallest σ that moves a parameter of magnitude `scale`: 8ε·scale. A σ at or
+/// below it has converged, and σ₀ starts at twice it at least ([`Auto::new`]).
+fn resolution<T: Real>(scale: T) -> T {
+    T::from_f64(8.0) * T::EPSILON * scale
 }
 
 /// The element of rank ⌊len/2⌋ (from 0) of `xs` in ascending order, by counting: O(len²)

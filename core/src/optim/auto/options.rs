@@ -24,7 +24,9 @@ pub enum NonFinite {
 pub struct AutoOptions<T> {
     /// The run converges (and restarts, see [`AutoOptions::restarts`]) once every
     /// coordinate's spread σ√Cᵢᵢ is below `tolerance` times its spread at the start (a
-    /// deterministic objective), or once σ < `tolerance`·σ₀ (a noisy one). Default:
+    /// deterministic objective, once the run has found a value below f(x₀); before, σ
+    /// may shrink to θ's resolution 8ε·maxᵢ|θᵢ|), or once σ < `tolerance`·σ₀ (a noisy
+    /// one). Default:
     /// `None`, meaning [`TOLERANCE`](super::TOLERANCE) for a deterministic objective and
     /// [`NOISY_TOLERANCE`](super::NOISY_TOLERANCE) for a noisy one.
     pub tolerance: Option<T>,

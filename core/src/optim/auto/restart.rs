@@ -58,9 +58,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.rough_scale = T::ZERO;
     }
 
-    /// The widest σ: `width`·σ₀ and, with bounds, at most half the box's widest side.
+    /// The widest σ: `width`·σ₀, at most [`Auto::max_scale`] and, with bounds, half the
+    /// box's widest side.
     fn sigma_cap(&self, width: f64) -> T {
-        let mut cap = self.st.sigma0 * T::from_f64(width);
+        let mut cap = (self.st.sigma0 * T::from_f64(width)).min(Self::max_scale());
         if self.st.bounded {
             // Halves before the difference: a box as wide as T's range has a finite half.
             let half = (0..self.theta.len()).fold(T::ZERO, |w, i| {
@@ -73,7 +74,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         cap
     }
 
-    /// 2σ, capped at `width`·σ₀ and, with bounds, at half the box's widest side.
+    /// 2σ, capped as [`Auto::sigma_cap`] says.
     pub(super) fn widened_sigma(&self, width: f64) -> T {
         (self.st.sigma * T::TWO)
             .min(self.sigma_cap(width))

@@ -179,6 +179,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 theta.copy_from_slice(&stage[row * n..(row + 1) * n]);
                 self.st.value = Some(f);
                 self.st.gained = true;
+                self.st.improved = true;
             }
         }
         if allowed < rows {
