@@ -360,10 +360,21 @@ fn bad_input_is_a_typed_error() {
     let mut theta = [0.0, 0.0];
     let e = Auto::new(&mut theta, 1.0, &mut short, rng()).unwrap_err();
     assert!(matches!(e, Error::WorkspaceTooSmall { .. }));
-    let mut theta = [0.0, 0.0];
-    let auto = Auto::new(&mut theta, 1.0, &mut buffer, rng()).unwrap();
-    let e = auto.with_bounds(&[1.0, 0.0], &[0.0, 1.0]).unwrap_err();
-    assert_eq!(e, Error::InvalidSetting { name: "bounds" });
+    let inf = f64::INFINITY;
+    for (lower, upper) in [
+        ([1.0, 0.0], [0.0, 1.0]),
+        ([0.0, inf], [1.0, inf]),
+        ([-inf, 0.0], [-inf, 1.0]),
+    ] {
+        let mut theta = [0.0, 0.0];
+        let auto = Auto::new(&mut theta, 1.0, &mut buffer, rng()).unwrap();
+        let e = auto.with_bounds(&lower, &upper).unwrap_err();
+        assert_eq!(
+            e,
+            Error::InvalidSetting { name: "bounds" },
+            "{lower:?} {upper:?}"
+        );
+    }
     for scales in [
         [1.0, 0.0],
         [1.0, -1.0],

@@ -717,7 +717,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// # Errors
     /// [`Error::DimensionMismatch`] for bounds of the wrong length,
     /// [`Error::NonFiniteInput`] for a NaN bound, [`Error::InvalidSetting`] (`bounds`)
-    /// where lower > upper.
+    /// where lower > upper, lower = +∞ or upper = −∞ (no finite point lies there; other
+    /// infinite bounds mean no bound on that side).
     pub fn with_bounds(self, lower: &[T], upper: &[T]) -> Result<Self, Error> {
         let n = self.theta.len();
         for b in [lower, upper] {
@@ -732,7 +733,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             if l.partial_cmp(&u).is_none() {
                 return Err(Error::NonFiniteInput { index: i });
             }
-            if l > u {
+            if l > u || l > T::MAX || u < -T::MAX {
                 return Err(Error::InvalidSetting { name: "bounds" });
             }
         }
