@@ -172,22 +172,24 @@ pub fn error_against_time(
     let grid: Vec<f64> = (0..=60)
         .map(|k| t_lo * (t_hi / t_lo).powf(k as f64 / 60.0))
         .collect();
-    // A method whose runs were all skipped has no curve (an empty one) and says so in
-    // the legend.
-    let curves: Vec<(&str, Vec<f64>)> = methods
+    // A method with no curve says why in the legend: its runs were all skipped, or an
+    // interrupt came before any of them on this task.
+    let curves: Vec<(&str, Vec<f64>, &str)> = methods
         .iter()
         .map(|&m| {
             let mine: Vec<&Run> = runs.iter().filter(|r| r.method == m).collect();
-            if !mine.is_empty() && mine.iter().all(|r| r.skipped()) {
-                (m, Vec::new())
+            if mine.is_empty() {
+                (m, Vec::new(), "not run")
+            } else if mine.iter().all(|r| r.skipped()) {
+                (m, Vec::new(), "skipped")
             } else {
-                (m, median_curve(&mine, kind, &grid))
+                (m, median_curve(&mine, kind, &grid), "")
             }
         })
         .collect();
     let positive = curves
         .iter()
-        .flat_map(|(_, c)| c.iter().copied())
+        .flat_map(|(_, c, _)| c.iter().copied())
         .filter(|&e| e > 0.0 && e.is_finite());
     let (e_lo, e_hi) = positive.fold((f64::INFINITY, 0.0f64), |(lo, hi), e| {
         (lo.min(e), hi.max(e))
@@ -235,7 +237,7 @@ pub fn error_against_time(
         mesh.disable_x_axis().disable_y_axis();
     }
     mesh.draw().map_err(|e| anyhow!("{e}"))?;
-    for (k, (_, curve)) in curves.iter().enumerate() {
+    for (k, (_, curve, _)) in curves.iter().enumerate() {
         let (colour, dashed) = line_style(k);
         let points: Vec<(f64, f64)> = grid
             .iter()
@@ -255,13 +257,13 @@ pub fn error_against_time(
         }
     }
     if text {
-        for (k, (name, curve)) in curves.iter().enumerate() {
+        for (k, (name, curve, why)) in curves.iter().enumerate() {
             let (colour, dashed) = line_style(k);
             let y = 70 + 24 * k as i32;
             if curve.is_empty() {
                 legend_area
                     .draw(&Text::new(
-                        format!("{name} (skipped)"),
+                        format!("{name} ({why})"),
                         (42, y - 8),
                         ("sans-serif", 16)
                             .into_font()
