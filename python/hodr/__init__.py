@@ -185,6 +185,21 @@ def _vector(name: str, value: Any) -> list:
     return array.tolist()
 
 
+def _estimate_args(x: Any, sigma: Any) -> Tuple[list, float]:
+    """x as a vector and sigma as a float, sigma above what x's floats resolve
+    (8·eps·max|x_i|): below it every sample rounds to x itself and the estimate would be
+    an exact, meaningless zero. TypeError/ValueError naming the argument."""
+    vector = _vector("x", x)
+    value = _real("sigma", sigma)
+    floor = 8.0 * np.finfo(float).eps * max((abs(v) for v in vector), default=0.0)
+    if 0.0 < value <= floor:
+        raise ValueError(
+            f"sigma = {value!r} is at or below what x's floats resolve (8*eps*max|x| = "
+            f"{floor!r}): every sample would round to x"
+        )
+    return vector, value
+
+
 def _scales(sigma0: Any, n: int) -> list:
     """sigma0 as n scales: a real number for every coordinate, or one per coordinate;
     TypeError/ValueError naming it. The extension checks that each is finite and > 0."""
@@ -540,9 +555,13 @@ def gradient(
     Returns
     -------
     (g, nfev) : (ndarray of shape (n,), int)
+
+    Raises ``ValueError`` for a sigma at or below what x's floats resolve, 8·eps·max|x_i|
+    (every sample would round to x), as ``hessian`` and ``hvp`` do.
     """
+    x, sigma = _estimate_args(x, sigma)
     return _hodr.gradient(
-        fun, _vector("x", x), _real("sigma", sigma), _count("pairs", pairs, 1),
+        fun, x, sigma, _count("pairs", pairs, 1),
         str(method), _seed(seed), bool(batch), bool(noisy),
     )
 
@@ -567,8 +586,9 @@ def hessian(
     -------
     (H, nfev) : (ndarray of shape (n, n), int)
     """
+    x, sigma = _estimate_args(x, sigma)
     return _hodr.hessian(
-        fun, _vector("x", x), _real("sigma", sigma), _count("pairs", pairs, 1),
+        fun, x, sigma, _count("pairs", pairs, 1),
         str(method), _seed(seed), bool(batch), bool(noisy),
     )
 
@@ -595,7 +615,8 @@ def hvp(
     -------
     (Hv, nfev) : (ndarray of shape (n,), int)
     """
+    x, sigma = _estimate_args(x, sigma)
     return _hodr.hvp(
-        fun, _vector("x", x), _vector("v", v), _real("sigma", sigma),
+        fun, x, _vector("v", v), sigma,
         _count("pairs", pairs, 1), str(method), _seed(seed), bool(batch), bool(noisy),
     )

@@ -730,3 +730,18 @@ def test_a_ctrl_c_while_ask_waits_is_a_keyboard_interrupt_with_the_run_so_far():
     if out.strip() == "inconclusive":
         pytest.skip("ask() returned before every signal")
     assert out.split() == ["running", "0", "True"]
+
+
+def test_an_estimate_below_the_resolution_of_x_is_refused():
+    """A sigma at which every sample rounds to x would give an exact zero; it is an error
+    naming sigma instead, for each estimator. Just above the resolution it estimates."""
+    sphere = lambda x: float(np.dot(x, x))
+    for call in (
+        lambda s: hodr.gradient(sphere, [1.0, 2.0], s),
+        lambda s: hodr.hessian(sphere, [1.0, 2.0], s),
+        lambda s: hodr.hvp(sphere, [1.0, 2.0], [1.0, 0.0], s),
+    ):
+        with pytest.raises(ValueError, match="sigma"):
+            call(1e-300)
+    g, _ = hodr.gradient(sphere, [1.0, 2.0], 1e-12, method="gaussian", pairs=64)
+    assert np.all(np.isfinite(g)) and np.any(g != 0.0)
