@@ -96,9 +96,7 @@ pub(crate) fn log_ticks(lo: f64, hi: f64) -> (Vec<f64>, Vec<f64>) {
     let multiples = |step: f64| -> Vec<f64> {
         let start = (lo / step).ceil() as i64;
         let end = (hi / step).floor() as i64;
-        (start..=end.max(start - 1))
-            .map(|k| k as f64 * step)
-            .collect()
+        (start..=end).map(|k| k as f64 * step).collect()
     };
     for k in (first - 2..=last).rev() {
         for m in [5.0, 2.0, 1.0] {
