@@ -9,7 +9,9 @@ use core::fmt;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Error {
-    /// σ was ≤ 0, NaN or infinite, or Auto's σ₀ above `Auto::max_scale`.
+    /// σ was ≤ 0, NaN or infinite; an estimate's σ at or below θ's float resolution
+    /// (8ε·max|θᵢ|) or so large that θ ± 16σ overflows; or Auto's σ₀ above
+    /// `Auto::max_scale`.
     InvalidSigma,
     /// The number of antithetic pairs was 0.
     NoSamples,
@@ -56,7 +58,7 @@ impl fmt::Display for Error {
         match *self {
             Error::InvalidSigma => write!(
                 f,
-                "smoothing width σ must be finite and > 0 (Auto's σ₀ at most 2⁻⁶⁴ of the largest float)"
+                "smoothing width σ must be finite, > 0 and, in an estimate, above 8ε·max|θᵢ| with θ ± 16σ finite (Auto's σ₀ at most 2⁻⁶⁴ of the largest float)"
             ),
             Error::NoSamples => write!(f, "at least one antithetic pair is needed"),
             Error::DimensionMismatch { expected, found } => {

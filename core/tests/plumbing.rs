@@ -232,9 +232,12 @@ fn extreme_sigmas_stay_finite() {
         let mut est32 =
             Estimator::new(sigma as f32, 4, Xoshiro256PlusPlus::seed_from_u64(2)).unwrap();
         let mut f32q = |x: &[f32]| x.iter().map(|v| v * v).sum::<f32>();
+        // θ's largest coordinate is 1: σ at or below 8ε resolves nothing there.
+        let unresolved = sigma as f32 <= 8.0 * f32::EPSILON;
         for m in gradient_methods() {
             match est32.gradient(m, &mut f32q, &theta32, &mut ws32, &mut g32) {
-                Ok(_) => assert!(g32.iter().all(|x| x.is_finite())),
+                Ok(_) => assert!(!unresolved && g32.iter().all(|x| x.is_finite())),
+                Err(Error::InvalidSigma) => assert!(unresolved, "σ={sigma} {m:?}"),
                 Err(e) => assert!(matches!(e, Error::NonFiniteEstimate { .. })),
             }
         }

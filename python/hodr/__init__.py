@@ -186,18 +186,10 @@ def _vector(name: str, value: Any) -> list:
 
 
 def _estimate_args(x: Any, sigma: Any) -> Tuple[list, float]:
-    """x as a vector and sigma as a float, sigma above what x's floats resolve
-    (8·eps·max|x_i|): below it every sample rounds to x itself and the estimate would be
-    an exact, meaningless zero. TypeError/ValueError naming the argument."""
-    vector = _vector("x", x)
-    value = _real("sigma", sigma)
-    floor = 8.0 * np.finfo(float).eps * max((abs(v) for v in vector), default=0.0)
-    if 0.0 < value <= floor:
-        raise ValueError(
-            f"sigma = {value!r} is at or below what x's floats resolve (8*eps*max|x| = "
-            f"{floor!r}): every sample would round to x"
-        )
-    return vector, value
+    """x as a vector and sigma as a float; TypeError/ValueError naming the argument. (The
+    extension refuses a sigma at or below what x's floats resolve, 8·eps·max|x_i|, where
+    every sample would round to x and the estimate be an exact, meaningless zero.)"""
+    return _vector("x", x), _real("sigma", sigma)
 
 
 def _scales(sigma0: Any, n: int) -> list:

@@ -528,7 +528,15 @@ fn with_workspace<R: Send>(
     let mut seeds = vec![0; ROWS];
     let mut ws = Workspace::new(n, &mut buffer, &mut seeds).map_err(core_error)?;
     // Without the GIL: the objective attaches for its calls.
-    py.detach(|| estimate(objective, &mut ws).map_err(|e| objective.error_or(e)))
+    py.detach(|| estimate(objective, &mut ws))
+        .map_err(|e| match e {
+            // σ itself was checked by `estimator`: what remains is σ against x.
+            Error::InvalidSigma => PyValueError::new_err(
+                "sigma is at or below what x's floats resolve (8*eps*max|x_i|: every sample \
+             would round to x), or x +- 16*sigma overflows",
+            ),
+            other => objective.error_or(other),
+        })
 }
 
 /// The gradient estimator called `name`.

@@ -387,7 +387,9 @@ fn extreme_scales_give_finite_results_or_typed_errors() {
                     assert!(
                         matches!(
                             e.error,
-                            Error::NonFiniteEstimate { .. } | Error::NonFiniteObjective { .. }
+                            Error::NonFiniteEstimate { .. }
+                                | Error::NonFiniteObjective { .. }
+                                | Error::InvalidSigma
                         ),
                         "{e}"
                     );
@@ -408,7 +410,9 @@ fn extreme_scales_give_finite_results_or_typed_errors() {
                     assert!(
                         matches!(
                             e.error,
-                            Error::NonFiniteEstimate { .. } | Error::NonFiniteObjective { .. }
+                            Error::NonFiniteEstimate { .. }
+                                | Error::NonFiniteObjective { .. }
+                                | Error::InvalidSigma
                         ),
                         "{e}"
                     );

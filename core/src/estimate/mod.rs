@@ -379,8 +379,10 @@ impl<T: Real, R: Rng> Estimator<T, R> {
     ///
     /// # Errors
     /// [`Error::DimensionMismatch`] if `theta` or `grad` is not of the workspace's length;
-    /// [`Error::NonFiniteInput`] for a non-finite θ; [`Error::NonFiniteObjective`] (the
-    /// point stays in the workspace); [`Error::NonFiniteEstimate`] on overflow;
+    /// [`Error::NonFiniteInput`] for a non-finite θ; [`Error::InvalidSigma`] where σ is at
+    /// or below θ's float resolution, 8ε·max|θᵢ| (every sample would round to θ or its
+    /// neighbours), or θ ± 16σ overflows; [`Error::NonFiniteObjective`] (the point stays
+    /// in the workspace); [`Error::NonFiniteEstimate`] on overflow;
     /// [`Error::WorkspaceTooSmall`] for [`GradientMethod::Regression`] without a moment
     /// region; [`Error::Cancelled`] when the objective asks to stop. On error `grad`
     /// holds no meaningful values.
@@ -393,6 +395,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
         grad: &mut [T],
     ) -> Result<Report<T>, Error> {
         check_vector(ws.dim, theta)?;
+        check_scale(self.sigma, theta)?;
         check_len(ws.dim, grad.len())?;
         ws.batch.begin();
         grad.fill(T::ZERO);
@@ -417,6 +420,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
     ) -> Result<Report<T>, Error> {
         let n = ws.dim;
         check_vector(n, theta)?;
+        check_scale(self.sigma, theta)?;
         check_len(n * n, hess.len())?;
         ws.batch.begin();
         hess.fill(T::ZERO);
@@ -569,6 +573,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
     ) -> Result<Report<T>, Error> {
         let n = ws.dim;
         check_vector(n, theta)?;
+        check_scale(self.sigma, theta)?;
         check_vector(n, v)?;
         check_len(n, hv.len())?;
         if let Some(g) = grad.as_deref() {
@@ -666,6 +671,20 @@ impl<T: Real, R: Rng> Estimator<T, R> {
 
 fn check_sigma<T: Real>(sigma: T) -> Result<(), Error> {
     if sigma.is_finite() && sigma > T::ZERO {
+        Ok(())
+    } else {
+        Err(Error::InvalidSigma)
+    }
+}
+
+/// σ resolves at θ and its samples stay finite: 8ε·max|θᵢ| < σ (below it θ ± σt rounds
+/// to θ or to its neighbouring floats, and the estimate is zero or rounding) and
+/// max|θᵢ| + 16σ finite (the samples' reach, far past any normal draw); else
+/// [`Error::InvalidSigma`].
+fn check_scale<T: Real>(sigma: T, theta: &[T]) -> Result<(), Error> {
+    let largest = theta.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
+    let resolution = T::from_f64(8.0) * T::EPSILON * largest;
+    if sigma > resolution && (largest + T::from_f64(16.0) * sigma).is_finite() {
         Ok(())
     } else {
         Err(Error::InvalidSigma)

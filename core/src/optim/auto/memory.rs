@@ -325,6 +325,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             if !f.is_finite() {
                 continue;
             }
+            if self.st.value.is_some_and(|v| !ties_with(f, v)) {
+                self.st.varied = true;
+            }
             let slot = if self.st.count < cap {
                 self.st.count += 1;
                 self.st.count - 1

@@ -290,6 +290,11 @@ const TUKEY: f64 = 4.685;
 /// meet a distant basin ever more rarely. σ₀ states where the parameters matter.
 pub const PLATEAU_WIDTH: f64 = 16.0;
 
+/// σ/σ₀ up to which a plateau widens σ while no value of the run has differed from f(θ)
+/// (in place of [`PLATEAU_WIDTH`]): 2⁴⁰ ≈ 10¹², so that σ₀ may understate the scale at
+/// which f's values change at all by as much as the σ range the stability suite covers.
+pub const UNVARIED_WIDTH: f64 = 1_099_511_627_776.0;
+
 /// Every coordinate's spread relative to its start, σ√Cᵢᵢ/sᵢ, at which a run on a
 /// deterministic objective converges by default.
 pub const TOLERANCE: f64 = 1e-9;
@@ -487,6 +492,10 @@ struct State<T> {
     gained: bool,
     /// θ has moved to a value below f(x₀) at some point of the run.
     improved: bool,
+    /// Some finite value of the run differed from f(θ) as it then stood (beyond
+    /// [`ties_with`]): f has been seen to vary. Until then a plateau widens σ past
+    /// [`PLATEAU_WIDTH`]·σ₀ ([`Auto::widened_sigma`]).
+    varied: bool,
     finished: Option<AutoTermination>,
     /// Changes of the sampling metric so far.
     metric_changes: u32,
@@ -568,6 +577,7 @@ impl<T: Real> State<T> {
             shared: None,
             gained: false,
             improved: false,
+            varied: false,
             finished: None,
             metric_changes: 0,
             unconfirmed: 0,
@@ -811,15 +821,24 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self
     }
 
-    /// The best point found so far (x₀ before the first step).
+    /// The best point found so far: x₀ until a finite value has been found.
     pub fn theta(&self) -> &[T] {
-        if self.record_leads() {
+        if self.record_leads() || self.nothing_finite() {
             self.mem.record
         } else if self.st.best_value.is_some() {
             self.mem.best
         } else {
             self.theta
         }
+    }
+
+    /// Whether the run has evaluated f and found no finite value: [`Memory::record`]
+    /// then holds x₀ (see its doc).
+    fn nothing_finite(&self) -> bool {
+        self.st.evaluations > 0
+            && self.st.record.is_none()
+            && self.st.best_value.is_none()
+            && self.st.value.is_none()
     }
 
     /// f at [`Auto::theta`], once evaluated and finite.
@@ -860,7 +879,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.finished
     }
 
-    /// Steps until the run ends, calling `observe` after every iteration.
+    /// Steps until the run ends, calling `observe` after every iteration with its report
+    /// and the best point so far ([`Auto::theta`], whose value is the report's).
     ///
     /// # Errors
     /// As [`Auto::step`].
@@ -870,7 +890,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         mut observe: impl FnMut(&AutoReport<T>, &[T]),
     ) -> Result<AutoTermination, Error> {
         while let Some(report) = self.step(objective)? {
-            observe(&report, self.theta);
+            observe(&report, self.theta());
         }
         Ok(self.st.finished.unwrap_or(AutoTermination::MaxEvaluations))
     }
@@ -947,8 +967,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // Before a restart or the end moves θ back to the best point: a centre that
         // continuation left above it may have just stepped below it.
         self.keep_best();
+        // A box of zero width in every coordinate leaves one point: it has been evaluated.
+        let pinned = (0..n).all(|i| self.mem.lower[i] == self.mem.upper[i]);
         let termination = if kind == AutoStep::OutOfBudget || self.remaining() == 0 {
             Some(AutoTermination::MaxEvaluations)
+        } else if pinned {
+            Some(AutoTermination::Converged)
         } else if (converged || stagnated)
             && (self.st.may_restart || (self.st.widenings as usize) < self.restarts())
         {

@@ -190,7 +190,8 @@ impl<T: Real> AutoOptions<T> {
 #[non_exhaustive]
 pub enum AutoTermination {
     /// The samples' spread fell below [`AutoOptions::tolerance`] of its start, or σ below
-    /// what T resolves at θ.
+    /// what T resolves at θ, or the box leaves a single point (every lower bound equal
+    /// to its upper bound), which has been evaluated.
     Converged,
     /// [`AutoOptions::patience`] iterations passed without a lower f(θ).
     Stagnated,
@@ -246,7 +247,9 @@ pub struct AutoReport<T> {
     pub sigma: T,
     /// σ for the next iteration.
     pub next_sigma: T,
-    /// f(θ) after the iteration, when known and finite.
+    /// f at the best point so far ([`Auto::theta`](super::Auto::theta)) after the
+    /// iteration, when known and finite (the search centre may lie above it: after a
+    /// continuation move, during probes, in a later descent).
     pub value: Option<T>,
     /// Distance θ moved (including a move to a lower sample).
     pub step_length: T,

@@ -6,7 +6,10 @@
 use rand_core::Rng;
 
 use super::options::AutoStep;
-use super::{Auto, PLATEAU_WIDTH, RESTART_SCALES, RESTARTS, RESTARTS_BEFORE_FRESH, State, reflect};
+use super::{
+    Auto, PLATEAU_WIDTH, RESTART_SCALES, RESTARTS, RESTARTS_BEFORE_FRESH, State, UNVARIED_WIDTH,
+    reflect,
+};
 use crate::real::Real;
 use crate::sample::normal;
 
@@ -59,8 +62,17 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// The widest σ: `width`·σ₀, at most [`Auto::max_scale`] and, with bounds, half the
-    /// box's widest side.
+    /// box's widest side. Where f(θ) is finite and no value of the run has differed from
+    /// it yet ([`State::varied`]), `width` is [`UNVARIED_WIDTH`] instead: every sample so
+    /// far tied with θ, so σ₀ may lie below the scale at which f changes at all
+    /// (σ₀ = 10⁻¹² where f's values are near 10⁸, whose spacing is 10⁻⁸), and only a
+    /// wider σ can see a slope.
     fn sigma_cap(&self, width: f64) -> T {
+        let width = if self.st.varied || self.st.value.is_none() {
+            width
+        } else {
+            width.max(UNVARIED_WIDTH)
+        };
         let mut cap = (self.st.sigma0 * T::from_f64(width)).min(Self::max_scale());
         if self.st.bounded {
             // Halves before the difference: a box as wide as T's range has a finite half.
@@ -118,9 +130,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Moves θ to the best point of the earlier descents where that is at least as good
-    /// as the current descent's.
+    /// as the current descent's, or back to x₀ where no value has been finite.
     pub(super) fn restore_record(&mut self) {
-        if self.record_leads() {
+        if self.record_leads() || self.nothing_finite() {
             self.theta.copy_from_slice(self.mem.record);
             self.st.value = self.st.record;
         }
@@ -244,6 +256,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             fresh_narrow: run.fresh_narrow,
             fresh_wide: run.fresh_wide,
             wide_end: run.wide_end,
+            varied: run.varied,
             ..State::start(run.sigma0, n)
         };
         self.shape_scales();

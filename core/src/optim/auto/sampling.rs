@@ -211,6 +211,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 })
         };
         self.st.lattice = ties > 0 && ties < near;
+        if near == 0 && allowed > usize::from(centre) && self.st.value.is_some() {
+            // Every sample failed (NaN or ±∞) about a θ where f is finite: θ lies within
+            // σ of where f stops being defined (a constraint that the objective enforces
+            // by returning ∞, a renderer's invalid parameters). That is no plateau: a
+            // wider σ would put still more samples outside, and the run would end up
+            // sampling there at the widest scale. Look closer instead.
+            self.st.sigma = sigma * T::HALF;
+            return Ok(Some(AutoStep::Rejected));
+        }
         if self.st.value.is_none() || 2 * ties > near || ties == near {
             // Ties say that f is flat here only where the values around θ differ by far
             // more than the 16 ulps within which they tie: at a smooth minimum they tie
