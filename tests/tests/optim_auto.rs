@@ -299,7 +299,8 @@ fn non_finite_values_count_as_worst_by_default() {
     assert!(value.is_some_and(|v| v < 1e-8), "{theta:?} {value:?}");
 }
 
-/// With [`NonFinite::Error`] the first non-finite value is a typed error; θ is kept.
+/// With [`NonFinite::Error`] the first non-finite value is a typed error; θ is kept and
+/// the point that failed can be read back.
 #[test]
 fn non_finite_values_are_an_error_when_asked() {
     let mut theta = [0.0, 0.0];
@@ -326,6 +327,8 @@ fn non_finite_values_are_an_error_when_asked() {
         "{error:?}"
     );
     assert!(auto.theta().iter().all(|v| v.is_finite() && *v <= 0.1));
+    let failed = auto.failed_point().expect("the point that failed");
+    assert!(f(failed).is_nan(), "{failed:?}");
 }
 
 /// f that is +∞ outside the ball ‖x‖ < ½ in 10 dimensions (a constraint the objective

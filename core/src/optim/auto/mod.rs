@@ -496,6 +496,9 @@ struct State<T> {
     /// [`ties_with`]): f has been seen to vary. Until then a plateau widens σ past
     /// [`PLATEAU_WIDTH`]·σ₀ ([`Auto::widened_sigma`]).
     varied: bool,
+    /// The staged row whose value stopped this step under [`NonFinite::Error`]
+    /// ([`Auto::failed_point`]).
+    failed: Option<usize>,
     finished: Option<AutoTermination>,
     /// Changes of the sampling metric so far.
     metric_changes: u32,
@@ -578,6 +581,7 @@ impl<T: Real> State<T> {
             gained: false,
             improved: false,
             varied: false,
+            failed: None,
             finished: None,
             metric_changes: 0,
             unconfirmed: 0,
@@ -859,6 +863,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
     }
 
+    /// The point whose non-finite value stopped the last [`Auto::step`] with
+    /// [`Error::NonFiniteObjective`] (under [`NonFinite::Error`]); `None` once another
+    /// step has begun, or where no step failed so.
+    pub fn failed_point(&self) -> Option<&[T]> {
+        let n = self.theta.len();
+        self.st
+            .failed
+            .map(|row| &self.mem.stage[row * n..(row + 1) * n])
+    }
+
     /// σ for the next iteration.
     pub fn sigma(&self) -> T {
         self.st.sigma
@@ -908,6 +922,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if self.st.finished.is_some() {
             return Ok(None);
         }
+        self.st.failed = None;
         if self.remaining() == 0 {
             self.st.finished = Some(AutoTermination::MaxEvaluations);
             self.restore_best();

@@ -330,6 +330,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                     } else {
                         first + usize::from(draws[k])
                     };
+                    self.st.failed = Some(start + k);
                     return Err(Error::NonFiniteObjective { sample });
                 }
             }
