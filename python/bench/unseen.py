@@ -9,7 +9,8 @@ Styblinski-Tang, Rastrigin, Rosenbrock, a rotated ellipsoid, the sum of differen
 the L1 and L-infinity norms; Griewank and Rastrigin also rotated about their minimum, which
 takes away what an axis-aligned search gains on a separable function) and shapes a renderer's loss takes (a narrow well on a flat
 plateau, a staircase, a minimum in a corner of the box, units that differ by 10^6, a region
-where the objective fails with NaN), none of them in hodr's suite, tests or tasks. Each
+where the objective fails with NaN, a wall of +inf beside the minimum, a minimum on the edge
+of a step), none of them in hodr's suite, tests or tasks. Each
 problem states its dimension, box (or none), scale sigma0, budget and target; every solver
 gets the same statement and the same start, uniform in [-3, 3]^n from the seed. A run
 succeeds when an evaluated point comes within the target of f* (COCO's rule); the table
@@ -159,6 +160,23 @@ def failing(x):
     return float(np.sum((x - BALL_CENTRE) ** 2))
 
 
+WALL_CENTRE = np.concatenate([[9.5], np.zeros(9)])
+
+
+def walled(x):
+    """+inf outside the ball of radius 10 (a constraint the function enforces itself, as
+    a renderer does with parameters it cannot draw), its minimum 0.5 inside the wall."""
+    if x @ x >= 100.0:
+        return float("inf")
+    return float(np.sum((x - WALL_CENTRE) ** 2))
+
+
+def jump(x):
+    """A bowl centred at 0.5 with a step of 1 where x[0] > 0: the minimum, 0.25, lies on
+    the step's edge, at x[0] = 0 exactly."""
+    return float(np.sum((x - 0.5) ** 2) + (1.0 if x[0] > 0 else 0.0))
+
+
 # name: (f, n, f*, sigma0, box or None, budget, target)
 PROBLEMS = {
     "ackley10": (ackley, 10, 0.0, 2.0, (-5, 5), 20_000, 1e-6),
@@ -178,6 +196,8 @@ PROBLEMS = {
     "corner5": (corner, 5, corner(np.clip(CORNER, -5, 5)), 1.0, (-5, 5), 10_000, 1e-6),
     "units5": (units, 5, 0.0, 1.0, None, 10_000, 1e-6),
     "nan-region4": (failing, 4, 0.0, 0.5, None, 8_000, 1e-6),
+    "walled10": (walled, 10, 0.0, 3.0, None, 20_000, 1e-6),
+    "jump10": (jump, 10, 0.25, 1.0, None, 20_000, 1e-6),
 }
 
 
