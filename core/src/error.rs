@@ -44,6 +44,14 @@ pub enum Error {
         /// The field's name.
         name: &'static str,
     },
+    /// One entry of a per-coordinate setting (bounds, scales) is out of its documented
+    /// range.
+    InvalidEntry {
+        /// The setting's name.
+        name: &'static str,
+        /// The coordinate.
+        index: usize,
+    },
     /// The estimate itself overflowed (e.g. f ≈ 1e30 with σ ≈ 1e-12 in `f32`).
     NonFiniteEstimate {
         /// Index of the first non-finite output element.
@@ -83,6 +91,9 @@ impl fmt::Display for Error {
                 )
             }
             Error::InvalidSetting { name } => write!(f, "setting `{name}` is out of range"),
+            Error::InvalidEntry { name, index } => {
+                write!(f, "setting `{name}` is out of range at coordinate {index}")
+            }
             Error::NonFiniteEstimate { index } => {
                 write!(
                     f,

@@ -94,6 +94,7 @@ fn error_name(e: Error) -> &'static str {
         Error::NonFiniteInput { .. } => "non-finite-input",
         Error::NonFiniteObjective { .. } => "non-finite-objective",
         Error::InvalidSetting { .. } => "invalid-setting",
+        Error::InvalidEntry { .. } => "invalid-entry",
         Error::NonFiniteEstimate { .. } => "non-finite-estimate",
         Error::Cancelled => "cancelled",
         _ => "error",

@@ -168,6 +168,7 @@ pub(crate) fn core_error(error: Error) -> PyErr {
         | Error::DimensionMismatch { .. }
         | Error::NonFiniteInput { .. }
         | Error::InvalidSetting { .. }
+        | Error::InvalidEntry { .. }
         | Error::NonFiniteObjective { .. } => PyValueError::new_err(error.to_string()),
         other => PyRuntimeError::new_err(other.to_string()),
     }

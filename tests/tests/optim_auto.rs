@@ -480,30 +480,40 @@ fn bad_input_is_a_typed_error() {
     let e = Auto::new(&mut theta, 1.0, &mut short, rng()).unwrap_err();
     assert!(matches!(e, Error::WorkspaceTooSmall { .. }));
     let inf = f64::INFINITY;
-    for (lower, upper) in [
-        ([1.0, 0.0], [0.0, 1.0]),
-        ([0.0, inf], [1.0, inf]),
-        ([-inf, 0.0], [-inf, 1.0]),
+    for (lower, upper, index) in [
+        ([1.0, 0.0], [0.0, 1.0], 0),
+        ([0.0, inf], [1.0, inf], 1),
+        ([-inf, 0.0], [-inf, 1.0], 0),
     ] {
         let mut theta = [0.0, 0.0];
         let auto = Auto::new(&mut theta, 1.0, &mut buffer, rng()).unwrap();
         let e = auto.with_bounds(&lower, &upper).unwrap_err();
         assert_eq!(
             e,
-            Error::InvalidSetting { name: "bounds" },
+            Error::InvalidEntry {
+                name: "bounds",
+                index
+            },
             "{lower:?} {upper:?}"
         );
     }
-    for scales in [
-        [1.0, 0.0],
-        [1.0, -1.0],
-        [f64::NAN, 1.0],
-        [1.0, f64::INFINITY],
+    for (scales, index) in [
+        ([1.0, 0.0], 1),
+        ([1.0, -1.0], 1),
+        ([f64::NAN, 1.0], 0),
+        ([1.0, f64::INFINITY], 1),
     ] {
         let mut theta = [0.0, 0.0];
         let auto = Auto::new(&mut theta, 1.0, &mut buffer, rng()).unwrap();
         let e = auto.with_scales(&scales).unwrap_err();
-        assert_eq!(e, Error::InvalidSetting { name: "scales" });
+        assert_eq!(
+            e,
+            Error::InvalidEntry {
+                name: "scales",
+                index
+            }
+        );
+        assert!(e.to_string().ends_with(&format!("coordinate {index}")));
     }
     let mut theta = [0.0, 0.0];
     let auto = Auto::new(&mut theta, 1.0, &mut buffer, rng()).unwrap();

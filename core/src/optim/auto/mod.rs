@@ -730,9 +730,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     ///
     /// # Errors
     /// [`Error::DimensionMismatch`] for bounds of the wrong length,
-    /// [`Error::NonFiniteInput`] for a NaN bound, [`Error::InvalidSetting`] (`bounds`)
-    /// where lower > upper, lower = +∞ or upper = −∞ (no finite point lies there; other
-    /// infinite bounds mean no bound on that side).
+    /// [`Error::NonFiniteInput`] for a NaN bound, [`Error::InvalidEntry`] (`bounds`,
+    /// naming the coordinate) where lower > upper, lower = +∞ or upper = −∞ (no finite
+    /// point lies there; other infinite bounds mean no bound on that side).
     pub fn with_bounds(self, lower: &[T], upper: &[T]) -> Result<Self, Error> {
         let n = self.theta.len();
         for b in [lower, upper] {
@@ -748,7 +748,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 return Err(Error::NonFiniteInput { index: i });
             }
             if l > u || l > T::MAX || u < -T::MAX {
-                return Err(Error::InvalidSetting { name: "bounds" });
+                return Err(Error::InvalidEntry {
+                    name: "bounds",
+                    index: i,
+                });
             }
         }
         let mut this = self;
@@ -772,7 +775,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     ///
     /// # Errors
     /// [`Error::DimensionMismatch`] for scales of the wrong length,
-    /// [`Error::InvalidSetting`] (`scales`) for a scale not in (0, [`Auto::max_scale`]].
+    /// [`Error::InvalidEntry`] (`scales`, naming the coordinate) for a scale not in
+    /// (0, [`Auto::max_scale`]].
     pub fn with_scales(mut self, scales: &[T]) -> Result<Self, Error> {
         let n = self.theta.len();
         if scales.len() != n {
@@ -781,11 +785,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 found: scales.len(),
             });
         }
-        if !scales
+        if let Some(index) = scales
             .iter()
-            .all(|&s| s > T::ZERO && s <= Self::max_scale())
+            .position(|&s| !(s > T::ZERO && s <= Self::max_scale()))
         {
-            return Err(Error::InvalidSetting { name: "scales" });
+            return Err(Error::InvalidEntry {
+                name: "scales",
+                index,
+            });
         }
         self.mem.scale.copy_from_slice(scales);
         self.shape_scales();
