@@ -53,7 +53,7 @@
 //!   (1/(2λ_H)) Σᵢ √wᵢ αᵢ (‖uᵢ‖² + ω uᵢ²) (elementwise square), g by (1/λ_H) Σᵢ √wᵢ αᵢ uᵢ.
 
 use crate::cholesky;
-use crate::optim::vector::{axpy, dot, mat_vec_by_columns};
+use crate::optim::vector::{axpy, dot, dot_lanes_many, mat_vec_by_columns};
 use crate::real::Real;
 
 /// Which Hessian the model has.
@@ -227,8 +227,8 @@ fn deviation_share(shape: Shape, n: usize) -> f64 {
 /// (Σⱼ (aⱼbⱼ)², Σⱼ aⱼbⱼ) for each of R vectors `rows` (their first n floats) with `b`'s,
 /// in one pass over b. Each sum runs in four interleaved partial sums,
 /// (s₀ + s₁) + (s₂ + s₃) plus the tail, so that the compiler can vectorise the loop;
-/// Σⱼ aⱼbⱼ is [`dot_lanes`](crate::optim::vector::dot_lanes)'s, bit for bit, and
-/// neither sum depends on the block it is computed in.
+/// Σⱼ aⱼbⱼ is [`dot_lanes`](crate::optim::vector::dot_lanes)'s (and `dot_lanes_many`'s),
+/// bit for bit, and neither sum depends on the block it is computed in.
 fn products<T: Real, const R: usize>(rows: [&[T]; R], b: &[T], n: usize) -> [(T, T); R] {
     let mut quad = [[T::ZERO; 4]; R];
     let mut lin = [[T::ZERO; 4]; R];
@@ -292,13 +292,19 @@ fn kernel_block<T: Real, const R: usize>(
 ) -> [T; R] {
     let ui = &u[i * n..(i + 1) * n];
     let rows: [&[T]; R] = core::array::from_fn(|b| &u[(k0 + b) * n..(k0 + b + 1) * n]);
+    let common = |b: usize| norms[i] * norms[k0 + b];
+    if shape == Shape::Full && share == T::ZERO {
+        // No per-axis features (a determined full model): the dot products alone, summed
+        // as `products` sums them.
+        let dots = dot_lanes_many(rows, ui, n);
+        return core::array::from_fn(|b| dots[b].sq() + common(b));
+    }
     let sums = products(rows, ui, n);
     core::array::from_fn(|b| {
         let (quad, lin) = sums[b];
-        let common = norms[i] * norms[k0 + b];
         match shape {
-            Shape::Full => lin.sq() + common + share * quad,
-            Shape::Diagonal => quad * share + common + T::from_f64(4.0) * lin,
+            Shape::Full => lin.sq() + common(b) + share * quad,
+            Shape::Diagonal => quad * share + common(b) + T::from_f64(4.0) * lin,
         }
     })
 }
@@ -545,11 +551,15 @@ mod tests {
         for (i, norm) in norms.iter_mut().enumerate() {
             *norm = norm_sq(&u[i * n..(i + 1) * n]);
         }
-        for shape in [Shape::Full, Shape::Diagonal] {
-            let four = kernel_block::<f64, 4>(shape, 0.5, &u, &norms, n, 9, 2);
-            let two = kernel_block::<f64, 2>(shape, 0.5, &u, &norms, n, 9, 4);
+        for (shape, share) in [
+            (Shape::Full, 0.0),
+            (Shape::Full, 0.5),
+            (Shape::Diagonal, 0.5),
+        ] {
+            let four = kernel_block::<f64, 4>(shape, share, &u, &norms, n, 9, 2);
+            let two = kernel_block::<f64, 2>(shape, share, &u, &norms, n, 9, 4);
             for (b, entry) in four.iter().enumerate() {
-                let alone = kernel_block::<f64, 1>(shape, 0.5, &u, &norms, n, 9, 2 + b)[0];
+                let alone = kernel_block::<f64, 1>(shape, share, &u, &norms, n, 9, 2 + b)[0];
                 assert_eq!(
                     entry.to_bits(),
                     alone.to_bits(),
