@@ -2,10 +2,8 @@
 
 #[cfg(feature = "auto")]
 use hodr_core::optim::{Auto, AutoOptions, AutoTermination};
-use hodr_core::optim::{Budget, Optimiser, Termination};
+use hodr_core::optim::{Budget, Method, Optimiser, Schedule, Termination};
 use hodr_core::{Error, Estimator, MIN_ROWS, NoiseSeed, Workspace};
-use rand_xoshiro::Xoshiro128PlusPlus;
-use rand_xoshiro::rand_core::SeedableRng;
 
 use crate::algorithm::Algorithm;
 use crate::problem::{PROBLEMS, Problem};
@@ -142,42 +140,56 @@ pub fn run_one(problem: &Problem, algorithm: Algorithm, storage: &mut Storage) -
     };
     let n = problem.start.len();
     let mut result = RunResult::unstarted(n, End::Finished(Termination::MaxEvaluations));
-    let theta = &mut storage.theta[..n];
-    theta.copy_from_slice(problem.start);
+    result.end = match run_method(
+        problem,
+        method,
+        algorithm.schedule(&problem.settings),
+        storage,
+        &mut result,
+    ) {
+        Ok(t) => End::Finished(t),
+        Err(end) => end,
+    };
+    result.theta[..n].copy_from_slice(&storage.theta[..n]);
+    result
+}
+
+/// [`run_one`] for an algorithm with a method: runs it from the problem's start in
+/// `storage.theta`, counting evaluations and iterations into `result`.
+fn run_method(
+    problem: &Problem,
+    method: Method<f32>,
+    schedule: Schedule<f32>,
+    storage: &mut Storage,
+    result: &mut RunResult,
+) -> Result<Termination, End> {
     let setup = |error| End::Failed {
         iteration: 0,
         error,
     };
+    let n = problem.start.len();
+    let theta = &mut storage.theta[..n];
+    theta.copy_from_slice(problem.start);
     let s = &problem.settings;
-    let ws = Workspace::new(n, &mut storage.workspace, &mut storage.seeds);
-    let rng = Xoshiro128PlusPlus::from_seed(problem.seed);
-    let optimiser = Estimator::new(s.sigma_start, s.pairs, rng).and_then(|estimator| {
-        Optimiser::new(
-            method,
-            algorithm.schedule(s),
-            Budget::evaluations(s.evaluations),
-            estimator,
-            theta,
-            &mut storage.optimiser,
-        )
-    });
-    match (ws, optimiser) {
-        (Ok(mut ws), Ok(mut opt)) => {
-            let mut f = problem.objective;
-            result.end = match opt.run(&mut f, &mut ws, || 0.0, |_, _| {}) {
-                Ok(t) => End::Finished(t),
-                Err(e) => End::Failed {
-                    iteration: e.iteration,
-                    error: e.error,
-                },
-            };
-            result.evaluations = opt.evaluations();
-            result.iterations = opt.iteration();
-        }
-        (Err(e), _) | (_, Err(e)) => result.end = setup(e),
-    }
-    result.theta[..n].copy_from_slice(&storage.theta[..n]);
-    result
+    let mut ws = Workspace::new(n, &mut storage.workspace, &mut storage.seeds).map_err(setup)?;
+    let estimator = Estimator::new(s.sigma_start, s.pairs, problem.seed.rng()).map_err(setup)?;
+    let mut opt = Optimiser::new(
+        method,
+        schedule,
+        Budget::evaluations(s.evaluations),
+        estimator,
+        theta,
+        &mut storage.optimiser,
+    )
+    .map_err(setup)?;
+    let mut f = problem.objective;
+    let end = opt.run(&mut f, &mut ws, || 0.0, |_, _| {});
+    result.evaluations = opt.evaluations();
+    result.iterations = opt.iteration();
+    end.map_err(|e| End::Failed {
+        iteration: e.iteration,
+        error: e.error,
+    })
 }
 
 /// Minimises `problem` with Auto from its start, its seed, its scale σ₀ (`sigma_start`)
@@ -189,7 +201,7 @@ fn run_auto(problem: &Problem, storage: &mut Storage) -> RunResult {
     let theta = &mut storage.theta[..n];
     theta.copy_from_slice(problem.start);
     let s = &problem.settings;
-    let rng = Xoshiro128PlusPlus::from_seed(problem.seed);
+    let rng = problem.seed.rng();
     let auto = AutoOptions::default()
         .with_max_evaluations(s.evaluations)
         .and_then(|options| {

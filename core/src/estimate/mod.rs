@@ -394,8 +394,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
         ws: &mut Workspace<'_, T>,
         grad: &mut [T],
     ) -> Result<Report<T>, Error> {
-        check_vector(ws.dim, theta)?;
-        check_scale(self.sigma, theta)?;
+        check_centre(ws.dim, self.sigma, theta)?;
         check_len(ws.dim, grad.len())?;
         ws.batch.begin();
         grad.fill(T::ZERO);
@@ -419,8 +418,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
         hess: &mut [T],
     ) -> Result<Report<T>, Error> {
         let n = ws.dim;
-        check_vector(n, theta)?;
-        check_scale(self.sigma, theta)?;
+        check_centre(n, self.sigma, theta)?;
         check_len(n * n, hess.len())?;
         ws.batch.begin();
         hess.fill(T::ZERO);
@@ -572,8 +570,7 @@ impl<T: Real, R: Rng> Estimator<T, R> {
         hv: &mut [T],
     ) -> Result<Report<T>, Error> {
         let n = ws.dim;
-        check_vector(n, theta)?;
-        check_scale(self.sigma, theta)?;
+        check_centre(n, self.sigma, theta)?;
         check_vector(n, v)?;
         check_len(n, hv.len())?;
         if let Some(g) = grad.as_deref() {
@@ -677,12 +674,23 @@ fn check_sigma<T: Real>(sigma: T) -> Result<(), Error> {
     }
 }
 
-/// σ resolves at θ and its samples stay finite: 8ε·max|θᵢ| < σ (below it θ ± σt rounds
-/// to θ or to its neighbouring floats, and the estimate is zero or rounding) and
-/// max|θᵢ| + 16σ finite (the samples' reach, far past any normal draw); else
-/// [`Error::InvalidSigma`].
-fn check_scale<T: Real>(sigma: T, theta: &[T]) -> Result<(), Error> {
-    let largest = theta.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
+/// θ is a finite vector of length `n` ([`Error::DimensionMismatch`],
+/// [`Error::NonFiniteInput`]) at which σ resolves and its samples stay finite:
+/// 8ε·max|θᵢ| < σ (below it θ ± σt rounds to θ or to its neighbouring floats, and the
+/// estimate is zero or rounding) and max|θᵢ| + 16σ finite (the samples' reach, far past
+/// any normal draw); else [`Error::InvalidSigma`]. One pass over θ.
+fn check_centre<T: Real>(n: usize, sigma: T, theta: &[T]) -> Result<(), Error> {
+    check_len(n, theta.len())?;
+    let mut largest = T::ZERO;
+    for (index, x) in theta.iter().enumerate() {
+        if !x.is_finite() {
+            return Err(Error::NonFiniteInput { index });
+        }
+        let a = x.abs();
+        if a > largest {
+            largest = a;
+        }
+    }
     let resolution = T::from_f64(8.0) * T::EPSILON * largest;
     if sigma > resolution && (largest + T::from_f64(16.0) * sigma).is_finite() {
         Ok(())
@@ -699,6 +707,7 @@ fn check_len(expected: usize, found: usize) -> Result<(), Error> {
     }
 }
 
+#[cfg(feature = "hvp")]
 fn check_vector<T: Real>(n: usize, x: &[T]) -> Result<(), Error> {
     check_len(n, x.len())?;
     match x.iter().position(|v| !v.is_finite()) {
