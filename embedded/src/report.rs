@@ -56,6 +56,7 @@ pub fn write_run<O: Output + ?Sized>(
             hodr_core::optim::AutoTermination::Converged => b"converged",
             hodr_core::optim::AutoTermination::Stagnated => b"stagnated",
             hodr_core::optim::AutoTermination::MaxEvaluations => b"max-evaluations",
+            hodr_core::optim::AutoTermination::Diverged => b"diverged",
             _ => b"other",
         }),
         End::Failed { iteration, error } => {

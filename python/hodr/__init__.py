@@ -59,12 +59,16 @@ class OptimizeResult(dict):
     success : bool
         True when the run converged (the samples' spread fell below its tolerance)
         or stagnated (no lower value within its patience); False when the budget ran
-        out first, the callback stopped it, or ``fun`` never returned a finite value.
+        out first, the callback stopped it, the run diverged, or ``fun`` never
+        returned a finite value.
     status : int
         0 converged, 1 budget used, 2 stagnated, 3 stopped by the callback, 4
         interrupted (the ``result`` of the KeyboardInterrupt), 5 failed (the
         ``result`` of the ValueError for a non-finite value under
-        ``options={"non_finite": "error"}``).
+        ``options={"non_finite": "error"}``), 6 diverged (the samples' spread grew
+        2**64-fold in some coordinate, or ``fun`` fell below -2**-64 of the largest
+        float, whatever the budget: ``fun`` looks unbounded below, or ``sigma0``
+        understates the problem's scale about as much).
     message : str
         Why the run ended.
     history : dict of ndarray

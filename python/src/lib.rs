@@ -491,6 +491,7 @@ pub(crate) fn result_dict<'py>(
             (false, 1, AutoTermination::MaxEvaluations.to_string())
         }
         End::Auto(Some(t @ AutoTermination::Converged)) => (true, 0, t.to_string()),
+        End::Auto(Some(t @ AutoTermination::Diverged)) => (false, 6, t.to_string()),
         End::Auto(Some(t)) => (true, 2, t.to_string()),
     };
     if !finite && nfev > 0 {

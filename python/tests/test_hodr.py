@@ -240,6 +240,16 @@ def test_nan_values_are_an_error_when_asked_and_the_run_is_kept():
     assert opt.result.nfev > 0
 
 
+def test_an_objective_unbounded_below_diverges():
+    # A slope has no minimum: the run ends diverged (status 6, no success) within a few
+    # hundred evaluations, with or without a budget, at a finite point.
+    for budget in (None, 10**6):
+        res = hodr.minimize(lambda x: float(np.sum(x)), np.zeros(3), 1.0, budget=budget)
+        assert res.status == 6 and not res.success, res.message
+        assert "diverged" in res.message and res.nfev < 1000
+        assert np.all(np.isfinite(res.x)) and np.isfinite(res.fun) and res.fun < -1e18
+
+
 def test_options_change_the_run():
     x0 = [2.0, 2.0, -1.0]
     default = hodr.minimize(quadratic, x0, 1.0, seed=2)

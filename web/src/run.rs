@@ -355,6 +355,7 @@ impl Run {
             stopped = match end {
                 hodr_core::optim::AutoTermination::Converged => "converged",
                 hodr_core::optim::AutoTermination::Stagnated => "stagnated",
+                hodr_core::optim::AutoTermination::Diverged => "diverged",
                 _ => "budget used",
             };
         }

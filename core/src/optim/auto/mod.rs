@@ -295,6 +295,12 @@ pub const PLATEAU_WIDTH: f64 = 16.0;
 /// which f's values change at all by as much as the σ range the stability suite covers.
 pub const UNVARIED_WIDTH: f64 = 1_099_511_627_776.0;
 
+/// A coordinate's spread relative to its start, σ√Cᵢᵢ/sᵢ, past which the run ends
+/// [`AutoTermination::Diverged`]: 2⁶⁴ ≈ 1.8·10¹⁹ (pycma's `tolupsigma` is 10²⁰). A trust
+/// region grows that far only while every step gains: an objective without a minimum
+/// (f = x) or a σ₀ that understates the problem's scale by as much.
+pub const DIVERGENCE_WIDTH: f64 = 18_446_744_073_709_551_616.0;
+
 /// Every coordinate's spread relative to its start, σ√Cᵢᵢ/sᵢ, at which a run on a
 /// deterministic objective converges by default.
 pub const TOLERANCE: f64 = 1e-9;
@@ -995,6 +1001,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             Some(AutoTermination::MaxEvaluations)
         } else if pinned {
             Some(AutoTermination::Converged)
+        } else if self.diverged() {
+            Some(AutoTermination::Diverged)
         } else if (converged || stagnated)
             && (self.st.may_restart || (self.st.widenings as usize) < self.restarts())
         {
@@ -1105,6 +1113,24 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// σ√Cᵢᵢ (a sample's standard deviation along it) is below `tolerance` times its
     /// spread at the start ([`Auto::start_scale`]), as CMA-ES's TolX asks of its
     /// coordinates; on a noisy one σ < `tolerance`·σ₀ (see [`NOISY_TOLERANCE`]).
+    /// Whether some coordinate's spread σ√Cᵢᵢ is above [`DIVERGENCE_WIDTH`] times its
+    /// start scale ([`Auto::start_scale`]), or f(θ) is below −[`Auto::max_scale`] (2⁻⁶⁴
+    /// of T's largest value: an objective whose values run to −∞ faster than θ moves).
+    fn diverged(&self) -> bool {
+        if self.st.value.is_some_and(|v| v < -Self::max_scale()) {
+            return true;
+        }
+        let n = self.theta.len();
+        let limit = T::from_f64(DIVERGENCE_WIDTH);
+        (0..n).any(|i| {
+            let c = match self.shape {
+                Shape::Full => self.mem.c[i * n + i],
+                Shape::Diagonal => self.mem.c[i],
+            };
+            self.st.sigma * c.sqrt() > limit * self.start_scale(i)
+        })
+    }
+
     fn sigma_converged(&self) -> bool {
         let n = self.theta.len();
         let limit = self.tolerance();

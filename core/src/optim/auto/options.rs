@@ -197,6 +197,12 @@ pub enum AutoTermination {
     Stagnated,
     /// [`AutoOptions::max_evaluations`] were used.
     MaxEvaluations,
+    /// Some coordinate's spread grew past [`DIVERGENCE_WIDTH`](super::DIVERGENCE_WIDTH)
+    /// times its start scale, or f(θ) fell below −[`Auto::max_scale`](super::Auto::max_scale)
+    /// (−9.7e288 in f64, −1.8e19 in f32): the objective looks unbounded below (or σ₀
+    /// understates the problem's scale about as much). The run ends, whatever its
+    /// budget, at the best point found.
+    Diverged,
 }
 
 impl fmt::Display for AutoTermination {
@@ -205,6 +211,9 @@ impl fmt::Display for AutoTermination {
             AutoTermination::Converged => "converged (spread below tolerance)",
             AutoTermination::Stagnated => "stagnated (no lower value within the patience)",
             AutoTermination::MaxEvaluations => "evaluation budget used",
+            AutoTermination::Diverged => {
+                "diverged (spread grew 2^64-fold or f fell below -2^-64 of the largest float: f may be unbounded below, or sigma0 far too small)"
+            }
         })
     }
 }
