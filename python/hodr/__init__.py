@@ -27,6 +27,7 @@ within one batch of evaluations, the run so far in the exception's ``result``.
 
 from __future__ import annotations
 
+import functools
 import numbers
 import sys
 from typing import Any, Callable, Optional, Sequence, Tuple, Union
@@ -296,6 +297,7 @@ def minimize(
     x0: Sequence[float],
     sigma0: Union[float, Sequence[float]],
     *,
+    args: Any = (),
     bounds: Any = None,
     budget: Optional[int] = None,
     method: str = "auto",
@@ -329,6 +331,10 @@ def minimize(
         ``CMA_stds``. With bounds, a coordinate's scale is cut to a quarter of its
         range where that is narrower. Auto's sigma (``history["sigma"]``) is then the
         scales' geometric mean, its metric stretched along each coordinate by its share.
+    args : tuple
+        Extra arguments for ``fun``, passed after the point (and after the seed with
+        ``noisy``): ``fun(x, *args)``, as in scipy and pycma. A value that is not a
+        tuple is the one extra argument.
     bounds : optional
         n ``(low, high)`` pairs as in scipy (None for an open side), one ``(low, high)``
         pair of scalars for every coordinate, or an object with ``lb`` and ``ub`` (a
@@ -417,6 +423,12 @@ def minimize(
     if callback is not None and not callable(callback):
         raise TypeError("callback must be callable")
     settings = _settings(options)
+    if not isinstance(args, tuple):
+        args = (args,)
+    if args:
+        if not callable(fun):
+            raise TypeError("fun must be callable")
+        fun = functools.partial(_with_args, fun, args)
     try:
         raw = _hodr.minimize_auto(
             fun, x0, sigma0, _bounds(bounds, len(x0)), budget, seed, bool(batch), bool(noisy),
@@ -426,6 +438,11 @@ def minimize(
         _with_result(stopped)
         raise
     return _result(raw)
+
+
+def _with_args(fun: Callable[..., Any], args: tuple, *point: Any) -> Any:
+    """``fun(*point, *args)``: the point (and seed) first, then the caller's ``args``."""
+    return fun(*point, *args)
 
 
 def _result(raw: dict) -> OptimizeResult:

@@ -84,6 +84,30 @@ def test_minimize_solves_a_rotated_quadratic_to_its_optimum():
     assert abs(res.fun - quadratic(res.x)) < 1e-12
 
 
+def test_args_follow_the_point_as_in_scipy():
+    """``args`` reach ``fun`` after the point (after the seed with ``noisy``), in every
+    calling convention; the run is the one without them."""
+    plain = hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, seed=3)
+    shifted = lambda x, a, b: quadratic(x) * a + b
+    res = hodr.minimize(shifted, [2.0, 2.0, -1.0], 1.0, seed=3, args=(1.0, 0.0))
+    assert res.nfev == plain.nfev and np.array_equal(res.x, plain.x)
+    batched = lambda X, a: [quadratic(x) * a for x in X]
+    res = hodr.minimize(batched, [2.0, 2.0, -1.0], 1.0, seed=3, batch=True, args=1.0)
+    assert np.array_equal(res.x, plain.x)
+    seen = []
+    noisy = lambda x, seed, tag: seen.append((int(seed), tag)) or quadratic(x)
+    hodr.minimize(noisy, [2.0, 2.0, -1.0], 1.0, budget=50, noisy=True, args=("t",))
+    assert len(seen) == 50 and all(tag == "t" for _, tag in seen)
+
+    def fails(x, a):
+        raise LookupError(a)
+
+    with pytest.raises(LookupError, match="mine"):
+        hodr.minimize(fails, [1.0], 1.0, args=("mine",))
+    with pytest.raises(TypeError, match="fun must be callable"):
+        hodr.minimize(3, [1.0], 1.0, args=(1,))
+
+
 def test_minimize_crosses_a_plateau():
     """Rounded coordinates: zero slope almost everywhere, minimum 0 on the unit cell."""
     f = lambda x: float(np.sum(np.round(x - 0.3) ** 2))
