@@ -28,6 +28,7 @@ within one batch of evaluations, the run so far in the exception's ``result``.
 from __future__ import annotations
 
 import functools
+import inspect
 import numbers
 import sys
 from typing import Any, Callable, Optional, Sequence, Tuple, Union
@@ -370,7 +371,10 @@ def minimize(
         values), every point is evaluated until two draws agree.
     callback : callable, optional
         ``callback(x, f)`` after every iteration with the best point so far and its
-        value; returning True stops the run.
+        value; returning True or raising StopIteration stops the run (status 3).
+        scipy's forms work too: a callback of one parameter is called as
+        ``callback(x)``, and one whose parameter is named ``intermediate_result`` as
+        ``callback(OptimizeResult(x=x, fun=f))``.
     options : dict, optional
         Auto's options; none is needed. ``tolerance`` (0 < float < 1): converged once every
         coordinate's spread falls below tolerance times its start (with ``noisy``, once
@@ -420,8 +424,8 @@ def minimize(
     if budget is not None:
         budget = _count("budget", budget, 1)
     seed = _seed(seed)
-    if callback is not None and not callable(callback):
-        raise TypeError("callback must be callable")
+    if callback is not None:
+        callback = _callback(callback)
     settings = _settings(options)
     if not isinstance(args, tuple):
         args = (args,)
@@ -438,6 +442,43 @@ def minimize(
         _with_result(stopped)
         raise
     return _result(raw)
+
+
+def _callback(callback: Any) -> Callable[[np.ndarray, float], bool]:
+    """``callback`` as ``(x, f) -> stop``: called in the form its signature takes
+    (``(x, f)``, scipy's ``(x)`` or ``(intermediate_result)``), StopIteration meaning
+    stop, as in scipy."""
+    if not callable(callback):
+        raise TypeError("callback must be callable")
+    form = "pair"
+    try:
+        parameters = list(inspect.signature(callback).parameters.values())
+    except (TypeError, ValueError):
+        parameters = None
+    if parameters is not None:
+        positional = [
+            p for p in parameters
+            if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)
+        ]
+        variadic = any(p.kind == p.VAR_POSITIONAL for p in parameters)
+        if [p.name for p in parameters] == ["intermediate_result"]:
+            form = "result"
+        elif len(positional) == 1 and not variadic:
+            form = "point"
+
+    def call(x: np.ndarray, f: float) -> bool:
+        try:
+            if form == "result":
+                stop = callback(OptimizeResult(x=x, fun=f))
+            elif form == "point":
+                stop = callback(x)
+            else:
+                stop = callback(x, f)
+        except StopIteration:
+            return True
+        return bool(stop)
+
+    return call
 
 
 def _with_args(fun: Callable[..., Any], args: tuple, *point: Any) -> Any:

@@ -187,6 +187,24 @@ def test_the_callback_sees_iterations_and_can_stop_the_run():
     assert not res.success and res.status == 3
 
 
+def test_scipy_callback_forms_and_stop_iteration():
+    """callback(xk) and callback(intermediate_result) as in scipy; StopIteration stops
+    the run as a True return does."""
+    points = []
+    hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, budget=40, callback=lambda xk: points.append(xk))
+    assert points and all(p.shape == (3,) for p in points)
+    results = []
+
+    def on_result(intermediate_result):
+        results.append(intermediate_result)
+        if len(results) == 4:
+            raise StopIteration
+
+    res = hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, callback=on_result)
+    assert len(results) == 4 and res.nit == 4 and res.status == 3
+    assert results[-1].fun == quadratic(results[-1].x)
+
+
 def test_exceptions_in_fun_propagate_unchanged():
     class Boom(Exception):
         pass
