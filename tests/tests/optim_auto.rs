@@ -703,7 +703,10 @@ fn an_objective_unbounded_below_diverges() {
         let x0 = vec![T::ZERO; n];
         let (theta, value, end) = minimise_with(&mut counted, &x0, T::ONE, None, options, seed);
         assert_eq!(end, AutoTermination::Diverged, "n {n}, seed {seed}");
-        assert!(evaluations <= 200 * (n + 5), "n {n}, seed {seed}: {evaluations}");
+        assert!(
+            evaluations <= 200 * (n + 5),
+            "n {n}, seed {seed}: {evaluations}"
+        );
         assert!(theta.iter().all(|v| v.is_finite()));
         assert!(value.is_some_and(|v| v.is_finite()));
     }
