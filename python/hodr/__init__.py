@@ -341,8 +341,9 @@ def minimize(
         pair of scalars for every coordinate, or an object with ``lb`` and ``ub`` (a
         ``scipy.optimize.Bounds``); None for unbounded. For arrays ``lower`` and
         ``upper``, pass ``list(zip(lower, upper))``: a pair of two arrays reads as
-        per-coordinate pairs when n = 2, as in scipy. Every evaluated point lies inside;
-        each pair must hold a finite point (low <= high, low < inf, high > -inf).
+        per-coordinate pairs when n = 2, as in scipy. Every evaluated point lies inside
+        (an x0 outside is projected into the box, as scipy clips it); each pair must
+        hold a finite point (low <= high, low < inf, high > -inf).
     budget : int, optional
         At most this many evaluations (never exceeded; 1 to 2**64 - 1). With a
         budget, a deterministic ``fun`` gets it all: once a descent converges or
