@@ -170,8 +170,6 @@ mod tests {
     /// QUAD's stream is `seed_from_u64(7)`'s, PLATEAU's `seed_from_u64(11)`'s.
     #[test]
     fn seeds_are_the_expansions_of_small_seeds() {
-        use rand_xoshiro::Xoshiro128PlusPlus;
-        use rand_xoshiro::rand_core::SeedableRng;
         for (p, small) in [(QUAD, 7), (PLATEAU, 11)] {
             assert_eq!(
                 p.seed.rng(),

@@ -1109,28 +1109,32 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
     }
 
-    /// Whether σ has converged: on a deterministic objective every coordinate's spread
-    /// σ√Cᵢᵢ (a sample's standard deviation along it) is below `tolerance` times its
-    /// spread at the start ([`Auto::start_scale`]), as CMA-ES's TolX asks of its
-    /// coordinates; on a noisy one σ < `tolerance`·σ₀ (see [`NOISY_TOLERANCE`]).
-    /// Whether some coordinate's spread σ√Cᵢᵢ is above [`DIVERGENCE_WIDTH`] times its
-    /// start scale ([`Auto::start_scale`]), or f(θ) is below −[`Auto::max_scale`] (2⁻⁶⁴
-    /// of T's largest value: an objective whose values run to −∞ faster than θ moves).
+    /// Coordinate i's spread σ√Cᵢᵢ: a sample's standard deviation along it.
+    fn axis_spread(&self, i: usize) -> T {
+        let n = self.theta.len();
+        let c = match self.shape {
+            Shape::Full => self.mem.c[i * n + i],
+            Shape::Diagonal => self.mem.c[i],
+        };
+        self.st.sigma * c.sqrt()
+    }
+
+    /// Whether some coordinate's spread ([`Auto::axis_spread`]) is above [`DIVERGENCE_WIDTH`]
+    /// times its start scale ([`Auto::start_scale`]), or f(θ) is below
+    /// −[`Auto::max_scale`] (2⁻⁶⁴ of T's largest value: an objective whose values run to
+    /// −∞ faster than θ moves).
     fn diverged(&self) -> bool {
         if self.st.value.is_some_and(|v| v < -Self::max_scale()) {
             return true;
         }
-        let n = self.theta.len();
         let limit = T::from_f64(DIVERGENCE_WIDTH);
-        (0..n).any(|i| {
-            let c = match self.shape {
-                Shape::Full => self.mem.c[i * n + i],
-                Shape::Diagonal => self.mem.c[i],
-            };
-            self.st.sigma * c.sqrt() > limit * self.start_scale(i)
-        })
+        (0..self.theta.len()).any(|i| self.axis_spread(i) > limit * self.start_scale(i))
     }
 
+    /// Whether σ has converged: on a deterministic objective every coordinate's spread
+    /// σ√Cᵢᵢ (a sample's standard deviation along it) is below `tolerance` times its
+    /// spread at the start ([`Auto::start_scale`]), as CMA-ES's TolX asks of its
+    /// coordinates; on a noisy one σ < `tolerance`·σ₀ (see [`NOISY_TOLERANCE`]).
     fn sigma_converged(&self) -> bool {
         let n = self.theta.len();
         let limit = self.tolerance();
@@ -1138,13 +1142,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             return self.st.sigma < limit * self.st.sigma0;
         }
         let least = self.least_start_scale();
-        (0..n).all(|i| {
-            let c = match self.shape {
-                Shape::Full => self.mem.c[i * n + i],
-                Shape::Diagonal => self.mem.c[i],
-            };
-            self.st.sigma * c.sqrt() < limit * self.start_scale(i).max(least)
-        })
+        (0..n).all(|i| self.axis_spread(i) < limit * self.start_scale(i).max(least))
     }
 
     /// Coordinate i's scale at the start before [`Auto::least_start_scale`]: the scale
