@@ -307,6 +307,7 @@ def minimize(
     noisy: bool = False,
     callback: Optional[Callable[[np.ndarray, float], Any]] = None,
     options: Optional[dict] = None,
+    tol: Optional[float] = None,
 ) -> OptimizeResult:
     """Minimise ``fun`` from ``x0`` with hodr's default optimiser, Auto.
 
@@ -401,6 +402,9 @@ def minimize(
         inf counts as worse than any value) or ``"error"`` (raise ValueError, whose
         ``result`` attribute holds the run so far).
 
+    tol : float, optional
+        scipy's name for ``options["tolerance"]`` (0 < tol < 1); give one or the other.
+
     Returns
     -------
     OptimizeResult
@@ -427,6 +431,16 @@ def minimize(
     seed = _seed(seed)
     if callback is not None:
         callback = _callback(callback)
+    if tol is not None:
+        tol = _real("tol", tol)
+        if not 0.0 < tol < 1.0:
+            raise ValueError(f"tol must be > 0 and < 1, got {tol!r}")
+        if options is None:
+            options = {}
+        if hasattr(options, "items"):
+            if "tolerance" in options:
+                raise ValueError("give tol or options['tolerance'], not both")
+            options = {**options, "tolerance": tol}
     settings = _settings(options)
     if not isinstance(args, tuple):
         args = (args,)

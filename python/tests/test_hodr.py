@@ -187,6 +187,19 @@ def test_the_callback_sees_iterations_and_can_stop_the_run():
     assert not res.success and res.status == 3
 
 
+def test_tol_is_scipys_name_for_the_tolerance():
+    via_tol = hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, seed=2, tol=1e-3)
+    via_options = hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, seed=2, options={"tolerance": 1e-3})
+    assert via_tol.nfev == via_options.nfev and np.array_equal(via_tol.x, via_options.x)
+    assert via_tol.nfev < hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, seed=2).nfev
+    with pytest.raises(ValueError, match="not both"):
+        hodr.minimize(quadratic, [1.0], 1.0, tol=1e-3, options={"tolerance": 1e-4})
+    with pytest.raises(ValueError, match="tol must be"):
+        hodr.minimize(quadratic, [1.0], 1.0, tol=2.0)
+    with pytest.raises(TypeError, match="tol"):
+        hodr.minimize(quadratic, [1.0], 1.0, tol="small")
+
+
 def test_scipy_callback_forms_and_stop_iteration():
     """callback(xk) and callback(intermediate_result) as in scipy; StopIteration stops
     the run as a True return does."""
