@@ -401,7 +401,6 @@ def minimize(
         ``non_finite``: ``"worst"`` (default: NaN or
         inf counts as worse than any value) or ``"error"`` (raise ValueError, whose
         ``result`` attribute holds the run so far).
-
     tol : float, optional
         scipy's name for ``options["tolerance"]`` (0 < tol < 1); give one or the other.
 
@@ -481,17 +480,18 @@ def _callback(callback: Any) -> Callable[[np.ndarray, float], bool]:
         elif len(positional) == 1 and not variadic:
             form = "point"
 
+    if form == "result":
+        invoke = lambda x, f: callback(OptimizeResult(x=x, fun=f))  # noqa: E731
+    elif form == "point":
+        invoke = lambda x, f: callback(x)  # noqa: E731
+    else:
+        invoke = callback
+
     def call(x: np.ndarray, f: float) -> bool:
         try:
-            if form == "result":
-                stop = callback(OptimizeResult(x=x, fun=f))
-            elif form == "point":
-                stop = callback(x)
-            else:
-                stop = callback(x, f)
+            return bool(invoke(x, f))
         except StopIteration:
             return True
-        return bool(stop)
 
     return call
 
