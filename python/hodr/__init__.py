@@ -30,6 +30,7 @@ from __future__ import annotations
 import functools
 import inspect
 import numbers
+import secrets
 import sys
 from typing import Any, Callable, Optional, Sequence, Tuple, Union
 
@@ -76,6 +77,9 @@ class OptimizeResult(dict):
     history : dict of ndarray
         Per iteration: ``nfev`` (evaluations so far), ``fun`` (f at the best point) and
         ``sigma`` (the smoothing width and trust radius).
+    seed : int
+        The seed the run used: the one given, or the one drawn for ``seed=None``.
+        Passing it again repeats the run.
     """
 
     def __getattr__(self, name: str) -> Any:
@@ -278,19 +282,22 @@ def _count(name: str, value: Any, minimum: int, bits: int = _USIZE_BITS) -> int:
 
 
 def _seed(seed: Any) -> int:
-    """The seed: an int from 0 to 2**64 - 1."""
+    """The seed: an int from 0 to 2**64 - 1, or for None a fresh one from the operating
+    system's entropy (as scipy's and numpy's ``seed=None``)."""
+    if seed is None:
+        return secrets.randbits(64)
     return _count("seed", seed, 0, 64)
 
 
-def _with_result(error: BaseException, result: Any = None) -> None:
+def _with_result(error: BaseException, seed: int, result: Any = None) -> None:
     """Gives ``error`` the run so far as an OptimizeResult: ``result``, or the fields the
-    extension attached."""
+    extension attached (with the run's ``seed``)."""
     if result is not None:
         error.result = result
     elif isinstance(getattr(error, "result", None), dict) and not isinstance(
         error.result, OptimizeResult
     ):
-        error.result = _result(error.result)
+        error.result = _result(error.result, seed)
 
 
 def minimize(
@@ -302,7 +309,7 @@ def minimize(
     bounds: Any = None,
     budget: Optional[int] = None,
     method: str = "auto",
-    seed: int = 0,
+    seed: Optional[int] = 0,
     batch: bool = False,
     noisy: bool = False,
     callback: Optional[Callable[[np.ndarray, float], Any]] = None,
@@ -354,9 +361,10 @@ def minimize(
         converges.
     method : str
         ``"auto"`` (the only one).
-    seed : int
+    seed : int or None
         Seed of every random choice (0 to 2**64 - 1): the same seed gives the same
-        points and result.
+        points and result. None draws a fresh seed from the operating system; the
+        result's ``seed`` is the one used, whichever way it was given.
     batch : bool
         Call ``fun`` with batches of points (see ``fun``).
     noisy : bool
@@ -453,9 +461,9 @@ def minimize(
             callback, settings,
         )
     except (KeyboardInterrupt, ValueError) as stopped:
-        _with_result(stopped)
+        _with_result(stopped, seed)
         raise
-    return _result(raw)
+    return _result(raw, seed)
 
 
 def _callback(callback: Any) -> Callable[[np.ndarray, float], bool]:
@@ -501,11 +509,13 @@ def _with_args(fun: Callable[..., Any], args: tuple, *point: Any) -> Any:
     return fun(*point, *args)
 
 
-def _result(raw: dict) -> OptimizeResult:
-    """An OptimizeResult from the extension's fields, the history grouped."""
+def _result(raw: dict, seed: int) -> OptimizeResult:
+    """An OptimizeResult from the extension's fields, the history grouped, with the run's
+    ``seed``."""
     history = {k: raw.pop(f"history_{k}") for k in ("nfev", "fun", "sigma")}
     result = OptimizeResult(raw)
     result.history = history
+    result.seed = seed
     return result
 
 
@@ -542,7 +552,7 @@ class Optimizer:
         *,
         bounds: Any = None,
         budget: Optional[int] = None,
-        seed: int = 0,
+        seed: Optional[int] = 0,
         noisy: bool = False,
         options: Optional[dict] = None,
     ) -> None:
@@ -550,8 +560,9 @@ class Optimizer:
         sigma0 = _scales(sigma0, len(x0))
         if budget is not None:
             budget = _count("budget", budget, 1)
+        self._seed = _seed(seed)
         self._run = _hodr.AskTell(
-            x0, sigma0, _bounds(bounds, len(x0)), budget, _seed(seed), bool(noisy),
+            x0, sigma0, _bounds(bounds, len(x0)), budget, self._seed, bool(noisy),
             _settings(options),
         )
 
@@ -561,10 +572,10 @@ class Optimizer:
         try:
             return method(*args)
         except KeyboardInterrupt as stopped:
-            _with_result(stopped, self.result)
+            _with_result(stopped, self._seed, self.result)
             raise
         except (ValueError, RuntimeError) as failed:
-            _with_result(failed)
+            _with_result(failed, self._seed)
             raise
 
     def ask(self) -> np.ndarray:
@@ -593,7 +604,7 @@ class Optimizer:
     @property
     def result(self) -> OptimizeResult:
         """The run's ``OptimizeResult`` (while running: the best point so far)."""
-        return _result(self._run.result())
+        return _result(self._run.result(), self._seed)
 
 
 def gradient(
@@ -603,7 +614,7 @@ def gradient(
     *,
     pairs: int = 16,
     method: str = "aggregate",
-    seed: int = 0,
+    seed: Optional[int] = 0,
     batch: bool = False,
     noisy: bool = False,
 ) -> Tuple[np.ndarray, int]:
@@ -620,6 +631,9 @@ def gradient(
         evaluations), ``"per-element"`` (2n·pairs), ``"gaussian"`` (2·pairs), ``"fr22"``
         (the FR22 baseline; exact for separable f only), ``"ls"`` (least squares,
         2·max(pairs, 2n+2)).
+    seed : int or None
+        Seed of the samples (0 to 2**64 - 1); None draws a fresh one from the operating
+        system.
 
     Returns
     -------
@@ -642,7 +656,7 @@ def hessian(
     *,
     pairs: int = 16,
     method: str = "aggregate",
-    seed: int = 0,
+    seed: Optional[int] = 0,
     batch: bool = False,
     noisy: bool = False,
 ) -> Tuple[np.ndarray, int]:
@@ -650,6 +664,7 @@ def hessian(
 
     ``method``: ``"aggregate"`` (2·pairs + 1 evaluations), ``"gaussian"`` (2·pairs + 1),
     ``"per-element"`` (n(n+1)·pairs + 1).
+    The other arguments as in ``gradient``.
 
     Returns
     -------
@@ -670,7 +685,7 @@ def hvp(
     *,
     pairs: int = 16,
     method: str = "kernel",
-    seed: int = 0,
+    seed: Optional[int] = 0,
     batch: bool = False,
     noisy: bool = False,
 ) -> Tuple[np.ndarray, int]:
@@ -679,6 +694,7 @@ def hvp(
     ``method``: ``"kernel"`` (Gaussian kernel, 2·pairs + 1 evaluations, unbiased) or
     ``"central"`` (central difference of two aggregate gradients at x ± (sigma/3)·v/|v|
     on common samples, 4·pairs evaluations).
+    The other arguments as in ``gradient``.
 
     Returns
     -------

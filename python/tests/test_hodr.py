@@ -128,6 +128,27 @@ def test_budget_is_never_exceeded_and_the_seed_fixes_the_run():
     assert np.array_equal(res.x, again.x) and res.fun == again.fun
 
 
+def test_seed_none_draws_a_seed_that_repeats_the_run():
+    """``seed=None`` draws a fresh seed (two draws of 64 bits coincide with probability
+    2**-64) and the result records it; passing it back repeats the run, also through
+    ask/tell. (An interrupted run's result has it too: the KeyboardInterrupt test.)"""
+    first = hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, budget=40, seed=None)
+    second = hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, budget=40, seed=None)
+    assert first.seed != second.seed and 0 <= first.seed < 2**64
+    again = hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, budget=40, seed=first.seed)
+    assert np.array_equal(first.history["fun"], again.history["fun"])
+    assert hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, budget=40, seed=7).seed == 7
+    opt = hodr.Optimizer([2.0, 2.0, -1.0], 1.0, budget=40, seed=None)
+    while not opt.stop():
+        opt.tell([quadratic(x) for x in opt.ask()])
+    repeat = hodr.Optimizer([2.0, 2.0, -1.0], 1.0, budget=40, seed=opt.result.seed)
+    while not repeat.stop():
+        repeat.tell([quadratic(x) for x in repeat.ask()])
+    assert np.array_equal(opt.result.x, repeat.result.x)
+    g, _ = hodr.gradient(quadratic, [1.0, 0.0, 0.0], 0.3, seed=None)
+    assert np.all(np.isfinite(g))
+
+
 def test_batches_give_the_same_run():
     sizes = []
 
@@ -267,10 +288,10 @@ def test_keyboard_interrupt_keeps_the_run_so_far(sigint_raises):
         return quadratic(x)
 
     with pytest.raises(KeyboardInterrupt) as info:
-        hodr.minimize(f, [2.0, 2.0, -1.0], 1.0, budget=10_000)
+        hodr.minimize(f, [2.0, 2.0, -1.0], 1.0, budget=10_000, seed=None)
     partial = info.value.result
     assert isinstance(partial, hodr.OptimizeResult)
-    assert partial.status == 4 and not partial.success
+    assert partial.status == 4 and not partial.success and 0 <= partial.seed < 2**64
     assert 0 < partial.nfev <= 200 + 64 and partial.nit == len(partial.history["nfev"])
     assert partial.fun <= quadratic(np.array([2.0, 2.0, -1.0]))
 
