@@ -561,6 +561,7 @@ class Optimizer:
         if budget is not None:
             budget = _count("budget", budget, 1)
         self._seed = _seed(seed)
+        self._asked: Optional[np.ndarray] = None
         self._run = _hodr.AskTell(
             x0, sigma0, _bounds(bounds, len(x0)), budget, self._seed, bool(noisy),
             _settings(options),
@@ -581,7 +582,9 @@ class Optimizer:
     def ask(self) -> np.ndarray:
         """The next batch of points, a float64 array of shape (k, n); (0, n) once the
         run has ended (``tell([])`` then takes its values)."""
-        return self._call(self._run.ask)
+        points = self._call(self._run.ask)
+        self._asked = points.copy()
+        return points
 
     @property
     def seeds(self) -> np.ndarray:
@@ -589,11 +592,26 @@ class Optimizer:
         objective (``noisy=True``) draws row k's randomness from ``seeds[k]``."""
         return self._run.seeds
 
-    def tell(self, values: Sequence[float]) -> None:
-        """The objective's values at the points last asked, in their order. With
-        ``options={"non_finite": "error"}``, a NaN or inf among them raises ValueError
-        (its ``result`` the run so far), as does every later call once the run has
-        failed."""
+    def tell(self, *args: Any) -> None:
+        """``tell(values)``: the objective's values at the points last asked, in their
+        order; or ``tell(X, values)`` as in pycma, where X must be the batch asked (hodr
+        fits the points it chose: a changed point is a ValueError, not a silent
+        mismatch). With ``options={"non_finite": "error"}``, a NaN or inf among the
+        values raises ValueError (its ``result`` the run so far), as does every later
+        call once the run has failed."""
+        if len(args) == 2:
+            points, values = args
+            asked = self._asked if self._asked is not None else np.empty((0, 0))
+            given = _reals("X", points, "the (k, n) array of points asked")
+            if given.shape != asked.shape or not np.array_equal(given, asked):
+                raise ValueError(
+                    f"X (shape {given.shape}) is not the batch asked (shape {asked.shape}): "
+                    "tell the values of the points ask() returned, unchanged"
+                )
+        elif len(args) == 1:
+            (values,) = args
+        else:
+            raise TypeError(f"tell takes values, or X and values, got {len(args)} arguments")
         array = _reals("values", values, "a sequence of real numbers")
         self._call(self._run.tell, np.ascontiguousarray(array.ravel()))
 

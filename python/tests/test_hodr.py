@@ -475,6 +475,36 @@ def test_ask_tell_asks_the_points_minimize_evaluates():
     assert opt.ask().shape == (0, 3)
 
 
+def test_tell_takes_the_points_and_values_as_pycma_does():
+    """``tell(X, values)`` (pycma's form) runs as ``tell(values)``; an X that is not the
+    batch asked — a point moved, a row dropped, the batch before — is a ValueError."""
+    plain = hodr.Optimizer([2.0, 2.0, -1.0], 1.0, budget=60, seed=5)
+    pycma_like = hodr.Optimizer([2.0, 2.0, -1.0], 1.0, budget=60, seed=5)
+    while not plain.stop():
+        plain.tell([quadratic(x) for x in plain.ask()])
+        X = pycma_like.ask()
+        pycma_like.tell(list(X), [quadratic(x) for x in X])
+    assert pycma_like.stop() and np.array_equal(plain.result.x, pycma_like.result.x)
+
+    opt = hodr.Optimizer([2.0, 2.0, -1.0], 1.0, budget=60, seed=5)
+    X = opt.ask()
+    original, moved = X.copy(), X.copy()
+    moved[0, 0] += 1e-9
+    values = [quadratic(x) for x in X]
+    with pytest.raises(ValueError, match="not the batch asked"):
+        opt.tell(moved, values)
+    X[0, 0] += 1.0  # changed in place: still not what was asked
+    with pytest.raises(ValueError, match="not the batch asked"):
+        opt.tell(X, values)
+    with pytest.raises(ValueError, match="not the batch asked"):
+        opt.tell(moved[1:], values[1:])
+    with pytest.raises(TypeError, match="tell takes values, or X and values"):
+        opt.tell()
+    opt.tell(original, values)
+    with pytest.raises(ValueError, match="not the batch asked"):
+        opt.tell(opt.ask()[:0], [])
+
+
 def test_ask_tell_misuse_is_an_error_not_a_hang():
     opt = hodr.Optimizer([1.0, 1.0], 1.0, seed=0)
     with pytest.raises(RuntimeError, match="without ask"):
