@@ -1,0 +1,167 @@
+//! Auto's side of the local model (the `model` module holds the regression): which
+//! remembered points a fit uses and how they are weighted, the prior it starts from
+//! (the last model, moved to the current θ and σ), the ridge it is held by, and the
+//! decrease a step is predicted to bring.
+
+use rand_core::Rng;
+
+use super::memory::memory_determines_model;
+use super::model::{self, Ridge, Shape};
+use super::{Auto, BY_COLUMNS_MIN_DIM, REACH, metric};
+use crate::optim::vector::{dot, mat_vec_by_columns, norm, transpose};
+use crate::real::Real;
+
+impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
+    /// Writes remembered point k's standardised offset u = L⁻¹(x − θ)/σ to `gx` (as the
+    /// fit computes it) and returns its reach ‖u‖/√n.
+    pub(super) fn offset_of(&mut self, k: usize) -> T {
+        let n = self.theta.len();
+        let x = &self.mem.xs[k * n..(k + 1) * n];
+        for ((ri, &xi), &ti) in self.mem.rs.iter_mut().zip(x).zip(self.theta.iter()) {
+            *ri = (xi - ti) / self.st.sigma;
+        }
+        metric::apply(self.shape, self.mem.li, self.mem.rs, self.mem.gx);
+        norm(self.mem.gx) / T::from_usize(n).sqrt()
+    }
+
+    /// Fits the model around θ to the remembered points within 2ρ, values scaled by
+    /// `scale`, from the prior moved to θ and σ. Returns the fit's noise level and the
+    /// number of points fitted; `None` when the fit failed.
+    pub(super) fn fit(&mut self, value: T, scale: T) -> Option<(T, usize)> {
+        let n = self.theta.len();
+        let sigma = self.st.sigma;
+        let shape = self.shape;
+        let hl = shape.hessian_len(n);
+        // The prior in standardised units: g = σLᵀ(g₀ + H₀(θ − c₀))/F, H = σ²LᵀH₀L/F.
+        if self.st.has_prior {
+            for i in 0..n {
+                self.mem.s[i] = self.theta[i] - self.mem.c0[i];
+            }
+            shape.apply(self.mem.h0, self.mem.s, self.mem.rs);
+            for i in 0..n {
+                self.mem.rs[i] += self.mem.g0[i];
+            }
+            metric::apply_transposed(shape, self.mem.l, self.mem.rs, self.mem.g);
+            for gi in self.mem.g.iter_mut() {
+                *gi = sigma * *gi / scale;
+            }
+            metric::congruence(shape, self.mem.l, self.mem.h0, n, self.mem.a, self.mem.h);
+            for k in 0..hl {
+                self.mem.h[k] = sigma * sigma * self.mem.h[k] / scale;
+            }
+        } else {
+            self.mem.g.fill(T::ZERO);
+            self.mem.h.fill(T::ZERO);
+        }
+        let limit = T::from_f64(2.0 * REACH);
+        let reach = T::from_f64(REACH);
+        let mut m = 0;
+        let root_n = T::from_usize(n).sqrt();
+        // From BY_COLUMNS_MIN_DIM coordinates on, L⁻¹ and H by columns for the products
+        // below (the same sums as by rows, in contiguous passes that vectorise); below
+        // it the transposes cost more than they save.
+        let by_columns = shape == Shape::Full && n >= BY_COLUMNS_MIN_DIM;
+        if by_columns {
+            transpose(self.mem.li, n, self.mem.a);
+            transpose(self.mem.h, n, self.mem.v);
+        }
+        for k in 0..self.st.count {
+            // Row m of u = L⁻¹(x − θ)/σ, kept if z = ‖u‖/√n is within the limit.
+            let x = &self.mem.xs[k * n..(k + 1) * n];
+            for ((ri, &xi), &ti) in self.mem.rs.iter_mut().zip(x).zip(self.theta.iter()) {
+                *ri = (xi - ti) / sigma;
+            }
+            let row = &mut self.mem.u[m * n..(m + 1) * n];
+            if by_columns {
+                mat_vec_by_columns(self.mem.a, self.mem.rs, row);
+            } else {
+                metric::apply(shape, self.mem.li, self.mem.rs, row);
+            }
+            let z = norm(row) / root_n;
+            if z > limit {
+                continue;
+            }
+            let credit = self.mem.credit[k];
+            if credit <= T::ZERO {
+                continue;
+            }
+            let sw = (-(z / reach).sq() / T::from_f64(4.0)).exp() * credit.sqrt();
+            let quadratic = if by_columns {
+                Shape::half_quadratic_by_columns(self.mem.v, row, self.mem.lambda)
+            } else {
+                shape.half_quadratic(self.mem.h, row)
+            };
+            let prior = dot(self.mem.g, row) + quadratic;
+            self.mem.sw[m] = sw;
+            self.mem.gid[m] = self.mem.gs[k];
+            self.mem.r[m] = sw * ((self.mem.fs[k] - value) / scale - prior);
+            m += 1;
+        }
+        let ridge = self.ridge();
+        model::fit(
+            shape,
+            n,
+            m,
+            self.mem.u,
+            self.mem.sw,
+            self.st.noisy.then_some(&self.mem.gid[..m]),
+            self.mem.r,
+            model::Scratch {
+                gram: self.mem.gram,
+                kp: self.mem.kp,
+                schur: self.mem.schur,
+                beta: self.mem.beta,
+            },
+            self.mem.g,
+            self.mem.h,
+            ridge,
+        )
+        .map(|noise| (noise, m))
+    }
+
+    /// The ridge of the next fit ([`Ridge`]); all but [`Ridge::Prior`] make the fit
+    /// reproduce a quadratic where its points determine it, and a survey's pairs stay on
+    /// their lines to let them. A full model's fits where the memory determines the model
+    /// (n ≤ 14), and above that its first fit after a survey, which has no prior: the
+    /// survey's pairs fix the model along their lines and the least change from zero
+    /// fixes the rest, so that a round bowl's first model is exact at every n. Later fits
+    /// of a full model above n = 14, and every fit of a diagonal one, lean on the prior
+    /// they carry and keep its weakly determined part.
+    pub(super) fn ridge(&self) -> Ridge {
+        if memory_determines_model(self.theta.len()) {
+            Ridge::Determined
+        } else if self.shape == Shape::Full && !self.st.has_prior {
+            Ridge::Survey
+        } else {
+            Ridge::Prior
+        }
+    }
+
+    /// −(gᵀs + ½sᵀHs) of the model for the step in `s` (standardised units).
+    pub(super) fn predicted_decrease(&self) -> T {
+        -(dot(self.mem.g, self.mem.s) + self.shape.half_quadratic(self.mem.h, self.mem.s))
+    }
+
+    /// Keeps this iteration's model, in parameter units at θ, as the next prior.
+    pub(super) fn save_prior(&mut self, scale: T, sigma: T) {
+        let n = self.theta.len();
+        self.mem.c0.copy_from_slice(self.theta);
+        // g₀ = F L⁻ᵀg/σ, H₀ = F L⁻ᵀHL⁻¹/σ².
+        metric::apply_transposed(self.shape, self.mem.li, self.mem.g, self.mem.g0);
+        for g0 in self.mem.g0.iter_mut() {
+            *g0 = scale * *g0 / sigma;
+        }
+        metric::congruence(
+            self.shape,
+            self.mem.li,
+            self.mem.h,
+            n,
+            self.mem.a,
+            self.mem.h0,
+        );
+        for k in 0..self.shape.hessian_len(n) {
+            self.mem.h0[k] = scale * self.mem.h0[k] / (sigma * sigma);
+        }
+        self.st.has_prior = true;
+    }
+}

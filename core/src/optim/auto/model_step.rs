@@ -1,0 +1,278 @@
+//! One model step (`Auto::model_step`): fit the model around θ, take its trust-region
+//! step, evaluate the trial, and judge it — accept or reject by the values, the ratio
+//! ρ̂ of actual to predicted decrease, and what that says about σ (shrink, hold, widen,
+//! or look wider where f is rough at this scale) and about the metric.
+
+use rand_core::Rng;
+
+use super::memory::{memory_determines_model, validating};
+use super::options::AutoStep;
+use super::{
+    Auto, CONTINUATION_SCALE, DETERMINED_METRIC_WEIGHT, GROWTH_WIDTH, NOISE_MARGIN, PLATEAU_WIDTH,
+    REACH, ROUGH, SHRINK, SMOOTH, STRIDE, THETA_DRAWS, lower_median, metric,
+};
+use crate::error::Error;
+use crate::objective::Objective;
+use crate::optim::vector::norm;
+use crate::real::Real;
+
+impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
+    /// Fits the model, evaluates its step and updates σ; returns what happened and the
+    /// ratio of actual to predicted decrease.
+    pub(super) fn model_step<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        spent: &mut usize,
+    ) -> Result<(AutoStep, Option<T>), Error> {
+        let n = self.theta.len();
+        let sigma = self.st.sigma;
+        let root_n = T::from_usize(n).sqrt();
+        let Some(value) = self.st.value else {
+            return Ok((AutoStep::Plateau, None));
+        };
+        if !self.st.noisy && !self.st.checked {
+            self.check_determinism(objective, value, spent)?;
+        }
+        if self.st.unseeded && !self.st.voting {
+            self.st.voting = self.sparse_noise();
+        }
+        let scale = self.spread(T::from_f64(2.0 * REACH));
+        let Some((noise, mut fitted)) = self.fit(value, scale) else {
+            self.st.sigma = sigma * T::HALF;
+            return Ok((AutoStep::Rejected, None));
+        };
+        let mut value = value;
+        // θ's draw lies below the robust model's value at θ: it may be a lucky one.
+        let mut lucky = false;
+        if self.st.unseeded {
+            // One step of iteratively reweighted least squares per iteration, warm
+            // started from the points' weights of the last. The noise level η stays the
+            // first fit's: the scatter the robust fit sets aside is still the noise a
+            // step must clear.
+            let cut = self.reweigh(value, scale);
+            let Some((_, refitted)) = self.fit(value, scale) else {
+                self.st.sigma = sigma * T::HALF;
+                return Ok((AutoStep::Rejected, None));
+            };
+            fitted = refitted;
+            lucky = self.mem.beta[0] > T::ZERO;
+            // θ's own residual under the robust fit is −c. Where that makes its draw an
+            // outlier — a lucky spike that would reject every later step — θ is drawn
+            // again, and steps are judged against the new draw. (Only c depends on the
+            // value the fit was taken relative to, and c is not used below.)
+            if self.mem.beta[0].abs() >= cut && self.remaining() > 0 {
+                let again = self.evaluate_theta_again(objective, spent)?;
+                let group = self.next_group();
+                self.remember(1, group, false);
+                if again.is_finite() {
+                    value = again;
+                    self.st.value = Some(again);
+                }
+            }
+        }
+        self.save_prior(scale, sigma);
+        let radius = root_n;
+        let ok = self.trust_step(radius);
+        // Project the trial point θ + σLs into the box; the step is what remains of s.
+        metric::apply(self.shape, self.mem.l, self.mem.s, self.mem.gx);
+        for i in 0..n {
+            let x = (self.theta[i] + sigma * self.mem.gx[i])
+                .max(self.mem.lower[i])
+                .min(self.mem.upper[i]);
+            self.mem.stage[i] = x;
+            self.mem.rs[i] = (x - self.theta[i]) / sigma;
+        }
+        metric::apply(self.shape, self.mem.li, self.mem.rs, self.mem.s);
+        let predicted = if ok {
+            self.predicted_decrease()
+        } else {
+            T::ZERO
+        };
+        let length = norm(self.mem.s);
+        // A model that claims a minimum near θ must have seen θ's surroundings in
+        // enough directions before σ shrinks on its word; the pairs it lacks come in
+        // one batch (on a declared-noisy objective one pair per iteration, the rule its
+        // runs were measured with).
+        let validated = self.count_around(T::from_f64(REACH)) > validating(n);
+        if predicted <= T::ZERO || !predicted.is_finite() || length <= T::from_f64(1e-3) * radius {
+            if validated {
+                self.st.sigma = sigma * T::HALF;
+            } else {
+                self.st.resample = true;
+                self.st.validate = !self.st.noisy;
+            }
+            return Ok((AutoStep::AtModelMinimum, None));
+        }
+        // A noisy objective's trial is compared with f(θ) on common noise: the seed on
+        // which this iteration measured f(θ), or a fresh one on which θ is evaluated too.
+        // An unseeded objective's θ is drawn again beside the trial after a rejection,
+        // where its draw lies below the robust fit, until it has THETA_DRAWS draws.
+        let redraw = lucky && self.st.doubted && self.draws_at_theta() < THETA_DRAWS;
+        let compare = self.st.noisy && self.st.shared.is_none() || redraw;
+        let rows = if compare { 2 } else { 1 };
+        if self.remaining() < rows {
+            return Ok((AutoStep::OutOfBudget, None));
+        }
+        if compare {
+            self.mem.stage[n..2 * n].copy_from_slice(self.theta);
+        }
+        let seed = self.rng.next_u64();
+        let (seed, group) = match self.st.shared {
+            Some(shared) => shared,
+            None => (seed, self.next_group()),
+        };
+        self.evaluate(objective, rows, spent, |_| seed)?;
+        let trial = self.mem.stage_f[0];
+        let mut reference = if compare { self.mem.stage_f[1] } else { value };
+        self.remember(rows, group, false);
+        if self.st.unseeded {
+            // The trial must beat the median of θ's draws (the larger of two), which one
+            // lucky draw — the low tail of the noise — cannot set.
+            let draws = self.draws_at_theta();
+            if draws > 0 {
+                reference = lower_median(&self.mem.sw[..draws]);
+            }
+        }
+        if compare && reference.is_finite() {
+            self.st.value = Some(reference);
+        }
+        let ratio = if trial.is_finite() && reference.is_finite() {
+            (reference - trial) / (scale * predicted)
+        } else {
+            -T::MAX
+        };
+        // A tie is accepted: on a flat piece of f the smoothed model's minimum is the
+        // better guess (the middle of a zero-loss region, the continuous optimum of a
+        // rounded function).
+        let accepted = trial.is_finite() && reference.is_finite() && trial <= reference;
+        let tie = accepted && trial == reference;
+        if !accepted
+            && trial.is_finite()
+            && self.st.cycle > 0
+            && sigma > T::from_f64(CONTINUATION_SCALE) * self.st.sigma0
+            && length < T::from_f64(0.9) * radius
+            && !self.st.noisy
+            && (!self.st.unseeded || self.st.voting)
+        {
+            // Continuation: a restart at a scale above σ₀'s fits the smoothed objective,
+            // whose minimum inside the trust region is where the search should go on
+            // even where f itself is higher there (a local minimum's wells, a lattice's
+            // cells, Rosenbrock's other valley). The centre moves, σ halves on the way
+            // down, and the best point is kept (`Auto::restore_best`). A minimum on the
+            // region's boundary is the model extrapolating: no move.
+            if self.st.best_value.is_none() {
+                self.st.best_value = Some(reference);
+                self.mem.best.copy_from_slice(self.theta);
+            }
+            self.theta.copy_from_slice(&self.mem.stage[..n]);
+            self.st.value = Some(trial);
+            self.st.sigma = sigma * T::HALF;
+            return Ok((AutoStep::Continued, Some(ratio)));
+        }
+        // On an unseeded objective, a trial rejected by less than twice the noise's
+        // scale, whose step promised no more than that, was judged by the noise.
+        let judged_by_noise = self.st.unseeded && !accepted && {
+            let level = T::TWO * self.repeat_spread().unwrap_or(T::ZERO);
+            trial - reference <= level && predicted * scale <= level
+        };
+        if judged_by_noise
+            || !accepted
+                && noise > T::from_f64(ROUGH)
+                && trial - reference <= T::TWO * noise * scale
+        {
+            // f is rough at this scale — the fit leaves scatter comparable to the values'
+            // spread, or the step's promise is within the noise — and the trial is no
+            // worse than that scatter: look wider, where the smoothed function has a
+            // slope to see.
+            self.st.rough_scale = self.st.rough_scale.max(sigma);
+            self.st.sigma = self.widened_sigma(PLATEAU_WIDTH);
+            return Ok((AutoStep::Plateau, Some(ratio)));
+        }
+        let boundary = length >= T::from_f64(0.9) * radius;
+        let determined = fitted > self.shape.coefficients(n);
+        // The step fell short of its prediction (ρ̂ < 0.1) without being a tie.
+        let poor = ratio < T::from_f64(0.1) && !tie;
+        // Whether a shortfall may be blamed on σ: the points near θ determine the model
+        // at this scale. Points farther out (z ≤ 2ρ fits them) do not count: they saw f
+        // at wider scales, and a kink's smoothed curvature falls with the scale (a
+        // cone's as 1/σ), so a model resting on them mispredicts alike at every smaller
+        // σ and shrinking on its word only cascades σ down. Where the memory cannot
+        // determine the model (n ≥ 15, the diagonal model), a validated one may be
+        // blamed. A declared-noisy objective keeps the rule it was measured with: a fit
+        // determined by its points, or a validated one (holding σ lost SHADOW runs).
+        let blames_scale = poor
+            && if self.st.noisy {
+                determined || validated
+            } else if memory_determines_model(n) {
+                self.count_around(T::from_f64(REACH)) > self.shape.coefficients(n)
+            } else {
+                validated
+            };
+        // On an unseeded objective whose every draw is noisy, a trial rejected by less
+        // than NOISE_MARGIN times the noise's scale may have been rejected by the noise
+        // rather than the model: halving σ on its word shrinks the steps until every
+        // comparison is a coin toss. The model needs more points at this scale instead.
+        let noise_rejected = poor
+            && !accepted
+            && self.st.unseeded
+            && self
+                .dense_noise_scale()
+                .is_some_and(|s| trial - reference <= T::from_f64(NOISE_MARGIN) * s);
+        self.st.sigma = if poor && accepted && boundary && !self.st.noisy {
+            // f fell, by far less than predicted, along a step the radius cut short:
+            // the model overstates the decrease (a kink or a ridge its fit smooths
+            // over, which no smaller σ fits better), not the direction. Shrinking σ
+            // would only shorten the next step; let it grow a little instead. (On a
+            // noisy objective so small a decrease may be the noise's.)
+            (sigma * T::from_f64(STRIDE)).min(self.widened_sigma(GROWTH_WIDTH))
+        } else if poor && (noise_rejected || self.st.lattice || !blames_scale) {
+            // Too few points near θ to blame the scale, f is piecewise constant at it, or
+            // the noise rejected the trial: sample more at this σ first.
+            self.st.resample = true;
+            sigma
+        } else if poor && self.st.noisy {
+            sigma * T::HALF
+        } else if poor {
+            sigma * T::from_f64(SHRINK)
+        } else if ratio >= T::from_f64(0.7) && boundary {
+            self.widened_sigma(GROWTH_WIDTH)
+        } else if length < T::HALF * radius && validated {
+            sigma * (T::TWO * length / radius).max(T::HALF)
+        } else {
+            sigma
+        };
+        self.st.unconfirmed = self.st.unconfirmed.saturating_add(1);
+        if accepted && ratio >= T::from_f64(0.1) {
+            // The model predicted the decrease: trust its curvature's shape.
+            self.learn_metric(1.0);
+            self.st.unconfirmed = 0;
+        } else if !self.st.noisy
+            && (!self.st.unseeded || self.st.voting)
+            && !self.st.lattice
+            && self.st.tie_scale <= T::ZERO
+            && !self.on_face()
+            && (determined && noise <= T::from_f64(SMOOTH) || self.stalled_on_shape())
+        {
+            // The points determine the curvature, and fit it closely, though the step
+            // did not confirm it: a cone's or a kink's smoothed curvature is what the
+            // metric needs even where the quadratic mispredicts f's steps. Or no fit can
+            // be determined and a shape the metric has not learnt stalls the run
+            // ([`STALLED_ANISOTROPY`]). (Not where samples have tied since f last fell:
+            // on a lattice the fitted curvature is the steps', not f's. Nor with θ on a
+            // face of the box: samples mirrored there make f look flat across the face,
+            // C would stretch along its normal, and steps along that axis are cut off by
+            // the bound.)
+            self.learn_metric(DETERMINED_METRIC_WEIGHT);
+        }
+        self.st.doubted = self.st.unseeded && !accepted;
+        if accepted {
+            self.theta.copy_from_slice(&self.mem.stage[..n]);
+            self.st.value = Some(trial);
+            self.st.gained |= trial < reference;
+            self.st.improved |= trial < reference;
+            Ok((AutoStep::Accepted, Some(ratio)))
+        } else {
+            Ok((AutoStep::Rejected, Some(ratio)))
+        }
+    }
+}
