@@ -161,9 +161,10 @@
 //!   descent's end is as likely a local minimum (a disc hidden under another, a
 //!   lattice cell beside the optimum's) as the global one, and nothing in the values
 //!   tells which; the budget says how
-//!   much more the caller will spend to find out. [`Auto::theta`] is the best point of
-//!   all descents. Without a budget, or on a noisy objective, the run ends with its
-//!   first descent.
+//!   much more the caller will spend to find out. A later descent whose close model
+//!   puts its basin's bottom above the best point of the earlier ones ends there,
+//!   unpolished ([`HOPELESS_FITS`]). [`Auto::theta`] is the best point of all descents.
+//!   Without a budget, or on a noisy objective, the run ends with its first descent.
 //! * **Probes.** Before each fresh start, up to [`AutoOptions::probes`] points per
 //!   coordinate ([`AutoStep::Probed`], n per iteration), each the best point with one
 //!   contiguous block of 1, 2, 4, … ≤ n/2 coordinates moved: uniformly over the box
@@ -380,6 +381,14 @@ pub const DETERMINED_METRIC_WEIGHT: f64 = 0.3;
 /// learning from them there lost the runs that succeed.
 pub const STALLED_ANISOTROPY: f64 = 10.0;
 
+/// Model steps in a row after which a later descent counts as converged because its
+/// basin is worse than the best point of the earlier ones: each step's fit close
+/// (noise ≤ [`SMOOTH`]) and determined or validated, its minimum inside the trust region
+/// (the step interior), and its predicted decrease to that minimum under half of
+/// f(θ) − f(record). Polishing such a basin cannot beat the record; the budget goes to
+/// the next fresh start instead. Three, so that one misfit does not end a descent.
+pub const HOPELESS_FITS: u32 = 3;
+
 /// Largest |cosine| between two parameter axes in whitened coordinates, between L⁻¹eₐ
 /// and L⁻¹e_b, (C⁻¹)_ab/√((C⁻¹)_aa·(C⁻¹)_bb), at which a restart's survey of a full
 /// model is drawn along the parameter axes rather than a random frame
@@ -526,6 +535,10 @@ struct State<T> {
     record: Option<T>,
     /// Fresh starts so far.
     fresh: u32,
+    /// Model steps in a row, in a descent after the first, whose close fit puts its
+    /// minimum within reach and above [`State::record`] by more than half θ's gap to it
+    /// ([`HOPELESS_FITS`]).
+    hopeless: u32,
     /// Fresh descents start at σ₀ rather than at their jump's scale from now on
     /// (`Auto::fresh_start`): a probe of this run has found a point below the record,
     /// or two wide descents in a row ended on the same value.
@@ -598,6 +611,7 @@ impl<T: Real> State<T> {
             best_value: None,
             reach_key: None,
             record: None,
+            hopeless: 0,
             fresh: 0,
             fresh_narrow: false,
             fresh_wide: false,
@@ -989,7 +1003,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // which f varies (σ₀ = 10¹² for a minimum a unit away), and σ shrinks until it
         // finds that scale or θ's resolution.
         let tolerated = self.st.improved || self.st.noisy;
-        let converged = tolerated && self.sigma_converged() || self.st.sigma <= resolution(scale);
+        let converged = tolerated && self.sigma_converged()
+            || self.st.sigma <= resolution(scale)
+            || self.st.hopeless >= HOPELESS_FITS;
         // A descent that has found no finite value has nothing to wait for once σ has
         // widened to its cap: a fresh start about x₀ looks at the finer scales again.
         let lost = self.st.value.is_none()

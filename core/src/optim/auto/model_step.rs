@@ -94,6 +94,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // one batch (on a declared-noisy objective one pair per iteration, the rule its
         // runs were measured with).
         let validated = self.count_around(T::from_f64(REACH)) > validating(n);
+        self.judge_basin(
+            value,
+            scale * predicted.max(T::ZERO),
+            ok && noise <= T::from_f64(SMOOTH)
+                && (validated || fitted > self.shape.coefficients(n))
+                && length < T::from_f64(0.9) * radius,
+        );
         if predicted <= T::ZERO || !predicted.is_finite() || length <= T::from_f64(1e-3) * radius {
             if validated {
                 self.st.sigma = sigma * T::HALF;
@@ -274,5 +281,21 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             Ok((AutoStep::Rejected, Some(ratio)))
         }
+    }
+
+    /// Counts towards [`HOPELESS_FITS`](super::HOPELESS_FITS) (or resets the count): in a descent after the
+    /// first, on a deterministic objective, a `trusted` model (a close, determined fit
+    /// whose minimum lies inside the trust region) predicts a `decrease` to its minimum
+    /// of less than half of `value` − f(record).
+    fn judge_basin(&mut self, value: T, decrease: T, trusted: bool) {
+        let hopeless = trusted
+            && self.st.unconfirmed == 0
+            && !self.st.noisy
+            && !self.st.unseeded
+            && self
+                .st
+                .record
+                .is_some_and(|record| value > record && decrease < T::HALF * (value - record));
+        self.st.hopeless = if hopeless { self.st.hopeless + 1 } else { 0 };
     }
 }

@@ -59,8 +59,10 @@ pub struct AutoOptions<T> {
     /// ([`AutoOptions::probes`]) has found a point below the best, or two wide
     /// descents in a row have ended on the same value, later fresh descents start at
     /// σ₀: the run's minima are one object wrong, which the probes fix, or the
-    /// smoothed objective leads to one point, which is then known. The best point of
-    /// all descents is kept, and the run ends with its budget. A run without a budget,
+    /// smoothed objective leads to one point, which is then known. A later descent
+    /// ends early where its model shows its basin worse than the best point's
+    /// ([`HOPELESS_FITS`](super::HOPELESS_FITS)). The best point of all descents is
+    /// kept, and the run ends with its budget. A run without a budget,
     /// or on a noisy objective (values of different descents would not compare), ends
     /// with its first descent. Default: `true`.
     pub fresh_starts: bool,
