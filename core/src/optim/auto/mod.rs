@@ -161,8 +161,8 @@
 //!   descent's end is as likely a local minimum (a disc hidden under another, a
 //!   lattice cell beside the optimum's) as the global one, and nothing in the values
 //!   tells which; the budget says how
-//!   much more the caller will spend to find out. A later descent whose close model
-//!   puts its basin's bottom above the best point of the earlier ones ends there,
+//!   much more the caller will spend to find out. A later descent whose close, confirmed
+//!   model puts its basin's bottom above the best point of the earlier ones ends there,
 //!   unpolished ([`HOPELESS_FITS`]). [`Auto::theta`] is the best point of all descents.
 //!   Without a budget, or on a noisy objective, the run ends with its first descent.
 //! * **Probes.** Before each fresh start, up to [`AutoOptions::probes`] points per
@@ -383,10 +383,13 @@ pub const STALLED_ANISOTROPY: f64 = 10.0;
 
 /// Model steps in a row after which a later descent counts as converged because its
 /// basin is worse than the best point of the earlier ones: each step's fit close
-/// (noise ≤ [`SMOOTH`]) and determined or validated, its minimum inside the trust region
-/// (the step interior), and its predicted decrease to that minimum under half of
-/// f(θ) − f(record). Polishing such a basin cannot beat the record; the budget goes to
-/// the next fresh start instead. Three, so that one misfit does not end a descent.
+/// (noise ≤ [`SMOOTH`]) and determined or validated, the model step before it confirmed
+/// (accepted with ρ̂ ≥ 0.1: along a ridge, whose rejected steps predict little and still
+/// progress, the quadratic does not say where the basin's bottom lies), its minimum
+/// inside the trust region (the step interior), and its predicted decrease to that
+/// minimum under half of f(θ) − f(record). Polishing such a basin cannot beat the
+/// record; the budget goes to the next fresh start instead. Three, so that one misfit
+/// does not end a descent.
 pub const HOPELESS_FITS: u32 = 3;
 
 /// Largest |cosine| between two parameter axes in whitened coordinates, between L⁻¹eₐ
@@ -535,9 +538,9 @@ struct State<T> {
     record: Option<T>,
     /// Fresh starts so far.
     fresh: u32,
-    /// Model steps in a row, in a descent after the first, whose close fit puts its
-    /// minimum within reach and above [`State::record`] by more than half θ's gap to it
-    /// ([`HOPELESS_FITS`]).
+    /// Model steps in a row, in a descent after the first, whose close, confirmed fit
+    /// puts its minimum within reach and above [`State::record`] by more than half θ's
+    /// gap to it ([`HOPELESS_FITS`]).
     hopeless: u32,
     /// Fresh descents start at σ₀ rather than at their jump's scale from now on
     /// (`Auto::fresh_start`): a probe of this run has found a point below the record,

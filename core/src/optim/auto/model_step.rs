@@ -283,10 +283,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
     }
 
-    /// Counts towards [`HOPELESS_FITS`](super::HOPELESS_FITS) (or resets the count): in a descent after the
-    /// first, on a deterministic objective, a `trusted` model (a close, determined fit
-    /// whose minimum lies inside the trust region) predicts a `decrease` to its minimum
-    /// of less than half of `value` − f(record).
+    /// Counts towards [`HOPELESS_FITS`](super::HOPELESS_FITS) (or resets the count):
+    /// in a descent after the first, on a deterministic objective, after a confirmed
+    /// model step, a `trusted` model (a close, determined fit whose minimum lies inside
+    /// the trust region) predicts a `decrease` to its minimum of less than half of
+    /// `value` − f(record).
     fn judge_basin(&mut self, value: T, decrease: T, trusted: bool) {
         let hopeless = trusted
             && self.st.unconfirmed == 0
@@ -296,6 +297,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 .st
                 .record
                 .is_some_and(|record| value > record && decrease < T::HALF * (value - record));
-        self.st.hopeless = if hopeless { self.st.hopeless + 1 } else { 0 };
+        self.st.hopeless = if hopeless {
+            self.st.hopeless.saturating_add(1)
+        } else {
+            0
+        };
     }
 }
