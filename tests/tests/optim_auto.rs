@@ -947,15 +947,44 @@ fn a_descent_in_a_worse_basin_ends_unpolished() {
     );
 }
 
+/// A descent at a minimum whose value is far from zero ends once f's arithmetic no
+/// longer resolves what its model promises ([`hodr_core::optim::auto::UNRESOLVED_FITS`])
+/// rather than after its patience: f(x) = 10³ + Σᵢ (i + 1)(xᵢ − 1)² in 10-D, one descent
+/// (fresh starts off, its restarts included) from xᵢ = 0.3 with σ₀ = 1, seeds 0–39.
+/// Measured over the ten blocks of 40 seeds in 0–399: 24 389 to 26 175 evaluations in
+/// all with the rule, 103 578 to 117 403 without it (each descent's σ went back and forth
+/// between scales where the ratio test compared rounding errors), and θ within 6.3·10⁻⁹
+/// of the minimum in every run either way. Bounds: 50 000 evaluations, 10⁻⁷.
+#[test]
+fn a_minimum_far_from_zero_ends_where_f_stops_resolving() {
+    let n = 10;
+    let mut evaluations = 0;
+    for seed in 0..40 {
+        let mut f = |x: &[f64]| {
+            evaluations += 1;
+            let bowl = x.iter().enumerate();
+            1e3 + bowl
+                .map(|(i, v)| (i + 1) as f64 * (v - 1.0).powi(2))
+                .sum::<f64>()
+        };
+        let (theta, _, _) = descend(&mut f, &vec![0.3; n], 1.0, 100_000, seed);
+        let error = theta.iter().map(|v| (v - 1.0).abs()).fold(0.0, f64::max);
+        assert!(error <= 1e-7, "seed {seed}: θ {error:.1e} from the minimum");
+    }
+    assert!(evaluations <= 50_000, "{evaluations} evaluations");
+}
+
 /// Once two wide fresh descents in a row have ended on the same value, later fresh
 /// descents start at σ₀: the smoothed objective leads every wide descent to one point,
 /// which is then known. On a bowl with one minimum, f(x) = 1 + ‖x − 0.3‖² in 3-D, every
 /// descent ends on f = 1, so the k-th fresh start's descent begins at σ₀·2^k for
 /// k = 1 and 2 (the first wide descent has no other to match; the run's first descent and
 /// the 0th fresh start's are at σ₀) and at σ₀ from then on, where it would otherwise
-/// cycle on through 8σ₀ and 16σ₀: of the run's descents and restarts (several dozen in
-/// 20 000 evaluations), at most four begin above 1.5σ₀ (the two wide fresh descents,
-/// and a restart of each), where four in five fresh starts would without the rule.
+/// cycle on through 8σ₀ and 16σ₀: of the run's descents and restarts (about a hundred in
+/// 20 000 evaluations), at most eight begin above 1.5σ₀, where four in five fresh starts
+/// would without the rule: the two wide fresh descents and a restart of each, and now and
+/// then a descent's second restart, at 2σ₀ in the restarts' own cycle (seeds 0–39: two to
+/// five wide starts of about a hundred, most runs two).
 #[test]
 fn wide_descents_that_end_alike_stop_widening() {
     let sigma0 = 0.5;
@@ -974,7 +1003,7 @@ fn wide_descents_that_end_alike_stop_widening() {
         }
         let wide = starts.iter().filter(|&&s| s > 1.5).count();
         assert!(
-            starts.len() >= 20 && wide <= 4,
+            starts.len() >= 20 && wide <= 8,
             "seed {seed}: {wide} of {} descents began wide",
             starts.len()
         );

@@ -139,7 +139,8 @@
 //!   (never exceeded, even inside an iteration) — and, by being set, lets it start
 //!   fresh descents (below). When every coordinate's spread σ√Cᵢᵢ falls
 //!   below [`AutoOptions::tolerance`] of its start (σ below it times σ₀ on a noisy
-//!   objective; or σ below what T resolves at θ), or after
+//!   objective; or σ below what T resolves at θ, or the model's promised decrease below
+//!   what T resolves of f(θ), [`UNRESOLVED_FITS`]), or after
 //!   [`AutoOptions::patience`] iterations without a lower f(θ), the run restarts from
 //!   the best point with a survey of pairs, as the first iteration's, at the next scale of the cycle σ₀, 2σ₀,
 //!   …, [`PLATEAU_WIDTH`]·σ₀, σ₀, … (wider scales average over more of the basin that
@@ -392,6 +393,17 @@ pub const STALLED_ANISOTROPY: f64 = 10.0;
 /// does not end a descent.
 pub const HOPELESS_FITS: u32 = 3;
 
+/// Model steps in a row after which a descent counts as converged because f's
+/// arithmetic no longer resolves what its model promises: each step's predicted
+/// decrease at most the width within which values tie (16 ulps of f(θ), `tie_width`).
+/// Below that the ratio test compares rounding errors: σ would shrink on a rejection
+/// and widen again where the model turns blind, at a minimum whose value is far from
+/// zero, until [`AutoOptions::patience`] ran out (20 + 10n iterations). Steps that end
+/// at the model's minimum or tie on a plateau neither count nor reset the count. Three,
+/// as [`HOPELESS_FITS`]. Deterministic objectives, once the run has found a value below
+/// f(x₀), as the tolerance.
+pub const UNRESOLVED_FITS: u32 = 3;
+
 /// Largest |cosine| between two parameter axes in whitened coordinates, between L⁻¹eₐ
 /// and L⁻¹e_b, (C⁻¹)_ab/√((C⁻¹)_aa·(C⁻¹)_bb), at which a restart's survey of a full
 /// model is drawn along the parameter axes rather than a random frame
@@ -542,6 +554,9 @@ struct State<T> {
     /// puts its minimum within reach and above [`State::record`] by more than half θ's
     /// gap to it ([`HOPELESS_FITS`]).
     hopeless: u32,
+    /// Model steps in a row whose predicted decrease f's arithmetic does not resolve
+    /// ([`UNRESOLVED_FITS`]).
+    unresolved: u32,
     /// Fresh descents start at σ₀ rather than at their jump's scale from now on
     /// (`Auto::fresh_start`): a probe of this run has found a point below the record,
     /// or two wide descents in a row ended on the same value.
@@ -615,6 +630,7 @@ impl<T: Real> State<T> {
             reach_key: None,
             record: None,
             hopeless: 0,
+            unresolved: 0,
             fresh: 0,
             fresh_narrow: false,
             fresh_wide: false,
@@ -1006,7 +1022,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // which f varies (σ₀ = 10¹² for a minimum a unit away), and σ shrinks until it
         // finds that scale or θ's resolution.
         let tolerated = self.st.improved || self.st.noisy;
-        let converged = tolerated && self.sigma_converged()
+        let converged = tolerated
+            && (self.sigma_converged() || self.st.unresolved >= UNRESOLVED_FITS)
             || self.st.sigma <= resolution(scale)
             || self.st.hopeless >= HOPELESS_FITS;
         // A descent that has found no finite value has nothing to wait for once σ has
@@ -1236,9 +1253,15 @@ fn lower_median<T: Real>(xs: &[T]) -> T {
     T::MAX
 }
 
-/// f ties with v: equal to within 16 ulps of v (a smooth f almost never does).
+/// f ties with v: equal to within 16 ulps of v, `tie_width(v)` (a smooth f almost
+/// never does).
 fn ties_with<T: Real>(f: T, v: T) -> bool {
-    (f - v).abs() <= T::from_f64(16.0) * T::EPSILON * v.abs()
+    (f - v).abs() <= tie_width(v)
+}
+
+/// 16ε·|v|: values closer than this to v tie with it ([`ties_with`]).
+fn tie_width<T: Real>(v: T) -> T {
+    T::from_f64(16.0) * T::EPSILON * v.abs()
 }
 
 /// The largest t ≥ 0 with θ + t·sign·d inside [lower, upper] (`T::MAX` where d never

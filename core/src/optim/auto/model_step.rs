@@ -9,7 +9,7 @@ use super::memory::{memory_determines_model, validating};
 use super::options::AutoStep;
 use super::{
     Auto, CONTINUATION_SCALE, DETERMINED_METRIC_WEIGHT, GROWTH_WIDTH, NOISE_MARGIN, PLATEAU_WIDTH,
-    REACH, ROUGH, SHRINK, SMOOTH, STRIDE, THETA_DRAWS, lower_median, metric,
+    REACH, ROUGH, SHRINK, SMOOTH, STRIDE, THETA_DRAWS, lower_median, metric, tie_width,
 };
 use crate::error::Error;
 use crate::objective::Objective;
@@ -114,6 +114,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // which this iteration measured f(θ), or a fresh one on which θ is evaluated too.
         // An unseeded objective's θ is drawn again beside the trial after a rejection,
         // where its draw lies below the robust fit, until it has THETA_DRAWS draws.
+        // The step promises a decrease that f's arithmetic resolves (UNRESOLVED_FITS).
+        let resolved = scale * predicted > tie_width(value);
+        self.st.unresolved = if self.st.noisy || self.st.unseeded || resolved {
+            0
+        } else {
+            self.st.unresolved.saturating_add(1)
+        };
         let redraw = lucky && self.st.doubted && self.draws_at_theta() < THETA_DRAWS;
         let compare = self.st.noisy && self.st.shared.is_none() || redraw;
         let rows = if compare { 2 } else { 1 };

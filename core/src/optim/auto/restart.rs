@@ -273,6 +273,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.may_restart = false;
         self.st.stale = 0;
         self.st.hopeless = 0;
+        self.st.unresolved = 0;
         self.st.sigma = sigma;
         self.st.survey = true;
         self.st.has_prior = false;
