@@ -92,7 +92,7 @@ class OptimizeResult(dict):
     __delattr__ = dict.__delitem__
 
     def __repr__(self) -> str:
-        keys = ("message", "success", "status", "fun", "x", "nit", "nfev")
+        keys = ("message", "success", "status", "fun", "x", "nit", "nfev", "seed")
         width = max(map(len, keys))
         return "\n".join(f"{k.rjust(width)}: {self[k]!r}" for k in keys if k in self)
 

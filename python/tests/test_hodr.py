@@ -137,6 +137,7 @@ def test_seed_none_draws_a_seed_that_repeats_the_run():
     assert first.seed != second.seed and 0 <= first.seed < 2**64
     again = hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, budget=40, seed=first.seed)
     assert np.array_equal(first.history["fun"], again.history["fun"])
+    assert f"seed: {first.seed}" in repr(first)  # what repeats the run, on show
     assert hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, budget=40, seed=7).seed == 7
     opt = hodr.Optimizer([2.0, 2.0, -1.0], 1.0, budget=40, seed=None)
     while not opt.stop():
