@@ -811,8 +811,9 @@ fn a_flat_piece_is_centred_between_its_edges_only() {
 /// a run without a budget is its first descent. Rastrigin's function
 /// f(x) = Σ (xᵢ² − 10 cos 2πxᵢ + 10) in 2-D from (3.3, −2.2) with σ₀ = 1 in [−5.12, 5.12]²
 /// (a local minimum at every integer point), to f < 1e-8 within 3 000 evaluations.
-/// Measured on 400 seeds: 400 of 400 with fresh starts and the probes before them (393
-/// while a later descent polished a worse basin to the tolerance,
+/// Measured on 400 seeds: 400 of 400 with fresh starts and the probes before them (the
+/// same at the commit of [`hodr_core::optim::auto::UNRESOLVED_FITS`]; 393 while a later
+/// descent polished a worse basin to the tolerance,
 /// [`hodr_core::optim::auto::HOPELESS_FITS`]; before that, 394, and 396
 /// while the probes drew about the best point rather than over the box; 398 while every
 /// fresh descent also began at its jump's scale, whatever the earlier ones found; 395
@@ -883,11 +884,13 @@ fn rastrigin_run(
 /// f < 1e-6 within 20 000 evaluations. Smoothed at σ ≳ 3 the product of cosines fades
 /// and the bowl remains, so a descent that begins wide and follows the smoothed model
 /// down reaches the bottom; one that begins at σ₀ ends in the first well with two
-/// cosines at −1. Measured on seeds 0–399: 352 of 400 (343 while a later descent
-/// polished a worse basin to the tolerance; before that, 341, and 349 while every fresh
-/// descent began wide, whatever earlier ones found; 205 with every descent at σ₀). Bound
-/// over seeds 0–39: P(X < 28 | p = 0.88, N = 40) = 5.5e-4, while with every descent at σ₀
-/// P(X ≥ 28 | p = 0.5125, N = 40) = 0.013.
+/// cosines at −1. Measured on seeds 0–399: 385 of 400 (352 while a descent whose model
+/// promised less than f resolves went on until its patience,
+/// [`hodr_core::optim::auto::UNRESOLVED_FITS`]; 343 while a later descent polished a
+/// worse basin to the tolerance; before that, 341, and 349 while every fresh descent
+/// began wide, whatever earlier ones found; 205 with every descent at σ₀). Bound over
+/// seeds 0–39: P(X < 34 | p = 0.9625, N = 40) = 6.5e-4, while with every descent at σ₀
+/// P(X ≥ 34 | p = 0.5125, N = 40) = 8.4e-6.
 #[test]
 fn wide_fresh_descents_see_the_bowl_under_the_wells() {
     let n = 10;
@@ -912,7 +915,7 @@ fn wide_fresh_descents_see_the_bowl_under_the_wells() {
             reaches(griewank, &x0, 3.0, bounds, 20_000, 1e-6, seed)
         })
         .count();
-    assert!(solved >= 28, "rotated Griewank: {solved} of {seeds}");
+    assert!(solved >= 34, "rotated Griewank: {solved} of {seeds}");
 }
 
 /// A later descent that has found a basin worse than the record ends once its close,
