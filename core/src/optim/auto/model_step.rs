@@ -110,10 +110,6 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             }
             return Ok((AutoStep::AtModelMinimum, None));
         }
-        // A noisy objective's trial is compared with f(θ) on common noise: the seed on
-        // which this iteration measured f(θ), or a fresh one on which θ is evaluated too.
-        // An unseeded objective's θ is drawn again beside the trial after a rejection,
-        // where its draw lies below the robust fit, until it has THETA_DRAWS draws.
         // The step promises a decrease that f's arithmetic resolves (UNRESOLVED_FITS).
         let resolved = scale * predicted > tie_width(value);
         self.st.unresolved = if self.st.noisy || self.st.unseeded || resolved {
@@ -121,6 +117,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             self.st.unresolved.saturating_add(1)
         };
+        // A noisy objective's trial is compared with f(θ) on common noise: the seed on
+        // which this iteration measured f(θ), or a fresh one on which θ is evaluated too.
+        // An unseeded objective's θ is drawn again beside the trial after a rejection,
+        // where its draw lies below the robust fit, until it has THETA_DRAWS draws.
         let redraw = lucky && self.st.doubted && self.draws_at_theta() < THETA_DRAWS;
         let compare = self.st.noisy && self.st.shared.is_none() || redraw;
         let rows = if compare { 2 } else { 1 };
