@@ -250,8 +250,9 @@ def hartmann6(x):
 
 
 SHEKEL_C = np.array([1, 2, 2, 4, 4, 6, 3, 7, 5, 5]) / 10
-# Point i is row i: (4, 4, 4, 4), (1, 1, 1, 1), ..., (7, 3.6, 7, 3.6), as Surjanovic and
-# Bingham's library lists the columns of C (some tables give the seventh as (5, 5, 3, 3)).
+# Point i is row i: (4, 4, 4, 4), (1, 1, 1, 1), ..., the seventh (5, 3, 5, 3), ...,
+# (7, 3.6, 7, 3.6), as Surjanovic and Bingham's library lists the columns of C; other
+# tables give the seventh as (5, 5, 3, 3), whose minimum lies elsewhere.
 SHEKEL_A = np.array([[4, 1, 8, 6, 3, 2, 5, 8, 6, 7], [4, 1, 8, 6, 7, 9, 3, 1, 2, 3.6]] * 2,
                     dtype=float).T
 SHEKEL_ARGMIN = np.array([4.000746868, 3.999509480, 4.000746868, 3.999509480])
