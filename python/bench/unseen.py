@@ -81,8 +81,8 @@ def levy(x):
                  + (w[-1] - 1) ** 2 * (1 + np.sin(2 * np.pi * w[-1]) ** 2))
 
 
-STYBLINSKI_MIN = -39.16616570377142  # per coordinate, at x = STYBLINSKI_ARGMIN
-STYBLINSKI_ARGMIN = -2.903534027771178
+STYBLINSKI_ARGMIN = -2.903534027771178  # per coordinate
+STYBLINSKI_MIN = 0.5 * (STYBLINSKI_ARGMIN**4 - 16 * STYBLINSKI_ARGMIN**2 + 5 * STYBLINSKI_ARGMIN)
 
 
 def styblinski_tang(x):
