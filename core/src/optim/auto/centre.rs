@@ -27,7 +27,7 @@
 
 use rand_core::Rng;
 
-use super::{Auto, PLATEAU_WIDTH};
+use super::{Auto, PLATEAU_WIDTH, tie_width};
 use crate::error::Error;
 use crate::objective::Objective;
 use crate::real::Real;
@@ -36,6 +36,16 @@ use crate::real::Real;
 /// fraction of the outer bound: the edge is then known to within 1/32 of its distance
 /// from θ, the centre to within 1/32 of the piece's width.
 const RESOLUTION: f64 = 1.0 / 16.0;
+
+/// How far from θ, as a multiple of the farthest tie, the untied points lie that
+/// [`Auto::rounding_explains`] reads f's rise from: near enough that a far basin's value
+/// close to f(θ) does not pass for a flat direction.
+const ROUNDING_REACH: f64 = 64.0;
+
+/// How far past the rounding extent √(w/q) ties may reach and still be rounding's
+/// ([`Auto::rounding_explains`]): ties lie along f's flattest directions near θ, which
+/// the untied points may not have sampled, so q may overstate their curvature.
+const ROUNDING_SLACK: f64 = 4.0;
 
 /// What a search for the centre found.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -53,7 +63,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// Whether the descent that just ended rests on a flat piece of f worth centring:
     /// the objective's values are exact (deterministic, or voted), f(θ) is finite and
     /// lower than every earlier descent's, and a remembered point other than θ has
-    /// exactly its value (a smooth f almost never does).
+    /// exactly its value farther from θ than f's rounding explains
+    /// ([`Auto::rounding_explains`]: a smooth f ties only where its rise near its
+    /// minimum falls below its resolution).
     pub(super) fn rests_on_flat_piece(&self) -> bool {
         if !self.options.centre || self.st.noisy || (self.st.unseeded && !self.st.voting) {
             return false;
@@ -69,11 +81,50 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             self.theta
         };
+        let tied = (0..self.st.count)
+            .filter(|&k| self.mem.fs[k] == value)
+            .fold(T::ZERO, |d, k| d.max(self.scaled_distance(theta, k)));
+        tied > T::ZERO && !self.rounding_explains(theta, value, tied)
+    }
+
+    /// Whether f's rounding alone explains ties with `value` out to `tied` from θ (in
+    /// start-scale units, [`Auto::scaled_distance`]): a smooth f at its minimum rises
+    /// as q·d² at distance d, and its values tie with f(θ) while that rise is below its
+    /// resolution, out to √(w/q) for w = [`tie_width`] of f(θ). q is taken as the least
+    /// rise per squared distance, (f(x) − f(θ))/d², over the remembered points that do
+    /// not tie and lie within [`ROUNDING_REACH`]·`tied` (the flattest direction seen
+    /// near θ), and rounding explains the ties when `tied` ≤ [`ROUNDING_SLACK`]·√(w/q).
+    /// A flat piece's ties are not explained: the values past its edge lie a jump J
+    /// above f(θ), so √(w/q) ≤ ROUNDING_REACH·`tied`·√(w/J), far inside the piece for
+    /// any jump above about 10⁶ ulps of f(θ). With no untied point that near, or f(θ) = 0
+    /// (w = 0), the ties count as a flat piece.
+    fn rounding_explains(&self, theta: &[T], value: T, tied: T) -> bool {
+        let reach = T::from_f64(ROUNDING_REACH) * tied;
+        let least = (0..self.st.count)
+            .filter(|&k| self.mem.fs[k] != value && self.mem.fs[k].is_finite())
+            .filter_map(|k| {
+                let d = self.scaled_distance(theta, k);
+                (d > T::ZERO && d <= reach).then(|| (self.mem.fs[k] - value).abs() / d.sq())
+            })
+            .fold(T::MAX, T::min);
+        let width = tie_width(value);
+        least < T::MAX
+            && width > T::ZERO
+            && tied <= T::from_f64(ROUNDING_SLACK) * (width / least).sqrt()
+    }
+
+    /// ‖(x_k − θ)/s‖ for remembered point k, s the coordinates' start scales
+    /// ([`Auto::start_scale`]).
+    fn scaled_distance(&self, theta: &[T], k: usize) -> T {
         let n = theta.len();
-        (0..self.st.count).any(|k| {
-            let x = &self.mem.xs[k * n..(k + 1) * n];
-            self.mem.fs[k] == value && x != theta
-        })
+        let x = &self.mem.xs[k * n..(k + 1) * n];
+        x.iter()
+            .zip(theta)
+            .enumerate()
+            .fold(T::ZERO, |s, (i, (&xi, &ti))| {
+                s + ((xi - ti) / self.start_scale(i)).sq()
+            })
+            .sqrt()
     }
 
     /// Moves θ (the descent's best point) to the centre of the flat piece of f it lies
