@@ -838,7 +838,8 @@ fn a_smooth_minimum_is_not_centred() {
 /// f(x) = Σ (xᵢ² − 10 cos 2πxᵢ + 10) in 2-D from (3.3, −2.2) with σ₀ = 1 in [−5.12, 5.12]²
 /// (a local minimum at every integer point), to f < 1e-8 within 3 000 evaluations.
 /// Measured on 400 seeds: 400 of 400 with fresh starts and the probes before them (the
-/// same at the commit of [`hodr_core::optim::auto::UNRESOLVED_FITS`]; 393 while a later
+/// same at the commit of [`hodr_core::optim::auto::UNRESOLVED_FITS`] and once a smooth
+/// minimum's rounding ties were no longer centred; 393 while a later
 /// descent polished a worse basin to the tolerance,
 /// [`hodr_core::optim::auto::HOPELESS_FITS`]; before that, 394, and 396
 /// while the probes drew about the best point rather than over the box; 398 while every
