@@ -765,7 +765,8 @@ fn a_flat_minimum_is_returned_at_its_centre() {
 /// edges, a face of the box being one: f(x) = round(4(x₀ − 0.9))² for x₀ > 0.9, 0
 /// below, in [0, 2] × ℝ: the least piece is 0 ≤ x₀ < 1.025, centre 0.5125, and along
 /// x₁, which f ignores and no bound limits, θ keeps the value its descent left it with.
-/// A smooth f never ties, so there the option changes nothing.
+/// A smooth f whose minimum is 0 never ties, so there the option changes nothing (one whose
+/// minimum is not 0 ties by rounding: `a_smooth_minimum_is_not_centred`).
 #[test]
 fn a_flat_piece_is_centred_between_its_edges_only() {
     let mut f = |x: &[f64]| (4.0 * (x[0] - 0.9).max(0.0)).round().powi(2);
