@@ -367,8 +367,8 @@ PROBLEMS = {
     "nan-region4": Problem(failing, BALL_CENTRE, 0.5, None, 8_000, 1e-6),
     "walled10": Problem(walled, WALL_CENTRE, 3.0, None, 20_000, 1e-6),
     "jump10": Problem(jump, np.concatenate([[0.0], full(9, 0.5)]), 1.0, None, 20_000, 1e-6),
-    # The second set, added after Auto's design had settled (2026-11-30): first runs of
-    # every solver on them are the ones in BENCHMARKS.md.
+    # The second set, added after Auto's design had settled (2026-11-30): BENCHMARKS.md
+    # has every solver's cells on them and the rows later changes to Auto moved.
     "zakharov10": Problem(zakharov, full(10, 0), 1.0, None, 20_000, 1e-6),
     "dixon-price10": Problem(dixon_price, 2.0 ** -(1 - 2.0 ** (1 - np.arange(1, 11))), 1.0,
                              None, 20_000, 1e-6),
