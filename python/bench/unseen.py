@@ -36,6 +36,7 @@ from typing import Callable, NamedTuple, Optional
 import numpy as np
 
 import hodr
+import least_squares
 
 warnings.filterwarnings("ignore")
 
@@ -396,6 +397,79 @@ PROBLEMS = {
     "bohachevsky2": Problem(bohachevsky, full(2, 0), 20.0, (-100, 100), 4_000, 1e-6,
                             (-100, 100)),
 }
+
+
+# The third set (2026-11-30, thirty-eighth session): Moré, Garbow and Hillstrom's
+# least-squares problems (least_squares.py), run first as Auto stood. Starts uniform
+# within a tenth of max(1, |x0_j|) of each coordinate of the published start x0, sigma0 =
+# max(1, ‖x0‖∞)/4 and no box; the target is the stricter of 1e-6 and Moré and Wild's
+# tau = 1e-7 of the published start's gap f(x0) - f*.
+def least_squares_problem(residuals, x0, x_opt):
+    f = least_squares.objective(residuals)
+    x0, x_opt = np.asarray(x0, dtype=float), np.asarray(x_opt, dtype=float)
+    width = 0.1 * np.maximum(1.0, np.abs(x0))
+    target = min(1e-6, 1e-7 * (f(x0) - f(x_opt)))
+    return Problem(f, x_opt, max(1.0, np.abs(x0).max()) / 4, None, 2000 * len(x0), target,
+                   (x0 - width, x0 + width))
+
+
+def chebyshev_start(n):
+    return np.arange(1, n + 1) / (n + 1)
+
+
+BOUNDARY_T = np.arange(1, 11) / 11
+
+LEAST_SQUARES = {
+    "mgh-helical-valley3": (least_squares.helical_valley, [-1, 0, 0], [1, 0, 0]),
+    "mgh-wood4": (least_squares.wood, [-3, -1, -3, -1], [1, 1, 1, 1]),
+    "mgh-brown-badly-scaled2": (least_squares.brown_badly_scaled, [1, 1], [1e6, 2e-6]),
+    "mgh-freudenstein-roth2": (least_squares.freudenstein_roth, [0.5, -2], [5, 4]),
+    "mgh-powell-badly-scaled2": (least_squares.powell_badly_scaled, [0, 1],
+                                 [1.098159329700e-05, 9.106146739866]),
+    "mgh-box3": (least_squares.box_3d, [0, 10, 20], [1, 10, 1]),
+    "mgh-bard3": (least_squares.bard, [1, 1, 1], [0.082410559782, 1.13303608787,
+                                                  2.343695182607]),
+    "mgh-kowalik-osborne4": (least_squares.kowalik_osborne, [0.25, 0.39, 0.415, 0.39],
+                             [0.19280693458, 0.191282328355, 0.123056506714,
+                              0.136062330516]),
+    "mgh-osborne1-5": (least_squares.osborne1, [0.5, 1.5, -1, 0.01, 0.02],
+                       [0.375410051457, 1.935846837441, -1.464687060846, 0.012867534487,
+                        0.022122699966]),
+    "mgh-biggs6": (least_squares.biggs_exp6, [1, 2, 1, 1, 1, 1], [1, 10, 1, 5, 4, 3]),
+    "mgh-watson6": (least_squares.watson, np.zeros(6),
+                    [-0.015725086229, 1.012434868639, -0.232991624205, 1.260430090303,
+                     -1.513728931872, 0.992996437729]),
+    "mgh-penalty1-10": (least_squares.penalty1, np.arange(1, 11),
+                        [0.158122292602, 0.158122305114, 0.158122302667, 0.158122296707,
+                         0.15812228418, 0.158122307637, 0.158122291432, 0.158122311595,
+                         0.158122312446, 0.158122306933]),
+    "mgh-brown-almost-linear10": (least_squares.brown_almost_linear, full(10, 0.5),
+                                  full(10, 1)),
+    "mgh-chebyquad8": (least_squares.chebyquad, chebyshev_start(8),
+                       [0.043152760207, 0.193090840436, 0.266328706889, 0.500000000717,
+                        0.49999999929, 0.733671292988, 0.806909159356, 0.956847239796]),
+    "mgh-variably-dimensioned10": (least_squares.variably_dimensioned,
+                                   1 - np.arange(1, 11) / 10, full(10, 1)),
+    "mgh-jennrich-sampson2": (least_squares.jennrich_sampson, [0.3, 0.4],
+                              [0.257825213495, 0.257825213847]),
+    "mgh-gaussian3": (least_squares.gaussian, [0.4, 1, 0],
+                      [0.398956137843, 1.000019084485, 4.468974007159e-12]),
+    "mgh-brown-dennis4": (least_squares.brown_dennis, [25, 5, -5, -1],
+                          [-11.594439834211, 13.203630021047, -0.403439468935,
+                           0.236778775279]),
+    "mgh-broyden-tridiagonal10": (least_squares.broyden_tridiagonal, full(10, -1),
+                                  [-0.570722132011, -0.681806949984, -0.702210076018,
+                                   -0.705510629895, -0.704906155729, -0.70149660703,
+                                   -0.691889322355, -0.665796514406, -0.596035109026,
+                                   -0.416412257529]),
+    "mgh-discrete-boundary-value10": (least_squares.discrete_boundary_value,
+                                      BOUNDARY_T * (BOUNDARY_T - 1),
+                                      [-0.043164982519, -0.081577156535, -0.114485714381,
+                                       -0.140973576863, -0.159908696182, -0.169877202313,
+                                       -0.169089983781, -0.155249535222, -0.125355891679,
+                                       -0.075416533686]),
+}
+PROBLEMS.update({name: least_squares_problem(*case) for name, case in LEAST_SQUARES.items()})
 
 
 def draw_start(problem, rng):
