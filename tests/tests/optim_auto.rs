@@ -833,6 +833,63 @@ fn a_smooth_minimum_is_not_centred() {
     }
 }
 
+/// The data of Osborne's first problem (Moré, Garbow and Hillstrom 1981, problem 17):
+/// 33 values of a sum of two decaying exponentials at t = 0, 10, …, 320.
+const OSBORNE_Y: [f64; 33] = [
+    0.844, 0.908, 0.932, 0.936, 0.925, 0.908, 0.881, 0.850, 0.818, 0.784, 0.751, 0.718, 0.685,
+    0.658, 0.628, 0.603, 0.580, 0.558, 0.538, 0.522, 0.506, 0.490, 0.478, 0.467, 0.457, 0.448,
+    0.438, 0.431, 0.424, 0.420, 0.414, 0.411, 0.406,
+];
+
+/// Osborne 1: f(x) = Σᵢ (yᵢ − x₁ − x₂e^(−tᵢx₄) − x₃e^(−tᵢx₅))², least value 5.46489e-5.
+fn osborne1(x: &[f64]) -> f64 {
+    OSBORNE_Y
+        .iter()
+        .enumerate()
+        .map(|(i, y)| {
+            let t = 10.0 * i as f64;
+            (y - x[0] - x[1] * (-t * x[3]).exp() - x[2] * (-t * x[4]).exp()).powi(2)
+        })
+        .sum()
+}
+
+/// A prior the points refute is dropped. Osborne 1 from its published start
+/// (0.5, 1.5, −1, 0.01, 0.02) with σ₀ = 0.1: its rates x₄, x₅ are 0.01–0.02, and a
+/// sample that makes one negative meets a wall where f grows as e^(640|x₄|) (10³⁶ among
+/// the first samples). The first models are fitted to the wall; once σ has shrunk past
+/// it, such a model carried as the prior missed the points by 10¹⁴ times their own
+/// spread, held every later fit with it and kept C round, so that the runs crawled along
+/// the valley (condition 2·10⁹) at σ ≈ 10⁻⁷. Runs stop once f(θ) is within 10⁻⁷ of the
+/// least value, or at 10 000 evaluations. Measured on 400 seeds: 391 of 400 (before, 0
+/// of 100; with the prior dropped only where the fit from it left a residual above the
+/// values' spread, 30 of 100). Bound: P(X < 35 | p = 0.9775, N = 40) = 2.6e-4.
+#[test]
+fn a_prior_the_points_refute_is_dropped() {
+    let solved = (0..40)
+        .filter(|&seed| {
+            let mut theta = [0.5, 1.5, -1.0, 0.01, 0.02];
+            let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(5)];
+            let options = AutoOptions::default().with_max_evaluations(10_000).unwrap();
+            let mut auto = Auto::new(
+                &mut theta,
+                0.1,
+                &mut buffer,
+                Xoshiro256PlusPlus::seed_from_u64(seed),
+            )
+            .unwrap()
+            .with_options(options);
+            let mut f = |x: &[f64]| osborne1(x);
+            while auto.step(&mut f).unwrap().is_some() {
+                if auto.value().is_some_and(|v| v < 5.46489e-5 + 1e-7) {
+                    return true;
+                }
+            }
+            false
+        })
+        .count();
+    assert!(solved >= 35, "Osborne 1: {solved} of 40");
+}
+
 /// Fresh starts: where a descent ends in a local minimum, the budget's remainder goes to
 /// new descents about the best point and the best point of all descents is returned;
 /// a run without a budget is its first descent. Rastrigin's function

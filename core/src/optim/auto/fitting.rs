@@ -11,6 +11,15 @@ use super::{Auto, BY_COLUMNS_MIN_DIM, REACH, metric};
 use crate::optim::vector::{dot, mat_vec_by_columns, norm, transpose};
 use crate::real::Real;
 
+/// How far the prior must miss the points to be dropped: its weighted RMS residual over
+/// the points a fit uses, more than this many times theirs about f(θ) (the flat model's).
+/// A prior carried from the last iteration, whose θ and σ differ by at most the factors
+/// one step allows, misses a smooth f's points by less; one fitted where f was no
+/// quadratic — a wall where f grows by orders of magnitude, which a shrinking σ has
+/// since left — predicts values the points contradict by those orders, and carried on,
+/// it holds every later fit with it.
+const REFUTED: f64 = 16.0;
+
 impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// Writes remembered point k's standardised offset u = L⁻¹(x − θ)/σ to `gx` (as the
     /// fit computes it) and returns its reach ‖u‖/√n.
@@ -25,8 +34,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Fits the model around θ to the remembered points within 2ρ, values scaled by
-    /// `scale`, from the prior moved to θ and σ. Returns the fit's noise level and the
-    /// number of points fitted; `None` when the fit failed.
+    /// `scale`, from the prior moved to θ and σ — unless the points refute the prior
+    /// ([`REFUTED`]), when the fit starts from zero and the prior is forgotten. Returns
+    /// the fit's noise level and the number of points fitted; `None` when the fit
+    /// failed.
     pub(super) fn fit(&mut self, value: T, scale: T) -> Option<(T, usize)> {
         let n = self.theta.len();
         let sigma = self.st.sigma;
@@ -56,6 +67,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let limit = T::from_f64(2.0 * REACH);
         let reach = T::from_f64(REACH);
         let mut m = 0;
+        // Σ wᵢ(m₀(uᵢ) − vᵢ)² and Σ wᵢvᵢ², vᵢ the scaled (f − f(θ)): the prior's misfit
+        // and that of the flat model f(θ).
+        let (mut misfit, mut spread) = (T::ZERO, T::ZERO);
         let root_n = T::from_usize(n).sqrt();
         // From BY_COLUMNS_MIN_DIM coordinates on, L⁻¹ and H by columns for the products
         // below (the same sums as by rows, in contiguous passes that vectorise); below
@@ -92,10 +106,20 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 shape.half_quadratic(self.mem.h, row)
             };
             let prior = dot(self.mem.g, row) + quadratic;
+            let v = (self.mem.fs[k] - value) / scale;
             self.mem.sw[m] = sw;
             self.mem.gid[m] = self.mem.gs[k];
-            self.mem.r[m] = sw * ((self.mem.fs[k] - value) / scale - prior);
+            self.mem.r[m] = sw * (v - prior);
+            misfit += self.mem.r[m].sq();
+            spread += (sw * v).sq();
             m += 1;
+        }
+        if self.st.has_prior
+            && spread > T::ZERO
+            && misfit > T::from_f64(REFUTED).sq() * spread
+        {
+            self.st.has_prior = false;
+            return self.fit(value, scale);
         }
         let ridge = self.ridge();
         model::fit(

@@ -12,7 +12,9 @@
 //!   iteration fits the model m(θ + σu) = c + gᵀu + ½uᵀHu to the remembered points
 //!   within reach, weighted by w = exp(−½(z/ρ)²), z = ‖L⁻¹(x − θ)‖/(σ√n),
 //!   ρ = [`REACH`], by ridge regression towards the previous iteration's model (the
-//!   `model` module): an overdetermined fit averages the points over a Gaussian of width
+//!   `model` module; from zero instead where that model misses the points by far more
+//!   than their own spread, as one fitted to a wall that σ has since shrunk past does):
+//!   an overdetermined fit averages the points over a Gaussian of width
 //!   ~σ, as hodr's estimators average samples, so the model is that of the *smoothed*
 //!   objective; an underdetermined one changes the curvature least, as Powell's NEWUOA
 //!   does, so curvature learnt earlier is kept.
