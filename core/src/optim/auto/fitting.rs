@@ -114,10 +114,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             spread += (sw * v).sq();
             m += 1;
         }
-        if self.st.has_prior
-            && spread > T::ZERO
-            && misfit > T::from_f64(REFUTED).sq() * spread
-        {
+        if self.st.has_prior && spread > T::ZERO && misfit > T::from_f64(REFUTED).sq() * spread {
             self.st.has_prior = false;
             return self.fit(value, scale);
         }
