@@ -15,7 +15,10 @@ tests or tasks. A second set of classic functions, added once Auto's design had 
 first run as they are recorded (Zakharov, Dixon-Price, Powell's singular function, Trid,
 the six-hump camel, Branin, Michalewicz, Easom, Hartmann 6, Shekel 10, Schwefel 2.26,
 Salomon, Alpine 1, a Gaussian well, Beale, Schaffer 2, a sphere about 1e8, Levy 13,
-Bohachevsky). Each problem states its dimension, box (or none), scale sigma0, budget,
+Bohachevsky). A third set, twenty of Moré, Garbow and Hillstrom's nonlinear least-squares
+problems (least_squares.py: Osborne 1, Watson, Chebyquad, the badly scaled ones, ...; the
+mgh-* names), first run as Auto stood on 2026-11-30. Each problem states its dimension,
+box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
 succeeds when an evaluated point comes within the target of f* (COCO's rule); the table
