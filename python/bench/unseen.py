@@ -17,8 +17,11 @@ the six-hump camel, Branin, Michalewicz, Easom, Hartmann 6, Shekel 10, Schwefel 
 Salomon, Alpine 1, a Gaussian well, Beale, Schaffer 2, a sphere about 1e8, Levy 13,
 Bohachevsky). A third set, twenty of Moré, Garbow and Hillstrom's nonlinear least-squares
 problems (least_squares.py: Osborne 1, Watson, Chebyquad, the badly scaled ones, ...; the
-mgh-* names), first run as Auto stood on 2026-11-30. Each problem states its dimension,
-box (or none), scale sigma0, budget,
+mgh-* names), first run as Auto stood on 2026-11-30. A fourth, problems whose only
+constraints are bounds (bound_constrained.py: Hock and Schittkowski's, a quadratic whose
+minimum lies on faces of the box, Rosenbrock's with its minimum in the box's corner,
+Styblinski-Tang's cut by a face; the bc-* names), also first run as Auto stood. Each
+problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
 succeeds when an evaluated point comes within the target of f* (COCO's rule); the table
@@ -38,6 +41,7 @@ from typing import Callable, NamedTuple, Optional
 
 import numpy as np
 
+import bound_constrained
 import hodr
 import least_squares
 
@@ -324,13 +328,15 @@ def bohachevsky(x):
 
 class Problem(NamedTuple):
     """A problem as every solver gets it: f, a minimiser x* (f* = f(x*); on the
-    multi-modal rows the published global one), the scale sigma0, the box (one
-    (low, high) for every coordinate, or None), the budget, the target on f - f*, and the
-    range the starts are drawn from, uniformly in each coordinate."""
+    multi-modal rows the published global one), the scale sigma0 (one for every
+    coordinate, or n), the box ((low, high), each a scalar for every coordinate or n
+    values, -inf or inf for an open side; or None), the budget, the target on f - f*, and
+    the range the starts are drawn from, uniformly in each coordinate (scalars or n
+    values) and then clipped into the box."""
 
     f: Callable[[np.ndarray], float]
     x_opt: np.ndarray
-    sigma0: float
+    sigma0: object
     box: Optional[tuple]
     budget: int
     target: float
@@ -343,6 +349,18 @@ class Problem(NamedTuple):
     @property
     def f_opt(self):
         return self.f(self.x_opt)
+
+    @property
+    def limits(self):
+        """The box as two arrays of n (lower, upper), open sides infinite."""
+        low, high = (-np.inf, np.inf) if self.box is None else self.box
+        return (np.broadcast_to(np.asarray(low, dtype=float), (self.n,)),
+                np.broadcast_to(np.asarray(high, dtype=float), (self.n,)))
+
+    @property
+    def scales(self):
+        """sigma0 as n values."""
+        return np.broadcast_to(np.asarray(self.sigma0, dtype=float), (self.n,))
 
 
 def full(n, value):
@@ -475,15 +493,39 @@ LEAST_SQUARES = {
 PROBLEMS.update({name: least_squares_problem(*case) for name, case in LEAST_SQUARES.items()})
 
 
+# The fourth set (2026-11-30, thirty-ninth session): problems whose only constraints are
+# bounds (bound_constrained.py), run first as Auto stood. With a published start x0,
+# starts uniform within a tenth of max(1, |x0_j|) of it, clipped into the box, sigma0_j =
+# min(max(1, |x0_j|), the box's width)/4 and the target the stricter of 1e-6 and 1e-7 of
+# f(x0) - f* (x0 clipped into the box); without one, starts uniform in the box, sigma0_j a
+# quarter of its width and the target 1e-6.
+def bound_constrained_problem(f, lower, upper, x0, x_opt):
+    lower, upper = np.asarray(lower, dtype=float), np.asarray(upper, dtype=float)
+    x_opt = np.asarray(x_opt, dtype=float)
+    budget = 2000 * len(x_opt)
+    if x0 is None:
+        return Problem(f, x_opt, (upper - lower) / 4, (lower, upper), budget, 1e-6,
+                       (lower, upper))
+    x0 = np.asarray(x0, dtype=float)
+    reach = np.maximum(1.0, np.abs(x0))
+    target = min(1e-6, 1e-7 * (f(np.clip(x0, lower, upper)) - f(x_opt)))
+    return Problem(f, x_opt, np.minimum(reach, upper - lower) / 4, (lower, upper), budget,
+                   target, (x0 - reach / 10, x0 + reach / 10))
+
+
+PROBLEMS.update({"bc-" + name: bound_constrained_problem(*case)
+                 for name, case in bound_constrained.PROBLEMS.items()})
+
+
 def draw_start(problem, rng):
-    """A start uniform in the problem's start range."""
+    """A start uniform in the problem's start range, clipped into its box."""
     low, high = problem.start
-    return rng.uniform(low, high, problem.n)
+    return np.clip(rng.uniform(low, high, problem.n), *problem.limits)
 
 
 def run_hodr(f, x0, problem, seed):
-    bounds = None if problem.box is None else [problem.box] * problem.n
-    hodr.minimize(f, x0, problem.sigma0, bounds=bounds, budget=problem.budget, seed=seed)
+    bounds = None if problem.box is None else list(zip(*problem.limits))
+    hodr.minimize(f, x0, problem.scales, bounds=bounds, budget=problem.budget, seed=seed)
 
 
 def run_cma(f, x0, problem, seed):
@@ -491,23 +533,26 @@ def run_cma(f, x0, problem, seed):
 
     options = {"maxfevals": problem.budget, "verbose": -9, "seed": seed + 1}
     if problem.box is not None:
-        options["bounds"] = list(problem.box)
-    cma.fmin2(f, x0, problem.sigma0, options, restarts=9, incpopsize=2)
+        # pycma's bound handler takes None for an open side.
+        options["bounds"] = [[None if np.isinf(b) else b for b in side]
+                             for side in problem.limits]
+    sigma0 = problem.scales.max()
+    if np.any(problem.scales != sigma0):
+        options["CMA_stds"] = problem.scales / sigma0
+    cma.fmin2(f, x0, sigma0, options, restarts=9, incpopsize=2)
 
 
 def run_bobyqa(f, x0, problem, seed):
     import nlopt
 
     rng = np.random.default_rng(10_000 + seed)
-    n, box = problem.n, problem.box
+    low, high = problem.limits
+    # nlopt refuses an initial step that leaves the box from a start inside it.
+    step = np.minimum(problem.scales, 0.49 * (high - low))
     while f.evaluations < problem.budget and f.hit is None:
-        opt = nlopt.opt(nlopt.LN_BOBYQA, n)
-        step = problem.sigma0
-        if box is not None:
-            opt.set_lower_bounds([box[0]] * n)
-            opt.set_upper_bounds([box[1]] * n)
-            # nlopt refuses an initial step that leaves the box from a start inside it.
-            step = min(step, 0.49 * (box[1] - box[0]))
+        opt = nlopt.opt(nlopt.LN_BOBYQA, problem.n)
+        opt.set_lower_bounds(low)
+        opt.set_upper_bounds(high)
         opt.set_min_objective(lambda x, grad: f(x))
         opt.set_initial_step(step)
         opt.set_maxeval(problem.budget - f.evaluations)
