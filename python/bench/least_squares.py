@@ -2,10 +2,11 @@
 optimization software", ACM TOMS 7, 1981), the set on which derivative-free methods are
 usually compared (Moré and Wild, "Benchmarking derivative-free optimization algorithms",
 SIAM J. Optim. 20, 2009): each function returns the residual vector r(x), and the
-objective is f = r·r. `STANDARD` holds each problem's published start, `MINIMISER` a
+objective is f = r·r. unseen.py states each problem once: its published start and a
 minimiser (the published one where it is given in closed form, else found by a local
-search from it and refined to the digits f resolves), and `PUBLISHED_MIN` the published
-least value the minimiser is checked against.
+search from the start and refined to the digits f resolves, or, for the square systems
+at large n, by `root`). The scalable ones take any n (extended Powell, a multiple of 4;
+extended Rosenbrock, of 2).
 """
 
 import numpy as np
@@ -181,6 +182,72 @@ def discrete_boundary_value(x):
     left = np.concatenate([[0.0], x[:-1]])
     right = np.concatenate([x[1:], [0.0]])
     return 2 * x - left - right + h * h * (x + t + 1) ** 3 / 2
+
+
+def extended_rosenbrock(x):
+    """Any even n, zero at x = 1: Rosenbrock's valley in each pair of coordinates."""
+    odd, even = x[0::2], x[1::2]
+    return np.concatenate([10 * (even - odd * odd), 1 - odd])
+
+
+def extended_powell(x):
+    """n a multiple of 4, zero at x = 0, where the Hessian is singular: Powell's singular
+    function in each group of four."""
+    a, b, c, d = x[0::4], x[1::4], x[2::4], x[3::4]
+    return np.concatenate([a + 10 * b, np.sqrt(5) * (c - d), (b - 2 * c) ** 2,
+                           np.sqrt(10) * (a - d) ** 2])
+
+
+def discrete_integral_equation(x):
+    """Any n, zero at one point: an integral equation discretised by the trapezoid rule;
+    every residual depends on every coordinate."""
+    n = len(x)
+    h = 1 / (n + 1)
+    t = h * np.arange(1, n + 1)
+    cube = (x + t + 1) ** 3
+    below = np.cumsum(t * cube)  # sum over j <= i of t_j (x_j + t_j + 1)^3
+    above = np.cumsum(((1 - t) * cube)[::-1])[::-1] - (1 - t) * cube  # over j > i
+    return x + h * ((1 - t) * below + t * above) / 2
+
+
+def broyden_banded(x):
+    """Any n, zero at one point near -0.4: each residual couples five coordinates below
+    and one above."""
+    n = len(x)
+    coupling = x * (1 + x)
+    out = x * (2 + 5 * x * x) + 1
+    for i in range(n):
+        out[i] -= coupling[max(0, i - 5):min(n, i + 2)].sum() - coupling[i]
+    return out
+
+
+def linear_full_rank(x, m_per_n=2):
+    """Any n, m = 2n: a linear least-squares problem whose least value m - n is taken at
+    x = -1."""
+    n = len(x)
+    m = m_per_n * n
+    mean = 2 * x.sum() / m
+    return np.concatenate([x - mean - 1, np.full(m - n, -mean - 1)])
+
+
+def root(residuals, x0, iterations=50):
+    """A zero of a square system r(x) = 0 near x0 by Newton's method with a
+    central-difference Jacobian; raises if the residuals do not fall to rounding."""
+    x = np.asarray(x0, dtype=float).copy()
+    n = len(x)
+    for _ in range(iterations):
+        r = residuals(x)
+        if np.abs(r).max() < 1e-15:
+            return x
+        jacobian = np.empty((n, n))
+        for j in range(n):
+            step = np.zeros(n)
+            step[j] = 1e-6
+            jacobian[:, j] = (residuals(x + step) - residuals(x - step)) / 2e-6
+        x -= np.linalg.solve(jacobian, r)
+    if np.abs(residuals(x)).max() > 1e-13:
+        raise ArithmeticError("Newton's method did not converge")
+    return x
 
 
 def objective(residuals):

@@ -20,7 +20,8 @@ problems (least_squares.py: Osborne 1, Watson, Chebyquad, the badly scaled ones,
 mgh-* names), first run as Auto stood on 2026-11-30. A fourth, problems whose only
 constraints are bounds (bound_constrained.py: Hock and Schittkowski's, a quadratic whose
 minimum lies on faces of the box, Rosenbrock's with its minimum in the box's corner,
-Styblinski-Tang's cut by a face; the bc-* names), also first run as Auto stood. Each
+Styblinski-Tang's cut by a face; the bc-* names), also first run as Auto stood, and a
+fifth, Moré, Garbow and Hillstrom's scalable problems at n = 48 (mgh-*48). Each
 problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
@@ -492,6 +493,34 @@ LEAST_SQUARES = {
 }
 PROBLEMS.update({name: least_squares_problem(*case) for name, case in LEAST_SQUARES.items()})
 
+
+# The fifth set (2026-11-30, thirty-ninth session): Moré, Garbow and Hillstrom's scalable
+# problems at n = 48, where Auto's model and metric are diagonal, stated as the third set
+# is and first run as Auto stood. The square systems' zeros are found by Newton's method
+# from the published start.
+LARGE = 48
+LARGE_T = np.arange(1, LARGE + 1) / (LARGE + 1)
+LARGE_LEAST_SQUARES = {
+    "extended-rosenbrock": (least_squares.extended_rosenbrock,
+                            np.tile([-1.2, 1.0], LARGE // 2), full(LARGE, 1)),
+    "extended-powell": (least_squares.extended_powell, np.tile([3.0, -1, 0, 1], LARGE // 4),
+                        full(LARGE, 0)),
+    "variably-dimensioned": (least_squares.variably_dimensioned, 1 - LARGE_T * (LARGE + 1)
+                             / LARGE, full(LARGE, 1)),
+    "brown-almost-linear": (least_squares.brown_almost_linear, full(LARGE, 0.5),
+                            full(LARGE, 1)),
+    "discrete-boundary-value": (least_squares.discrete_boundary_value,
+                                LARGE_T * (LARGE_T - 1), None),
+    "discrete-integral-equation": (least_squares.discrete_integral_equation,
+                                   LARGE_T * (LARGE_T - 1), None),
+    "broyden-tridiagonal": (least_squares.broyden_tridiagonal, full(LARGE, -1), None),
+    "broyden-banded": (least_squares.broyden_banded, full(LARGE, -1), None),
+    "linear-full-rank": (least_squares.linear_full_rank, full(LARGE, 1), full(LARGE, -1)),
+}
+PROBLEMS.update({
+    f"mgh-{name}{LARGE}": least_squares_problem(
+        residuals, x0, least_squares.root(residuals, x0) if x_opt is None else x_opt)
+    for name, (residuals, x0, x_opt) in LARGE_LEAST_SQUARES.items()})
 
 # The fourth set (2026-11-30, thirty-ninth session): problems whose only constraints are
 # bounds (bound_constrained.py), run first as Auto stood. With a published start x0,
