@@ -50,11 +50,13 @@ warnings.filterwarnings("ignore")
 
 
 class Spent(Exception):
-    """The budget is used up (raised to stop a solver that would go on)."""
+    """The run is over: the target reached or the budget used up (raised to stop a
+    solver that would go on)."""
 
 
 class Counted:
-    """f with COCO's bookkeeping: evaluations, the first that reached the target."""
+    """f with COCO's bookkeeping: evaluations, the first that reached the target (the
+    run ends there; the evaluations after it count for nothing)."""
 
     def __init__(self, f, f_opt, target, budget):
         self.f, self.f_opt, self.target, self.budget = f, f_opt, target, budget
@@ -62,7 +64,7 @@ class Counted:
         self.hit = None
 
     def __call__(self, x):
-        if self.evaluations >= self.budget:
+        if self.evaluations >= self.budget or self.hit is not None:
             raise Spent
         self.evaluations += 1
         value = self.f(np.asarray(x, dtype=float))
@@ -600,20 +602,25 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=10)
     parser.add_argument("--problems", default=",".join(PROBLEMS))
+    parser.add_argument("--solvers", default=",".join(SOLVERS))
     args = parser.parse_args()
     names = args.problems.split(",")
     for name in names:
         if name not in PROBLEMS:
             parser.error(f"unknown problem {name!r} (choose from {', '.join(PROBLEMS)})")
+    solvers = args.solvers.split(",")
+    for solver in solvers:
+        if solver not in SOLVERS:
+            parser.error(f"unknown solver {solver!r} (choose from {', '.join(SOLVERS)})")
     print("| problem | n | budget | target | " + " | ".join(
-        f"{s} solved / median evaluations" for s in SOLVERS) + " | hodr ÷ pycma |")
-    print("|---|---|---|---|" + "---|" * (len(SOLVERS) + 1))
+        f"{s} solved / median evaluations" for s in solvers) + " | hodr ÷ pycma |")
+    print("|---|---|---|---|" + "---|" * (len(solvers) + 1))
     start = time.perf_counter()
     for name in names:
         problem = PROBLEMS[name]
         cells, medians = [], {}
-        for solver, run in SOLVERS.items():
-            hits = []
+        for solver in solvers:
+            run, hits = SOLVERS[solver], []
             for seed in range(args.seeds):
                 x0 = draw_start(problem, np.random.default_rng(seed))
                 counted = Counted(problem.f, problem.f_opt, problem.target, problem.budget)
