@@ -255,9 +255,12 @@ use model::Shape;
 /// are diagonal (2n + 1 coefficients instead of (n+1)(n+2)/2). Only a full model and
 /// metric represent a valley that runs along no parameter axis (a rotated one, the
 /// common case); a diagonal one learns per-coordinate scales from far fewer points, but
-/// no rotation. The full model costs O(n³) per iteration (its trust step's and the
-/// metric's eigen-decompositions) and n² floats per Hessian and shape, which bounds it.
-pub const FULL_MODEL_MAX_DIM: usize = 40;
+/// no rotation. The full model is kept while the memory holds at least 2n + 1 points
+/// (NEWUOA's usual count: enough to fix the gradient and every axis's curvature, with the
+/// rest of the Hessian carried from fit to fit), n ≤ ([`MAX_MEMORY`] − 1)/2 = 63. It
+/// costs O(mn² + n³) per iteration for m remembered points (their whitening, the trust
+/// step's and the metric's eigen-decompositions) and n² floats per Hessian and shape.
+pub const FULL_MODEL_MAX_DIM: usize = (MAX_MEMORY - 1) / 2;
 
 /// Most points Auto remembers (it reaches this for n ≥ 10 with a full model — n ≥ 14 on a
 /// declared-noisy objective — and always with a diagonal one). A fit costs O(m²n + m³)
