@@ -496,10 +496,33 @@ LEAST_SQUARES = {
 PROBLEMS.update({name: least_squares_problem(*case) for name, case in LEAST_SQUARES.items()})
 
 
+# The fourth set (2026-11-30, thirty-ninth session): problems whose only constraints are
+# bounds (bound_constrained.py), run first as Auto stood. With a published start x0,
+# starts uniform within a tenth of max(1, |x0_j|) of it, clipped into the box, sigma0_j =
+# min(max(1, |x0_j|), the box's width)/4 and the target the stricter of 1e-6 and 1e-7 of
+# f(x0) - f* (x0 clipped into the box); without one, starts uniform in the box, sigma0_j a
+# quarter of its width and the target 1e-6.
+def bound_constrained_problem(f, lower, upper, x0, x_opt):
+    lower, upper = np.asarray(lower, dtype=float), np.asarray(upper, dtype=float)
+    x_opt = np.asarray(x_opt, dtype=float)
+    budget = 2000 * len(x_opt)
+    if x0 is None:
+        return Problem(f, x_opt, (upper - lower) / 4, (lower, upper), budget, 1e-6,
+                       (lower, upper))
+    x0 = np.asarray(x0, dtype=float)
+    reach = np.maximum(1.0, np.abs(x0))
+    target = min(1e-6, 1e-7 * (f(np.clip(x0, lower, upper)) - f(x_opt)))
+    return Problem(f, x_opt, np.minimum(reach, upper - lower) / 4, (lower, upper), budget,
+                   target, (x0 - reach / 10, x0 + reach / 10))
+
+
+PROBLEMS.update({"bc-" + name: bound_constrained_problem(*case)
+                 for name, case in bound_constrained.PROBLEMS.items()})
+
 # The fifth set (2026-11-30, thirty-ninth session): Moré, Garbow and Hillstrom's scalable
-# problems at n = 48, where Auto's model and metric are diagonal, stated as the third set
-# is and first run as Auto stood. The square systems' zeros are found by Newton's method
-# from the published start.
+# problems at n = 48, stated as the third set is and first run as Auto stood (its model
+# and metric then diagonal above n = 40; full to n = 63 since a216dd9). The square
+# systems' zeros are found by Newton's method from the published start.
 LARGE = 48
 LARGE_T = np.arange(1, LARGE + 1) / (LARGE + 1)
 LARGE_LEAST_SQUARES = {
@@ -523,29 +546,6 @@ PROBLEMS.update({
     f"mgh-{name}{LARGE}": least_squares_problem(
         residuals, x0, least_squares.root(residuals, x0) if x_opt is None else x_opt)
     for name, (residuals, x0, x_opt) in LARGE_LEAST_SQUARES.items()})
-
-# The fourth set (2026-11-30, thirty-ninth session): problems whose only constraints are
-# bounds (bound_constrained.py), run first as Auto stood. With a published start x0,
-# starts uniform within a tenth of max(1, |x0_j|) of it, clipped into the box, sigma0_j =
-# min(max(1, |x0_j|), the box's width)/4 and the target the stricter of 1e-6 and 1e-7 of
-# f(x0) - f* (x0 clipped into the box); without one, starts uniform in the box, sigma0_j a
-# quarter of its width and the target 1e-6.
-def bound_constrained_problem(f, lower, upper, x0, x_opt):
-    lower, upper = np.asarray(lower, dtype=float), np.asarray(upper, dtype=float)
-    x_opt = np.asarray(x_opt, dtype=float)
-    budget = 2000 * len(x_opt)
-    if x0 is None:
-        return Problem(f, x_opt, (upper - lower) / 4, (lower, upper), budget, 1e-6,
-                       (lower, upper))
-    x0 = np.asarray(x0, dtype=float)
-    reach = np.maximum(1.0, np.abs(x0))
-    target = min(1e-6, 1e-7 * (f(np.clip(x0, lower, upper)) - f(x_opt)))
-    return Problem(f, x_opt, np.minimum(reach, upper - lower) / 4, (lower, upper), budget,
-                   target, (x0 - reach / 10, x0 + reach / 10))
-
-
-PROBLEMS.update({"bc-" + name: bound_constrained_problem(*case)
-                 for name, case in bound_constrained.PROBLEMS.items()})
 
 
 def draw_start(problem, rng):
