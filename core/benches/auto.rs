@@ -74,7 +74,7 @@ fn auto(c: &mut Criterion) {
             .warm_up_time(Duration::from_millis(500))
             .measurement_time(Duration::from_secs(3))
             .sample_size(10);
-        // 30 and 40: the full model's dearest dimensions; from 41 on it is diagonal.
+        // 30, 40 and 50: the full model's dearest dimensions; from 64 on it is diagonal.
         for n in [2usize, 5, 10, 20, 30, 40, 50, 100] {
             let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)];
             let evaluations = run(function, n, &mut buffer);
