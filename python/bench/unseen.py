@@ -3,6 +3,7 @@ against pycma and BOBYQA, each at its defaults, for BENCHMARKS.md.
 
     pip install ./python cma nlopt
     python python/bench/unseen.py [--seeds 10] [--problems ackley10,griewank10]
+        [--solvers hodr,pycma,BOBYQA] [--sigma0-factor 1]
 
 Classic test functions from their published definitions (Ackley, Griewank, Levy,
 Styblinski-Tang, Rastrigin, Rosenbrock, a rotated ellipsoid, the sum of different powers,
@@ -33,6 +34,9 @@ Solvers: `hodr.minimize` with the budget; `cma.fmin2` with its IPOP restarts (9,
 the population: pycma's documented way for multi-modal functions); nlopt's `LN_BOBYQA`,
 restarted from a new uniform start until the budget is spent (initial step sigma0, at most
 half the box's width, and the box where the problem has one).
+
+With --sigma0-factor K every solver gets sigma0 times K instead of the problem's own: a
+user whose guess of the scale is off by K (starts, boxes and targets stay the problem's).
 """
 
 import argparse
@@ -603,7 +607,11 @@ def main():
     parser.add_argument("--seeds", type=int, default=10)
     parser.add_argument("--problems", default=",".join(PROBLEMS))
     parser.add_argument("--solvers", default=",".join(SOLVERS))
+    parser.add_argument("--sigma0-factor", type=float, default=1.0,
+                        help="multiply every problem's sigma0 by this (a mis-stated scale)")
     args = parser.parse_args()
+    if not (np.isfinite(args.sigma0_factor) and args.sigma0_factor > 0):
+        parser.error(f"--sigma0-factor must be positive and finite, got {args.sigma0_factor}")
     names = args.problems.split(",")
     for name in names:
         if name not in PROBLEMS:
@@ -618,6 +626,7 @@ def main():
     start = time.perf_counter()
     for name in names:
         problem = PROBLEMS[name]
+        problem = problem._replace(sigma0=problem.scales * args.sigma0_factor)
         cells, medians = [], {}
         for solver in solvers:
             run, hits = SOLVERS[solver], []
