@@ -6,7 +6,7 @@
 use rand_core::Rng;
 
 use super::model::{self, Shape};
-use super::{Auto, MAX_MEMORY, metric, ties_with};
+use super::{Auto, FULL_MEMORY_PER_DIM, MAX_MEMORY, metric, ties_with};
 use crate::real::Real;
 
 /// Regions of the caller's buffer.
@@ -178,10 +178,22 @@ pub(super) const fn noisy_history_len(n: usize) -> usize {
     memory_of(n, 1)
 }
 
-/// `copies` times the model's coefficients plus n + 1, at most [`MAX_MEMORY`].
+/// `copies` times the model's coefficients plus n + 1, at most [`memory_cap`].
 pub(super) const fn memory_of(n: usize, copies: usize) -> usize {
     let m = copies * Shape::for_dim(n).coefficients(n) + n + 1;
-    if m > MAX_MEMORY { MAX_MEMORY } else { m }
+    let cap = memory_cap(n);
+    if m > cap { cap } else { m }
+}
+
+/// Most points remembered in dimension n: [`MAX_MEMORY`], or for a full model
+/// [`FULL_MEMORY_PER_DIM`]·n where that is more (from n = 17; 504 at n = 63).
+pub(super) const fn memory_cap(n: usize) -> usize {
+    let grown = FULL_MEMORY_PER_DIM * n;
+    if matches!(Shape::for_dim(n), Shape::Full) && grown > MAX_MEMORY {
+        grown
+    } else {
+        MAX_MEMORY
+    }
 }
 
 /// Whether a fit can determine the model from the data alone: the model is full (its

@@ -19,9 +19,10 @@
 //!   objective; an underdetermined one changes the curvature least, as Powell's NEWUOA
 //!   does, so curvature learnt earlier is kept.
 //!   A full Hessian is modelled for n ≤ [`FULL_MODEL_MAX_DIM`], a diagonal one above;
-//!   the memory holds at most [`MAX_MEMORY`] points, so that an iteration's cost is
-//!   bounded for a full model and linear in n for a diagonal one (the `model` module says
-//!   how a fit with fewer points than coefficients learns).
+//!   the memory holds at most [`MAX_MEMORY`] points, or [`FULL_MEMORY_PER_DIM`]·n for a
+//!   full model where that is more, so that an iteration's cost is bounded for a full
+//!   model and linear in n for a diagonal one (the `model` module says how a fit with
+//!   fewer points than coefficients learns).
 //! * **Samples.** Where fewer than n + 1 remembered points (or half the memory, if
 //!   smaller) lie within z ≤ ρ, the iteration evaluates antithetic pairs θ ± σ√n·b along
 //!   Lb, b the columns of a random orthonormal frame (n pairs, or half the memory's
@@ -255,20 +256,29 @@ use model::Shape;
 /// are diagonal (2n + 1 coefficients instead of (n+1)(n+2)/2). Only a full model and
 /// metric represent a valley that runs along no parameter axis (a rotated one, the
 /// common case); a diagonal one learns per-coordinate scales from far fewer points, but
-/// no rotation. The full model is kept while the memory holds at least 2n + 1 points
-/// (NEWUOA's usual count: enough to fix the gradient and every axis's curvature, with the
-/// rest of the Hessian carried from fit to fit), n ≤ ([`MAX_MEMORY`] − 1)/2 = 63. It
-/// costs O(mn² + n³) per iteration for m remembered points (their whitening, the trust
-/// step's and the metric's eigen-decompositions) and n² floats per Hessian and shape.
-pub const FULL_MODEL_MAX_DIM: usize = (MAX_MEMORY - 1) / 2;
+/// no rotation. The bound is the full model's cost: O(m²n + m³) per iteration for its fit
+/// to m = [`FULL_MEMORY_PER_DIM`]·n remembered points and O(mn² + n³) for their whitening,
+/// the trust step's and the metric's eigen-decompositions, with m² + 4n² floats of
+/// buffer (about 2 MB at n = 63).
+pub const FULL_MODEL_MAX_DIM: usize = 63;
 
-/// Most points Auto remembers (it reaches this for n ≥ 10 with a full model — n ≥ 14 on a
-/// declared-noisy objective — and always with a diagonal one). A fit costs O(m²n + m³)
-/// per iteration for m remembered points, so the bound keeps the cost affordable for a
-/// full model and linear in n for a diagonal one; with fewer points than the model's
-/// coefficients the fit corrects the model carried from earlier iterations along the
-/// directions of the recent points.
+/// Most points Auto remembers with a diagonal model, and with a full one up to n = 16
+/// (where [`FULL_MEMORY_PER_DIM`]·n is less): it reaches this for n ≥ 10 with a full
+/// model — n ≥ 14 on a declared-noisy objective — and always with a diagonal one. A fit
+/// costs O(m²n + m³) per iteration for m remembered points, so the bound keeps a diagonal
+/// model's cost linear in n; with fewer points than the model's coefficients the fit
+/// corrects the model carried from earlier iterations along the directions of the recent
+/// points.
 pub const MAX_MEMORY: usize = 128;
+
+/// Points per coordinate a full model remembers at least, where [`MAX_MEMORY`] is fewer
+/// (n ≥ 17; still fewer than its (n+1)(n+2)/2 coefficients, so no fit is determined
+/// from n = 15 on). Each fit corrects the curvature carried from earlier fits along the
+/// directions its points span; with a memory that does not grow with n those are ever
+/// fewer of the n directions, and a descent along a curved valley outruns what the
+/// model has learnt (at n = 48, 128 points left the extended Rosenbrock function short
+/// of its target after 2 000·n evaluations).
+pub const FULL_MEMORY_PER_DIM: usize = 8;
 
 /// Default of [`AutoOptions::probes`]: probes per coordinate before each fresh start.
 pub const PROBES: usize = 20;
@@ -373,8 +383,8 @@ const GROWTH_WIDTH: f64 = f64::INFINITY;
 /// determined move it at the same weight ([`STALLED_ANISOTROPY`]).
 pub const DETERMINED_METRIC_WEIGHT: f64 = 0.3;
 
-/// Where no fit can be determined (a full model from n = 15, whose [`MAX_MEMORY`] points
-/// are fewer than its coefficients), confirmed steps are the metric's only teacher, and
+/// Where no fit can be determined (a full model from n = 15, whose remembered points are
+/// fewer than its coefficients), confirmed steps are the metric's only teacher, and
 /// a stiff direction the metric has not yet squashed can keep every step from being
 /// confirmed: sampled at the soft directions' scale, it dominates the values, and the
 /// model's slope along the soft directions drowns in the misfit of its curvature
@@ -705,14 +715,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
 
     /// Points remembered in dimension n: twice the model's coefficient count p
     /// ((n+1)(n+2)/2 for a full Hessian, 2n + 1 for a diagonal one) plus n + 1, at most
-    /// [`MAX_MEMORY`]: 2p + n + 1 (15 at n = 2, 48 at n = 5, 128 from n = 10). Twice p
+    /// [`MAX_MEMORY`] or, for a full model, [`FULL_MEMORY_PER_DIM`]·n where that is more:
+    /// 2p + n + 1 (15 at n = 2, 48 at n = 5), 128 for n = 10–16 and n ≥ 64, 8n for
+    /// n = 17–63. Twice p
     /// lets a fit average over the kernel rather than interpolate, and leaves room, once
     /// a converged descent has crowded θ's surroundings, for the wider points of a
     /// restart or a widening σ (each new point replaces the one farthest from θ; a
     /// survey's, the farthest of those older than the survey other than θ's).
     ///
     /// A run on a declared-noisy objective ([`Objective::deterministic`] false) uses
-    /// only p + n + 1 of them (at most [`MAX_MEMORY`]): the rules that end its descents
+    /// only p + n + 1 of them (at most the same bound): the rules that end its descents
     /// (the fit's scatter, the counts of points that determine the model) are set for
     /// that memory (docs/notes/2026-11-27-memory-twice-the-coefficients.md).
     pub const fn history_len(n: usize) -> usize {

@@ -185,7 +185,7 @@ pub(super) enum Ridge {
     /// the points leave undetermined far above the rounding of S.
     Determined,
     /// √ε: a fit that leans on its prior (a full model from n = 15 after its first fit,
-    /// [`super::MAX_MEMORY`] points against (n + 1)(n + 2)/2 coefficients; the diagonal
+    /// fewer remembered points than its (n + 1)(n + 2)/2 coefficients; the diagonal
     /// model, whose S is 1×1, the constant's), which keeps g's weakly determined part
     /// near the prior's.
     Prior,
