@@ -1627,9 +1627,10 @@ fn a_stiff_direction_is_learnt_where_no_fit_is_determined() {
 }
 
 /// A valley that runs along no parameter axis, above n = 20: the rotated ellipsoid of
-/// condition 10³ ([`rotated_ellipsoid`]) in 30-D from (3, …), σ₀ = 1, to f < 1e-8 within 3 000 evaluations. Only a full model and metric
-/// represent it (n ≤ [`hodr_core::optim::auto::FULL_MODEL_MAX_DIM`]); with the diagonal
-/// ones used above n = 20 before, 0 of seeds 0–19 (and 0 of 5 within 30 000).
+/// condition 10³ ([`rotated_ellipsoid`]) in 30-D from (3, …), σ₀ = 1, to f < 1e-8 within
+/// 3 000 evaluations. Only a full model and metric represent it
+/// (n ≤ [`hodr_core::optim::auto::FULL_MODEL_MAX_DIM`]); with the diagonal ones used
+/// above n = 20 before, 0 of seeds 0–19 (and 0 of 5 within 30 000).
 /// Measured: 100 of seeds 0–99 (99 with 128 remembered points; rate ≥ 0.95 at 95 %
 /// confidence). Bound, over seeds 0–15: P(X < 12 | p = 0.95, N = 16) = 8.6e-4.
 #[test]

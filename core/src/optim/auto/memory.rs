@@ -196,6 +196,16 @@ pub(super) const fn memory_cap(n: usize) -> usize {
     }
 }
 
+// A full model's memory never holds as many points as it has coefficients from n = 15
+// on, grown or not: which fits are determined does not depend on the memory's growth.
+const _: () = {
+    let mut n = 15;
+    while n <= super::FULL_MODEL_MAX_DIM {
+        assert!(memory_cap(n) < Shape::Full.coefficients(n));
+        n += 1;
+    }
+};
+
 /// Whether a fit can determine the model from the data alone: the model is full (its
 /// linear part unpenalised) and the memory holds as many points as it has coefficients,
 /// which is n ≤ 14. Above, every fit after the first leans on its prior (and the

@@ -276,8 +276,7 @@ pub const MAX_MEMORY: usize = 128;
 /// from n = 15 on). Each fit corrects the curvature carried from earlier fits along the
 /// directions its points span; with a memory that does not grow with n those are ever
 /// fewer of the n directions, and a descent along a curved valley outruns what the
-/// model has learnt (at n = 48, 128 points left the extended Rosenbrock function short
-/// of its target after 2 000·n evaluations).
+/// model has learnt.
 pub const FULL_MEMORY_PER_DIM: usize = 8;
 
 /// Default of [`AutoOptions::probes`]: probes per coordinate before each fresh start.
@@ -717,11 +716,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// ((n+1)(n+2)/2 for a full Hessian, 2n + 1 for a diagonal one) plus n + 1, at most
     /// [`MAX_MEMORY`] or, for a full model, [`FULL_MEMORY_PER_DIM`]·n where that is more:
     /// 2p + n + 1 (15 at n = 2, 48 at n = 5), 128 for n = 10–16 and n ≥ 64, 8n for
-    /// n = 17–63. Twice p
-    /// lets a fit average over the kernel rather than interpolate, and leaves room, once
-    /// a converged descent has crowded θ's surroundings, for the wider points of a
-    /// restart or a widening σ (each new point replaces the one farthest from θ; a
-    /// survey's, the farthest of those older than the survey other than θ's).
+    /// n = 17–63. Twice p lets a fit average over the kernel rather than interpolate, and
+    /// leaves room, once a converged descent has crowded θ's surroundings, for the wider
+    /// points of a restart or a widening σ (each new point replaces the one farthest from
+    /// θ; a survey's, the farthest of those older than the survey other than θ's).
     ///
     /// A run on a declared-noisy objective ([`Objective::deterministic`] false) uses
     /// only p + n + 1 of them (at most the same bound): the rules that end its descents
