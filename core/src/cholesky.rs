@@ -64,43 +64,59 @@ fn factor<T: Real>(a: &[T], l: &mut [T], n: usize, lambda: T) -> bool {
 /// one is ignored) and overwrites it with L. False if a pivot is not positive and finite
 /// (then `a` holds no meaningful values).
 pub(crate) fn factor_in_place<T: Real>(a: &mut [T], n: usize, lambda: T) -> bool {
+    factor_rows(a, n, 0, n, lambda)
+}
+
+/// Rows `from..to` of [`factor_in_place`]'s factor, for a lower triangle stored by rows
+/// `stride` floats apart, whose rows before `from` already hold L's: row i of L depends
+/// only on A's rows up to i, so a factor extended by rows is the one factored whole, bit
+/// for bit. False if a pivot is not positive and finite (then rows `from..to` hold no
+/// meaningful values).
+pub(crate) fn factor_rows<T: Real>(
+    a: &mut [T],
+    stride: usize,
+    from: usize,
+    to: usize,
+    lambda: T,
+) -> bool {
     // Rows are taken BLOCK at a time: their entries left of the block need the same
     // finished rows of L, so each of those is read once for the whole block
     // ([`dot_lanes_many`]); every entry is computed exactly as row by row.
-    let mut start = 0;
-    while start + BLOCK <= n {
-        let (done, rest) = a.split_at_mut(start * n);
+    let mut start = from;
+    while start + BLOCK <= to {
+        let (done, rest) = a.split_at_mut(start * stride);
         for j in 0..start {
-            let lj = &done[j * n..j * n + j + 1];
+            let lj = &done[j * stride..j * stride + j + 1];
             let dots = {
-                let rows: [&[T]; BLOCK] = core::array::from_fn(|b| &rest[b * n..b * n + j]);
+                let rows: [&[T]; BLOCK] =
+                    core::array::from_fn(|b| &rest[b * stride..b * stride + j]);
                 dot_lanes_many(rows, lj, j)
             };
             for (b, d) in dots.into_iter().enumerate() {
-                let x = &mut rest[b * n + j];
+                let x = &mut rest[b * stride + j];
                 *x = (*x - d) / lj[j];
             }
         }
         for i in start..start + BLOCK {
-            if !finish_row(a, n, i, start, lambda) {
+            if !finish_row(a, stride, i, start, lambda) {
                 return false;
             }
         }
         start += BLOCK;
     }
-    (start..n).all(|i| finish_row(a, n, i, 0, lambda))
+    (start..to).all(|i| finish_row(a, stride, i, 0, lambda))
 }
 
-/// Rows factored together by [`factor_in_place`].
+/// Rows factored together by [`factor_rows`].
 const BLOCK: usize = 4;
 
-/// Row i of [`factor_in_place`]'s L from entry `from` on (those before it done), and
-/// its pivot; false if the pivot is not positive and finite.
-fn finish_row<T: Real>(a: &mut [T], n: usize, i: usize, from: usize, lambda: T) -> bool {
-    let (done, rest) = a.split_at_mut(i * n);
+/// Row i of [`factor_rows`]'s L from entry `from` on (those before it done), and its
+/// pivot; false if the pivot is not positive and finite.
+fn finish_row<T: Real>(a: &mut [T], stride: usize, i: usize, from: usize, lambda: T) -> bool {
+    let (done, rest) = a.split_at_mut(i * stride);
     let row = &mut rest[..=i];
     for j in from..i {
-        let lj = &done[j * n..j * n + j + 1];
+        let lj = &done[j * stride..j * stride + j + 1];
         row[j] = (row[j] - dot_lanes(&row[..j], &lj[..j])) / lj[j];
     }
     let s = row[i] + lambda - dot_lanes(&row[..i], &row[..i]);
@@ -113,36 +129,44 @@ fn finish_row<T: Real>(a: &mut [T], n: usize, i: usize, from: usize, lambda: T) 
 
 /// Solves LLᵀx = b in place (`x` holds b on entry): [`forward`], then [`backward`].
 pub(crate) fn solve<T: Real>(l: &[T], n: usize, x: &mut [T]) {
-    forward(l, n, x);
-    backward(l, n, x);
+    forward(l, n, n, x);
+    backward(l, n, n, x);
 }
 
-/// Solves Lx = b in place, by rows of L.
-pub(crate) fn forward<T: Real>(l: &[T], n: usize, x: &mut [T]) {
+/// Solves Lx = b in place, by rows of the n×n L stored `stride` floats apart.
+pub(crate) fn forward<T: Real>(l: &[T], n: usize, stride: usize, x: &mut [T]) {
     for i in 0..n {
-        let row = &l[i * n..i * n + i + 1];
+        let row = &l[i * stride..i * stride + i + 1];
         x[i] = (x[i] - dot_lanes(&row[..i], &x[..i])) / row[i];
     }
 }
 
 /// Solves Lᵀx = b in place, by rows of L too (columns of Lᵀ), so that L is read
-/// contiguously.
-pub(crate) fn backward<T: Real>(l: &[T], n: usize, x: &mut [T]) {
+/// contiguously (rows `stride` floats apart).
+pub(crate) fn backward<T: Real>(l: &[T], n: usize, stride: usize, x: &mut [T]) {
     for i in (0..n).rev() {
-        let row = &l[i * n..i * n + i + 1];
+        let row = &l[i * stride..i * stride + i + 1];
         let xi = x[i] / row[i];
         x[i] = xi;
         axpy(-xi, &row[..i], &mut x[..i]);
     }
 }
 
-/// Solves LX = B in place for the n×k row-major `x` (B on entry): [`forward`] for k
-/// right-hand sides at once, each row of L read once and each update a row operation
-/// on k contiguous values.
+/// Solves LX = B in place for the n×k row-major `x` (B on entry), L's rows `stride`
+/// floats apart: [`forward`] for k right-hand sides at once, each row of L read once and
+/// each update a row operation on k contiguous values. Rows of X before `from` must
+/// already hold the solution's (row i depends only on rows up to i); they are kept.
 #[cfg(feature = "auto")]
-pub(crate) fn forward_many<T: Real>(l: &[T], n: usize, x: &mut [T], k: usize) {
-    for i in 0..n {
-        let row = &l[i * n..i * n + i + 1];
+pub(crate) fn forward_many<T: Real>(
+    l: &[T],
+    n: usize,
+    stride: usize,
+    from: usize,
+    x: &mut [T],
+    k: usize,
+) {
+    for i in from..n {
+        let row = &l[i * stride..i * stride + i + 1];
         let (done, rest) = x.split_at_mut(i * k);
         let xi = &mut rest[..k];
         for (j, &lij) in row[..i].iter().enumerate() {

@@ -79,13 +79,21 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             transpose(self.mem.li, n, self.mem.a);
             transpose(self.mem.h, n, self.mem.v);
         }
+        // Rows of the last fit's system that this fit keeps: those before the first
+        // row that differs from the one in its place (`model::fit`'s `reuse`).
+        let mut kept = self.st.factored;
+        let same = |a: &[T], b: &[T]| {
+            a.iter()
+                .zip(b)
+                .all(|(x, y)| x.to_f64().to_bits() == y.to_f64().to_bits())
+        };
         for k in 0..self.st.count {
             // Row m of u = L⁻¹(x − θ)/σ, kept if z = ‖u‖/√n is within the limit.
             let x = &self.mem.xs[k * n..(k + 1) * n];
             for ((ri, &xi), &ti) in self.mem.rs.iter_mut().zip(x).zip(self.theta.iter()) {
                 *ri = (xi - ti) / sigma;
             }
-            let row = &mut self.mem.u[m * n..(m + 1) * n];
+            let row = &mut *self.mem.gx;
             if by_columns {
                 mat_vec_by_columns(self.mem.a, self.mem.rs, row);
             } else {
@@ -107,19 +115,29 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             };
             let prior = dot(self.mem.g, row) + quadratic;
             let v = (self.mem.fs[k] - value) / scale;
+            let id = self.mem.gs[k];
+            let slot = &mut self.mem.u[m * n..(m + 1) * n];
+            if m < kept && !(same(slot, row) && same(&[self.mem.sw[m], self.mem.gid[m]], &[sw, id]))
+            {
+                kept = m;
+            }
+            slot.copy_from_slice(row);
             self.mem.sw[m] = sw;
-            self.mem.gid[m] = self.mem.gs[k];
+            self.mem.gid[m] = id;
             self.mem.r[m] = sw * (v - prior);
             misfit += self.mem.r[m].sq();
             spread += (sw * v).sq();
             m += 1;
         }
+        // A second pass at this θ (below) compares its rows with these, which the
+        // system does not hold beyond `kept`.
+        self.st.factored = kept.min(m);
         if self.st.has_prior && spread > T::ZERO && misfit > T::from_f64(REFUTED).sq() * spread {
             self.st.has_prior = false;
             return self.fit(value, scale);
         }
         let ridge = self.ridge();
-        model::fit(
+        let fitted = model::fit(
             shape,
             n,
             m,
@@ -130,14 +148,18 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             model::Scratch {
                 gram: self.mem.gram,
                 kp: self.mem.kp,
+                norms: self.mem.norms,
                 schur: self.mem.schur,
                 beta: self.mem.beta,
+                rows: self.mem.sw.len(),
             },
             self.mem.g,
             self.mem.h,
             ridge,
-        )
-        .map(|noise| (noise, m))
+            self.st.factored,
+        );
+        self.st.factored = if fitted.is_some() { m } else { 0 };
+        fitted.map(|noise| (noise, m))
     }
 
     /// The ridge of the next fit ([`Ridge`]); all but [`Ridge::Prior`] make the fit

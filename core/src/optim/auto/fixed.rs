@@ -89,7 +89,7 @@ mod tests {
                 (n, 0, 1)
             };
             let r = 2 * n.min(m / 2) + 2;
-            let formula = m * (2 * n + 7)
+            let formula = m * (2 * n + 8)
                 + m * m
                 + m * p
                 + p * p

@@ -22,13 +22,17 @@ pub(super) struct Memory<'b, T> {
     /// [`State::reach_key`](super::State::reach_key) (see `Auto::refresh_reach`).
     pub(super) zs: &'b mut [T],
     pub(super) zt: &'b mut [T],
-    /// The fit's rows u, √w, noise groups, residuals, and its m×m system.
+    /// The fit's rows u, √w, noise groups, residuals, and its m×m system. The first
+    /// [`State::factored`](super::State::factored) rows of `u`, `sw` and `gid`, with
+    /// `gram`'s and `kp`'s, are the last fit's, which the next one extends
+    /// (`Auto::fit`); other code that borrows them as scratch sets that count to 0.
     pub(super) u: &'b mut [T],
     pub(super) sw: &'b mut [T],
     pub(super) gid: &'b mut [T],
     pub(super) r: &'b mut [T],
     pub(super) gram: &'b mut [T],
     pub(super) kp: &'b mut [T],
+    pub(super) norms: &'b mut [T],
     pub(super) schur: &'b mut [T],
     pub(super) beta: &'b mut [T],
     /// The model (standardised units) and the prior (parameter units, at `c0`).
@@ -93,7 +97,7 @@ pub(super) struct Memory<'b, T> {
 }
 
 /// Region lengths for dimension n, in [`Memory`]'s order.
-pub(super) const fn regions(n: usize) -> [usize; 44] {
+pub(super) const fn regions(n: usize) -> [usize; 45] {
     let shape = Shape::for_dim(n);
     let m = history_len(n);
     let hl = shape.hessian_len(n);
@@ -103,7 +107,7 @@ pub(super) const fn regions(n: usize) -> [usize; 44] {
         0
     };
     let rows = stage_rows(n);
-    let [gram, kp, schur, beta] = model::scratch_lens(shape, m, n);
+    let [gram, kp, norms, schur, beta] = model::scratch_lens(shape, m, n);
     [
         n,
         n,
@@ -118,6 +122,7 @@ pub(super) const fn regions(n: usize) -> [usize; 44] {
         m,
         gram,
         kp,
+        norms,
         schur,
         beta,
         n,
@@ -154,7 +159,7 @@ pub(super) const fn regions(n: usize) -> [usize; 44] {
 
 /// Floats of buffer an [`Auto`] run needs in dimension n, for m = [`Auto::history_len`]
 /// points remembered:
-/// m(2n + 7) + m² + mp + p² + p + 28n + 7h + r(n + 1) + n² + 2f,
+/// m(2n + 8) + m² + mp + p² + p + 28n + 7h + r(n + 1) + n² + 2f,
 /// with, for the full model (n ≤ [`FULL_MODEL_MAX_DIM`](super::FULL_MODEL_MAX_DIM)), h = f = n² and p = n + 1, and
 /// for the diagonal one h = n, f = 0 and p = 1; r = 2·min(n, ⌊m/2⌋) + 2 staged points.
 /// A `const fn`, so that storage can be sized at compile time ([`FixedAuto`](super::FixedAuto)).
@@ -267,6 +272,7 @@ pub(super) fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         r: take(),
         gram: take(),
         kp: take(),
+        norms: take(),
         schur: take(),
         beta: take(),
         g: take(),

@@ -550,6 +550,9 @@ struct State<T> {
     finished: Option<AutoTermination>,
     /// Changes of the sampling metric so far.
     metric_changes: u32,
+    /// Leading rows of the fit's system that are still the last successful fit's, bit
+    /// for bit ([`Memory::u`]), which the next fit keeps (`model::fit`'s `reuse`).
+    factored: usize,
     /// Model steps since the last one that confirmed its model (ρ̂ ≥ 0.1).
     unconfirmed: usize,
     /// f at [`Memory::best`], the best point, while a continuation move
@@ -639,6 +642,7 @@ impl<T: Real> State<T> {
             failed: None,
             finished: None,
             metric_changes: 0,
+            factored: 0,
             unconfirmed: 0,
             best_value: None,
             reach_key: None,
@@ -1002,7 +1006,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         let n = self.theta.len();
         let sigma = self.st.sigma;
-        self.st.noisy = !objective.deterministic();
+        let noisy = !objective.deterministic();
+        if noisy != self.st.noisy {
+            // The fit's rows gain or lose their noise groups.
+            self.st.factored = 0;
+        }
+        self.st.noisy = noisy;
         self.st.shared = None;
         self.st.gained = false;
         self.mem.tmp.copy_from_slice(self.theta);

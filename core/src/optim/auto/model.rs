@@ -312,19 +312,23 @@ fn kernel_block<T: Real, const R: usize>(
 /// Points whose Gram entries with one point [`fit`] computes in one pass.
 const GRAM_BLOCK: usize = 4;
 
-/// Scratch of [`fit`] for p = [`Shape::free_columns`]: `gram` m² floats, `kp` mp,
-/// `schur` p², `beta` p.
+/// Scratch of [`fit`] for p = [`Shape::free_columns`] and at most `rows` points: `gram`
+/// rows² floats (K's factor, its rows `rows` floats apart), `kp` rows·p, `norms` rows,
+/// `schur` p², `beta` p. `gram`'s and `kp`'s leading rows are the fit's cache: see
+/// [`fit`]'s `reuse`.
 pub(super) struct Scratch<'a, T> {
     pub gram: &'a mut [T],
     pub kp: &'a mut [T],
+    pub norms: &'a mut [T],
     pub schur: &'a mut [T],
     pub beta: &'a mut [T],
+    pub rows: usize,
 }
 
-/// Floats of [`Scratch`] for m points in dimension n: (gram, kp, schur, beta).
-pub(super) const fn scratch_lens(shape: Shape, m: usize, n: usize) -> [usize; 4] {
+/// Floats of [`Scratch`] for m points in dimension n: (gram, kp, norms, schur, beta).
+pub(super) const fn scratch_lens(shape: Shape, m: usize, n: usize) -> [usize; 5] {
     let p = shape.free_columns(n);
-    [m * m, m * p, p * p, p]
+    [m * m, m * p, m, p * p, p]
 }
 
 /// Fits the model's change from its prior. On entry `u` holds m rows of n standardised
@@ -333,10 +337,20 @@ pub(super) const fn scratch_lens(shape: Shape, m: usize, n: usize) -> [usize; 4]
 ///
 /// The free part (c and, for a full Hessian, g) is unpenalised and the rest pays λ_H per
 /// squared change, as in Powell's NEWUOA: with K = ΨΨᵀ/λ_H + I over the penalised
-/// features ψᵢ and P the weighted free features (see the module's header), the saddle system K α + P β = r, Pᵀα = 0 is solved through K's
-/// Cholesky factor and the Schur complement PᵀK⁻¹P, given a small ridge relative to its
-/// mean diagonal that `ridge` sets ([`Ridge`]). On success `g` and `h`
-/// hold the fitted coefficients; the scratch and `r` are overwritten.
+/// features ψᵢ and P the weighted free features (see the module's header), the saddle
+/// system K α + P β = r, Pᵀα = 0 is solved through K's Cholesky factor and the Schur
+/// complement PᵀK⁻¹P, given a small ridge relative to its mean diagonal that `ridge`
+/// sets ([`Ridge`]). On success `g` and `h` hold the fitted coefficients; `r`, `schur`
+/// and `beta` are overwritten, and `gram` and `kp` hold K's factor and L⁻¹P for the m
+/// rows.
+///
+/// K and P depend on the rows (u, √w, group) alone, not on the values or the prior, and
+/// row i of K's factor and of L⁻¹P on rows up to i. With `reuse` = k, the caller
+/// vouches that the first k rows are those of the last successful fit, bit for bit, and
+/// that `gram` and `kp` are as that fit left them: their first k rows are kept, and only
+/// the rows after them are computed — O(m²n) rather than O(m³) work where a fit adds a
+/// few points to the last one's (a rejected trial, a resample at the same θ and σ), with
+/// the very numbers a fit from scratch gives.
 ///
 /// With `groups` (one id per row), rows with equal ids share an unknown offset: the
 /// values of a noisy objective evaluated on one noise seed, whose level moves from seed to
@@ -363,6 +377,7 @@ pub(super) fn fit<T: Real>(
     g: &mut [T],
     h: &mut [T],
     ridge: Ridge,
+    reuse: usize,
 ) -> Option<T> {
     if m == 0 {
         return Some(T::ZERO);
@@ -370,28 +385,30 @@ pub(super) fn fit<T: Real>(
     let Scratch {
         gram,
         kp,
+        norms,
         schur,
         beta,
+        rows: stride,
     } = scratch;
+    let reuse = reuse.min(m);
     let lh = curvature_penalty::<T>();
     let share = T::from_f64(deviation_share(shape, n));
     let quarter_lh = T::ONE / (T::from_f64(4.0) * lh);
-    let gram = &mut gram[..m * m];
-    // ‖uᵢ‖², kept in `kp` until the Gram matrix is built.
-    for (i, norm) in kp[..m].iter_mut().enumerate() {
+    for (i, norm) in norms[..m].iter_mut().enumerate() {
         *norm = norm_sq(&u[i * n..(i + 1) * n]);
     }
-    for i in 0..m {
+    // Rows `reuse..m` of the lower triangle of K, row i at i·stride.
+    for i in reuse..m {
         // Points k ≤ i, GRAM_BLOCK at a time while a block is left (each element of uᵢ
         // loaded once per block), then one by one.
         let mut k0 = 0;
         while k0 <= i {
             let mut q = [T::ZERO; GRAM_BLOCK];
             let block = if k0 + GRAM_BLOCK <= i + 1 {
-                q = kernel_block::<T, GRAM_BLOCK>(shape, share, u, kp, n, i, k0);
+                q = kernel_block::<T, GRAM_BLOCK>(shape, share, u, norms, n, i, k0);
                 GRAM_BLOCK
             } else {
-                q[0] = kernel_block::<T, 1>(shape, share, u, kp, n, i, k0)[0];
+                q[0] = kernel_block::<T, 1>(shape, share, u, norms, n, i, k0)[0];
                 1
             };
             for (b, &qk) in q[..block].iter().enumerate() {
@@ -402,27 +419,27 @@ pub(super) fn fit<T: Real>(
                 if i == k {
                     kik += T::ONE;
                 }
-                gram[i * m + k] = kik;
+                gram[i * stride + k] = kik;
             }
             k0 += block;
         }
     }
-    if !cholesky::factor_in_place(gram, m, T::ZERO) {
+    if !cholesky::factor_rows(gram, stride, reuse, m, T::ZERO) {
         return None;
     }
     // With K = LLᵀ: W = L⁻¹P (P's row i being √wᵢ·(1, uᵢ), or √wᵢ; m×cols, row-major)
     // and w = L⁻¹r, so that the Schur complement PᵀK⁻¹P = WᵀW and PᵀK⁻¹r = Wᵀw.
     let cols = shape.free_columns(n);
     let w = &mut kp[..m * cols];
-    for (i, row) in w.chunks_exact_mut(cols).enumerate() {
+    for (i, row) in w.chunks_exact_mut(cols).enumerate().skip(reuse) {
         row[0] = sw[i];
         for (j, wij) in row[1..].iter_mut().enumerate() {
             *wij = sw[i] * u[i * n + j];
         }
     }
-    cholesky::forward_many(gram, m, w, cols);
+    cholesky::forward_many(gram, m, stride, reuse, w, cols);
     let y = &mut r[..m];
-    cholesky::forward(gram, m, y);
+    cholesky::forward(gram, m, stride, y);
     // S β = Wᵀw, ridged so that it factors where the points leave the linear part free.
     schur[..cols * cols].fill(T::ZERO);
     beta[..cols].fill(T::ZERO);
@@ -442,7 +459,7 @@ pub(super) fn fit<T: Real>(
     for (yi, wi) in y.iter_mut().zip(w.chunks_exact(cols)) {
         *yi -= dot(wi, &beta[..cols]);
     }
-    cholesky::backward(gram, m, y);
+    cholesky::backward(gram, m, stride, y);
     let alpha = &*y;
     if alpha
         .iter()
@@ -503,6 +520,7 @@ mod tests {
     struct Buffers {
         gram: [f64; 400],
         kp: [f64; 80],
+        norms: [f64; 20],
         schur: [f64; 16],
         beta: [f64; 4],
     }
@@ -512,18 +530,21 @@ mod tests {
             Buffers {
                 gram: [0.0; 400],
                 kp: [0.0; 80],
+                norms: [0.0; 20],
                 schur: [0.0; 16],
                 beta: [0.0; 4],
             }
         }
 
         fn as_mut(&mut self, shape: Shape, m: usize, n: usize) -> Scratch<'_, f64> {
-            let [gram, kp, schur, beta] = scratch_lens(shape, m, n);
+            let [gram, kp, norms, schur, beta] = scratch_lens(shape, m, n);
             Scratch {
                 gram: &mut self.gram[..gram],
                 kp: &mut self.kp[..kp],
+                norms: &mut self.norms[..norms],
                 schur: &mut self.schur[..schur],
                 beta: &mut self.beta[..beta],
+                rows: m,
             }
         }
     }
@@ -572,6 +593,80 @@ mod tests {
         }
     }
 
+    /// A fit that extends the last one's system by rows (`reuse`) gives the numbers of a
+    /// fit from scratch, bit for bit, with and without noise groups and for both shapes,
+    /// when the rows it keeps were factored at a different number of points.
+    #[test]
+    fn an_extended_fit_is_the_fit_from_scratch() {
+        let n = 3;
+        let u = points(777);
+        let mut sw = [0.0; 20];
+        let mut values = [0.0; 20];
+        let mut ids = [0.0; 20];
+        for i in 0..20 {
+            sw[i] = 0.5 + 0.4 * libm::sin(i as f64);
+            let x = &u[i * n..(i + 1) * n];
+            values[i] = 1.0 + x[0] - 2.0 * x[1] * x[2] + x[2].sq() + 0.1 * libm::cos(7.0 * x[0]);
+            ids[i] = (i % 3) as f64;
+        }
+        for shape in [Shape::Full, Shape::Diagonal] {
+            for groups in [None, Some(&ids[..])] {
+                let mut fitted = [([0.0; 3], [0.0; 9], 0.0); 2];
+                for (case, (g, h, noise)) in fitted.iter_mut().enumerate() {
+                    let mut buffers = Buffers::new();
+                    let mut reuse = 0;
+                    if case == 1 {
+                        // 13 rows first, and their factor kept for the 20-row fit.
+                        let (mut g13, mut h13) = ([0.0; 3], [0.0; 9]);
+                        let mut r = values;
+                        assert!(
+                            fit(
+                                shape,
+                                n,
+                                13,
+                                &u,
+                                &sw,
+                                groups,
+                                &mut r,
+                                buffers.as_mut(shape, 20, n),
+                                &mut g13,
+                                &mut h13,
+                                Ridge::Prior,
+                                0,
+                            )
+                            .is_some()
+                        );
+                        reuse = 13;
+                    }
+                    let mut r = values;
+                    *noise = fit(
+                        shape,
+                        n,
+                        20,
+                        &u,
+                        &sw,
+                        groups,
+                        &mut r,
+                        buffers.as_mut(shape, 20, n),
+                        g,
+                        h,
+                        Ridge::Prior,
+                        reuse,
+                    )
+                    .unwrap();
+                }
+                let bits = |(g, h, noise): &([f64; 3], [f64; 9], f64)| {
+                    let mut all = [0u64; 13];
+                    for (b, x) in all.iter_mut().zip(g.iter().chain(h).chain([noise])) {
+                        *b = x.to_bits();
+                    }
+                    all
+                };
+                assert_eq!(bits(&fitted[0]), bits(&fitted[1]), "{shape:?}, {groups:?}");
+            }
+        }
+    }
+
     /// A quadratic is recovered from enough points, whatever the prior.
     #[test]
     fn recovers_a_quadratic_from_enough_points() {
@@ -604,6 +699,7 @@ mod tests {
                 &mut g,
                 &mut h,
                 Ridge::Determined,
+                0,
             )
             .is_some()
         );
@@ -646,6 +742,7 @@ mod tests {
             &mut g,
             &mut h,
             Ridge::Determined,
+            0,
         );
         assert!(noise.is_some_and(|e| e < 1e-4), "noise {noise:?}");
         for j in 0..n {
@@ -675,13 +772,15 @@ mod tests {
             *ri = Shape::Diagonal.half_quadratic(&c, &u[i * N..(i + 1) * N]);
         }
         let (mut g, mut h) = ([0.0; N], [0.0; N * N]);
-        let (mut gram, mut kp) = ([0.0; M * M], [0.0; M * (N + 1)]);
+        let (mut gram, mut kp, mut norms) = ([0.0; M * M], [0.0; M * (N + 1)], [0.0; M]);
         let (mut schur, mut beta) = ([0.0; (N + 1) * (N + 1)], [0.0; N + 1]);
         let scratch = Scratch {
             gram: &mut gram,
             kp: &mut kp,
+            norms: &mut norms,
             schur: &mut schur,
             beta: &mut beta,
+            rows: M,
         };
         let fitted = fit(
             Shape::Full,
@@ -695,6 +794,7 @@ mod tests {
             &mut g,
             &mut h,
             Ridge::Prior,
+            0,
         );
         assert!(fitted.is_some());
         let norm_c = libm::sqrt(c.iter().map(|x| x * x).sum::<f64>());
@@ -751,6 +851,7 @@ mod tests {
             &mut g,
             &mut h,
             Ridge::Determined,
+            0,
         );
         assert!(noise.is_some_and(|e| e < 1e-4), "noise {noise:?}");
         for j in 0..n {
@@ -787,6 +888,7 @@ mod tests {
                 &mut g,
                 &mut h,
                 Ridge::Determined,
+                0,
             )
             .is_some()
         );

@@ -64,6 +64,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let limit = T::from_f64(2.0 * REACH);
         let c = self.mem.beta[0];
         // |rᵢ| in `sw`, free until the next fit fills it again.
+        self.st.factored = 0;
         let mut used = 0;
         for k in 0..self.st.count {
             if self.offset_of(k) > limit {
@@ -223,6 +224,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// as it holds) and returns how many it wrote.
     pub(super) fn repeat_differences(&mut self) -> usize {
         let n = self.theta.len();
+        self.st.factored = 0;
         let mut pairs = 0;
         for a in 0..self.st.count {
             let xa = &self.mem.xs[a * n..(a + 1) * n];
@@ -240,6 +242,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// fit's scratch, and returns how many there are.
     pub(super) fn draws_at_theta(&mut self) -> usize {
         let n = self.theta.len();
+        self.st.factored = 0;
         let mut draws = 0;
         for k in 0..self.st.count {
             if self.mem.xs[k * n..(k + 1) * n] == *self.theta {

@@ -421,6 +421,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let n = self.theta.len();
         let group = history_len(n).min(CHUNK);
         debug_assert!(group * n <= self.mem.u.len());
+        self.st.factored = 0;
         let seeds = [0 as NoiseSeed; CHUNK];
         let mut fresh = [T::ZERO; CHUNK];
         for batch in rows.chunks(group) {
