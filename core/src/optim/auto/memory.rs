@@ -315,7 +315,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Remembers the staged rows 0 … `rows` − 1 with finite values, in noise group
-    /// `group`. When the memory is full, each replaces the point farthest from θ (by z) —
+    /// `group`, after the points remembered before them. When the memory is full, each
+    /// replaces the point farthest from θ (by z) —
     /// on unseeded noise that every draw carries, the point whose z lies farthest from
     /// σ's scale (the largest max(z, 1/z)), θ's own draws kept: a point at z ≪ 1 is one
     /// more draw of f at θ, whose differences the noise swamps, and a point at z ≫ 1 lies
@@ -356,13 +357,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             if self.st.value.is_some_and(|v| !ties_with(f, v)) {
                 self.st.varied = true;
             }
-            let slot = if self.st.count < cap {
-                self.st.count += 1;
-                self.st.count - 1
-            } else {
-                // The farthest point not kept, else the farthest kept one.
+            let count = self.st.count;
+            if count >= cap {
+                // The farthest point not kept, else the farthest kept one, leaves; the
+                // points after it move up a place, so that the memory keeps its points
+                // in the order they came in, the newest last (and a fit at an unchanged
+                // θ and σ finds its last system's rows first: `Auto::fit`).
                 let (mut free, mut held) = ((None, -T::ONE), (0, -T::ONE));
-                for (k, &z) in self.mem.zs[..cap].iter().enumerate() {
+                for (k, &z) in self.mem.zs[..count].iter().enumerate() {
                     if z >= T::ZERO {
                         let far = if !noisy_draws || z == T::ZERO {
                             z
@@ -376,8 +378,20 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                         held = (k, kept(z));
                     }
                 }
-                free.0.unwrap_or(held.0)
-            };
+                let gone = free.0.unwrap_or(held.0);
+                self.mem.xs.copy_within((gone + 1) * n..count * n, gone * n);
+                for values in [
+                    &mut *self.mem.fs,
+                    &mut *self.mem.gs,
+                    &mut *self.mem.zs,
+                    &mut *self.mem.credit,
+                ] {
+                    values.copy_within(gone + 1..count, gone);
+                }
+                self.st.count -= 1;
+            }
+            let slot = self.st.count;
+            self.st.count += 1;
             self.mem.xs[slot * n..(slot + 1) * n]
                 .copy_from_slice(&self.mem.stage[row * n..(row + 1) * n]);
             self.mem.fs[slot] = f;
