@@ -10,11 +10,13 @@ iterations (a model fit each) while it learns the metric.
 With --target, each run instead stops at the end of the first iteration (hodr: its
 callback) or generation (pycma: ftarget) whose best value is at most the target, and the
 table gives each optimiser's evaluations and wall time to it and the ratio of the times:
-what a user waits for on a function that costs nothing.
+what a user waits for on a function that costs nothing. With --seeds K (K > 1) both run
+on seeds 1 … K, each run once, and the cells are the medians over the seeds that reach
+the target, with how many do.
 
     pip install ./python cma
     python python/bench/overhead.py [--dims 2,5,10,20,50,100] [--budget-per-dim 100]
-        [--function sphere|ellipsoid] [--target 1e-8]
+        [--function sphere|ellipsoid] [--target 1e-8 [--seeds 5]]
 """
 
 import argparse
@@ -56,19 +58,19 @@ def per_evaluation(run):
     return seconds / evaluations
 
 
-def optimisers(fun, x0, budget, target=None):
-    """hodr's and pycma's runs of fun from x0 with sigma0 = 1 and `budget` evaluations,
-    each stopping at the end of the first iteration (hodr: its callback) or generation
-    (pycma: ftarget) whose best value is at most `target`, if given; each returns
-    (evaluations, best value)."""
+def optimisers(fun, x0, budget, target=None, seed=1):
+    """hodr's and pycma's runs of fun from x0 with sigma0 = 1, `budget` evaluations and
+    the given seed, each stopping at the end of the first iteration (hodr: its callback)
+    or generation (pycma: ftarget) whose best value is at most `target`, if given; each
+    returns (evaluations, best value)."""
 
     def ours():
         stop = None if target is None else (lambda x, f: f <= target)
-        result = hodr.minimize(fun, x0, 1.0, budget=budget, seed=1, callback=stop)
+        result = hodr.minimize(fun, x0, 1.0, budget=budget, seed=seed, callback=stop)
         return result.nfev, result.fun
 
     def theirs():
-        options = {"maxfevals": budget, "verbose": -9, "seed": 1, "tolfun": 0,
+        options = {"maxfevals": budget, "verbose": -9, "seed": seed, "tolfun": 0,
                    "tolx": 0, "tolfunhist": 0, "tolstagnation": budget}
         if target is not None:
             options["ftarget"] = target
@@ -83,11 +85,11 @@ def function_of(name, n):
     return sphere if name == "sphere" else ellipsoid_of(n)
 
 
-def fastest(run):
+def fastest(run, repeats=3):
     """(seconds, evaluations, best value) of run() -> (evaluations, best value), the
-    fastest of three (the runs are deterministic: the same evaluations each time)."""
+    fastest of `repeats` (the runs are deterministic: the same evaluations each time)."""
     best = None
-    for _ in range(3):
+    for _ in range(repeats):
         start = time.perf_counter()
         evaluations, value = run()
         seconds = time.perf_counter() - start
@@ -102,7 +104,10 @@ def main():
     parser.add_argument("--budget-per-dim", type=int, default=100)
     parser.add_argument("--function", choices=("sphere", "ellipsoid"), default="sphere")
     parser.add_argument("--target", type=float, default=None)
+    parser.add_argument("--seeds", type=int, default=1)
     args = parser.parse_args()
+    if args.seeds < 1:
+        parser.error("--seeds must be at least 1")
     if args.target is not None:
         to_target(args)
         return
@@ -116,24 +121,39 @@ def main():
 
 
 def to_target(args):
-    """The --target table: evaluations and wall time to the target."""
+    """The --target table: evaluations and wall time to the target (medians over the
+    seeds that reach it, with --seeds)."""
+    seeds = range(1, args.seeds + 1)
+    repeats = 3 if args.seeds == 1 else 1
     print("| n | hodr evaluations | hodr ms | pycma evaluations | pycma ms | hodr ÷ pycma time |")
     print("|---|---|---|---|---|---|")
     for n in map(int, args.dims.split(",")):
-        ours, theirs = optimisers(function_of(args.function, n), np.ones(n),
-                                  args.budget_per_dim * n, args.target)
+        reached = ([], [])
+        for seed in seeds:
+            runs = optimisers(function_of(args.function, n), np.ones(n),
+                              args.budget_per_dim * n, args.target, seed)
+            for found, run in zip(reached, runs):
+                seconds, evaluations, value = fastest(run, repeats)
+                if value <= args.target:
+                    found.append((seconds, evaluations))
         cells = []
-        for seconds, evaluations, value in (fastest(ours), fastest(theirs)):
-            reached = value <= args.target
-            cells.append((seconds if reached else None, evaluations if reached else None))
-        (a, ea), (b, eb) = cells
+        for found in reached:
+            if found:
+                cells.append((float(np.median([s for s, _ in found])),
+                              float(np.median([e for _, e in found])), len(found)))
+            else:
+                cells.append((None, None, 0))
+        (a, ea, ka), (b, eb, kb) = cells
 
-        def show(x, scale, digits):
-            return "—" if x is None else f"{x * scale:.{digits}f}"
+        def show(x, scale, digits, count):
+            if x is None:
+                return "—"
+            share = "" if args.seeds == 1 else f" ({count}/{args.seeds})"
+            return f"{x * scale:.{digits}f}{share}"
 
         ratio = "—" if a is None or b is None else f"{a / b:.2g}"
-        print(f"| {n} | {show(ea, 1, 0)} | {show(a, 1e3, 2)} | {show(eb, 1, 0)} | "
-              f"{show(b, 1e3, 2)} | {ratio} |", flush=True)
+        print(f"| {n} | {show(ea, 1, 0, ka)} | {show(a, 1e3, 2, ka)} | "
+              f"{show(eb, 1, 0, kb)} | {show(b, 1e3, 2, kb)} | {ratio} |", flush=True)
 
 
 if __name__ == "__main__":
