@@ -87,7 +87,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 .zip(b)
                 .all(|(x, y)| x.to_f64().to_bits() == y.to_f64().to_bits())
         };
+        // Points the reach cache puts clearly beyond the limit are passed over unseen
+        // (its z is computed another way, equal to the fit's up to rounding; the margin
+        // leaves every point near the limit to the fit's own z).
+        let known_far = self.reach_is_current().then(|| limit * T::from_f64(1.001));
         for k in 0..self.st.count {
+            if known_far.is_some_and(|far| self.mem.zs[k] > far) {
+                continue;
+            }
             // Row m of u = L⁻¹(x − θ)/σ, kept if z = ‖u‖/√n is within the limit.
             let x = &self.mem.xs[k * n..(k + 1) * n];
             for ((ri, &xi), &ti) in self.mem.rs.iter_mut().zip(x).zip(self.theta.iter()) {
