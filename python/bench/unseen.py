@@ -22,7 +22,10 @@ mgh-* names), first run as Auto stood on 2026-11-30. A fourth, problems whose on
 constraints are bounds (bound_constrained.py: Hock and Schittkowski's, a quadratic whose
 minimum lies on faces of the box, Rosenbrock's with its minimum in the box's corner,
 Styblinski-Tang's cut by a face; the bc-* names), also first run as Auto stood, and a
-fifth, Moré, Garbow and Hillstrom's scalable problems at n = 48 (mgh-*48). Each
+fifth, Moré, Garbow and Hillstrom's scalable problems at n = 48 (mgh-*48), and a sixth,
+objectives of low effective dimension (a quadratic of rank 3 in 20 dimensions and of rank
+5 in 40, Rosenbrock's function in a random plane of 20 dimensions: low-rank20,
+low-rank40, embedded-rosenbrock20), first run as Auto stood on 2026-12-01. Each
 problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
@@ -550,6 +553,43 @@ PROBLEMS.update({
     f"mgh-{name}{LARGE}": least_squares_problem(
         residuals, x0, least_squares.root(residuals, x0) if x_opt is None else x_opt)
     for name, (residuals, x0, x_opt) in LARGE_LEAST_SQUARES.items()})
+
+
+# The sixth set (2026-12-01, forty-second session): objectives of low effective dimension,
+# as a renderer's loss is when most of its parameters barely change the image: f depends
+# on x only through k of its n directions, rotated at random (fixed seeds), and is flat
+# along the other n - k. Every minimiser is optimal; the one given is the least-norm one.
+def low_rank(n, k, seed):
+    """A quadratic of rank k in n dimensions: sum_i 10^(2i/(k-1)) (q_i . x - c_i)^2 over k
+    orthonormal rows q_i and offsets c_i uniform in [-1, 1], all fixed by the seed."""
+    q = rotation(n, seed)[:k]
+    c = np.random.default_rng(seed + 1).uniform(-1.0, 1.0, k)
+    weights = 10.0 ** (2.0 * np.arange(k) / (k - 1))
+
+    def f(x):
+        return float(np.dot(weights, (q @ x - c) ** 2))
+
+    return f, q.T @ c
+
+
+def embedded_rosenbrock(n, seed):
+    """Rosenbrock's function of y = Qx for two orthonormal rows Q fixed by the seed: its
+    banana valley in a random plane, flat along the other n - 2 directions."""
+    q = rotation(n, seed)[:2]
+
+    def f(x):
+        return rosenbrock(q @ x)
+
+    return f, q.T @ np.ones(2)
+
+
+LOW_EFFECTIVE = {
+    "low-rank20": low_rank(20, 3, 6),
+    "low-rank40": low_rank(40, 5, 7),
+    "embedded-rosenbrock20": embedded_rosenbrock(20, 8),
+}
+PROBLEMS.update({name: Problem(f, x_opt, 1.0, None, 2000 * len(x_opt), 1e-6)
+                 for name, (f, x_opt) in LOW_EFFECTIVE.items()})
 
 
 def draw_start(problem, rng):
