@@ -117,8 +117,10 @@
 //!   mispredict alike at every smaller σ (on a declared-noisy objective: at most 2n
 //!   within reach and no more points fitted than coefficients) — or, on an unseeded
 //!   objective whose draws never agree exactly, the trial fell short by less than
-//!   [`NOISE_MARGIN`] times the noise's scale (below): then a pair is drawn at the same
-//!   σ first), or the fit finds f rough at this scale (residual scatter above
+//!   [`NOISE_MARGIN`] times the noise's scale (below): then σ stays, and the next fit
+//!   takes in the trial, which lies where the model erred, as Powell's methods take in
+//!   each trial; a pair is drawn at the same σ too on a lattice, a noisy objective, or
+//!   where such pairs have lowered f(θ) often enough ([`PAIRS_PAY`])), or the fit finds f rough at this scale (residual scatter above
 //!   [`ROUGH`] of the values' spread) and the trial lies within twice that scatter, or
 //!   the objective is unseeded and both the trial's shortfall and the step's promise
 //!   lie within twice the noise's scale (the median |f − f′| over pairs of repeated
@@ -289,6 +291,28 @@ pub const CONTINUATION_SCALE: f64 = 1.5;
 /// ρ: the kernel's reach in units of σ√n (the distance of a fresh sample). Points with
 /// z ≤ ρ count as nearby; points with z ≤ 2ρ are fitted, with weight exp(−½(z/ρ)²) ≥ e⁻².
 pub const REACH: f64 = 2.0;
+
+/// How often an exploring pair drawn after a failed model step must lower f(θ) for the
+/// next such failure to draw one. Below it, a failure draws none (up to
+/// [`PAIRS_SKIPPED`] in a row): the next fit takes in the failed trial, the point where
+/// the model erred, as Powell's methods take in each trial, so that a failure costs one
+/// evaluation instead of three. Where the steps fail because no quadratic follows f at
+/// this scale (the kinks of an attractive sector), the pairs often lower θ: they search
+/// as CMA-ES's samples do. Where the model merely lacks points (a smooth f in many
+/// dimensions, fitted with fewer points than coefficients), they seldom do.
+pub const PAIRS_PAY: f64 = 0.1;
+
+/// The weight of each exploring pair's outcome in the rate of [`PAIRS_PAY`] is
+/// 1/`PAIR_MEMORY`.
+pub const PAIR_MEMORY: f64 = 8.0;
+
+/// The rate of [`PAIRS_PAY`] at a descent's start: twice the bar, so that a descent
+/// draws pairs after its failed steps until about six have failed to lower f(θ).
+pub const PAIR_RATE_START: f64 = 2.0 * PAIRS_PAY;
+
+/// Failed model steps in a row that draw no exploring pair at most ([`PAIRS_PAY`]): the
+/// next draws one, whose outcome keeps the rate current.
+pub const PAIRS_SKIPPED: usize = 3;
 
 /// A fit whose residual scatter η exceeds this fraction of the spread F of the values
 /// it fits finds f rough at σ: a failed step that lands within 2η of f(θ) then widens σ
@@ -476,7 +500,8 @@ struct State<T> {
     /// Next unused column of the sampling frame (n: draw a new frame).
     frame_next: usize,
     /// Draw a pair this iteration whatever the count of nearby points: σ widened on a
-    /// plateau, or a step failed on a model the nearby points did not determine.
+    /// plateau, or a step failed on a model the nearby points did not determine (on a
+    /// lattice, a noisy objective, or where such pairs pay: [`PAIRS_PAY`]).
     resample: bool,
     /// The model claimed its minimum at θ before enough points around θ validated it:
     /// the next iteration draws the pairs the validation lacks at once (with `resample`).
@@ -538,6 +563,14 @@ struct State<T> {
     shared: Option<(NoiseSeed, T)>,
     /// θ moved this iteration to a point of lower value on a common seed.
     gained: bool,
+    /// How often an exploring pair drawn after a failed model step has lowered f(θ):
+    /// an average over such pairs, each weighing 1/[`PAIR_MEMORY`] (see [`PAIRS_PAY`]).
+    pair_rate: T,
+    /// This iteration's exploring pair follows a failed model step, and its outcome
+    /// updates `pair_rate`.
+    pair_pending: bool,
+    /// Failed model steps in a row since one drew an exploring pair.
+    pairs_skipped: usize,
     /// θ has moved to a value below f(x₀) at some point of the run.
     improved: bool,
     /// Some finite value of the run differed from f(θ) as it then stood (beyond
@@ -637,6 +670,9 @@ impl<T: Real> State<T> {
             groups: 0,
             shared: None,
             gained: false,
+            pair_rate: T::from_f64(PAIR_RATE_START),
+            pair_pending: false,
+            pairs_skipped: 0,
             improved: false,
             varied: false,
             failed: None,
@@ -1017,6 +1053,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.mem.tmp.copy_from_slice(self.theta);
         let mut spent = 0;
         let mut kind = self.sample(objective, &mut spent)?;
+        if self.st.pair_pending {
+            let gain = if self.st.gained { T::ONE } else { T::ZERO };
+            self.st.pair_rate += (gain - self.st.pair_rate) / T::from_f64(PAIR_MEMORY);
+            self.st.pair_pending = false;
+        }
         self.st.resample = false;
         self.st.validate = false;
         let mut ratio = None;

@@ -8,8 +8,9 @@ use rand_core::Rng;
 use super::memory::{memory_determines_model, validating};
 use super::options::AutoStep;
 use super::{
-    Auto, CONTINUATION_SCALE, DETERMINED_METRIC_WEIGHT, GROWTH_WIDTH, NOISE_MARGIN, PLATEAU_WIDTH,
-    REACH, ROUGH, SHRINK, SMOOTH, STRIDE, THETA_DRAWS, lower_median, metric, tie_width,
+    Auto, CONTINUATION_SCALE, DETERMINED_METRIC_WEIGHT, GROWTH_WIDTH, NOISE_MARGIN, PAIRS_PAY,
+    PAIRS_SKIPPED, PLATEAU_WIDTH, REACH, ROUGH, SHRINK, SMOOTH, STRIDE, THETA_DRAWS, lower_median,
+    metric, tie_width,
 };
 use crate::error::Error;
 use crate::objective::Objective;
@@ -241,8 +242,23 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             (sigma * T::from_f64(STRIDE)).min(self.widened_sigma(GROWTH_WIDTH))
         } else if poor && (noise_rejected || self.st.lattice || !blames_scale) {
             // Too few points near θ to blame the scale, f is piecewise constant at it, or
-            // the noise rejected the trial: sample more at this σ first.
-            self.st.resample = true;
+            // the noise rejected the trial: keep σ. The trial is itself a point the
+            // model lacked, within reach where it erred, and the next fit takes it in.
+            // Where f is piecewise constant or noisy, or where pairs drawn after failed
+            // steps have lowered f(θ) often enough (`PAIRS_PAY`), sample more at this σ
+            // too; otherwise the next iteration draws only the pairs the points within
+            // reach still lack.
+            self.st.resample = noise_rejected
+                || self.st.lattice
+                || self.st.noisy
+                || self.st.pair_rate >= T::from_f64(PAIRS_PAY)
+                || self.st.pairs_skipped >= PAIRS_SKIPPED;
+            if self.st.resample {
+                self.st.pair_pending = true;
+                self.st.pairs_skipped = 0;
+            } else {
+                self.st.pairs_skipped += 1;
+            }
             sigma
         } else if poor && self.st.noisy {
             sigma * T::HALF
