@@ -120,8 +120,9 @@
 //!   [`NOISE_MARGIN`] times the noise's scale (below): then σ stays, and the next fit
 //!   takes in the trial, which lies where the model erred, as Powell's methods take in
 //!   each trial; a pair is drawn at the same σ too on a lattice, a noisy objective, or
-//!   where such pairs have lowered f(θ) often enough ([`PAIRS_PAY`])), or the fit finds f rough at this scale (residual scatter above
-//!   [`ROUGH`] of the values' spread) and the trial lies within twice that scatter, or
+//!   where such pairs have lowered f(θ) often enough ([`PAIRS_PAY`])), or the fit
+//!   finds f rough at this scale (residual scatter above [`ROUGH`] of the values'
+//!   spread) and the trial lies within twice that scatter, or
 //!   the objective is unseeded and both the trial's shortfall and the step's promise
 //!   lie within twice the noise's scale (the median |f − f′| over pairs of repeated
 //!   draws at one point): then σ doubles, as on a plateau.
