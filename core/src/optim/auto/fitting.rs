@@ -7,7 +7,7 @@ use rand_core::Rng;
 
 use super::memory::memory_determines_model;
 use super::model::{self, Ridge, Shape};
-use super::{Auto, BY_COLUMNS_MIN_DIM, REACH, metric};
+use super::{Auto, BY_COLUMNS_MIN_DIM, FIT_WIDTH, REACH, metric};
 use crate::optim::vector::{dot, mat_vec_by_columns, norm, transpose};
 use crate::real::Real;
 
@@ -65,7 +65,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.mem.h.fill(T::ZERO);
         }
         let limit = T::from_f64(2.0 * REACH);
-        let reach = T::from_f64(REACH);
+        let width = T::from_f64(FIT_WIDTH);
         let mut m = 0;
         // Σ wᵢ(m₀(uᵢ) − vᵢ)² and Σ wᵢvᵢ², vᵢ the scaled (f − f(θ)): the prior's misfit
         // and that of the flat model f(θ).
@@ -114,7 +114,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             if credit <= T::ZERO {
                 continue;
             }
-            let sw = (-(z / reach).sq() / T::from_f64(4.0)).exp() * credit.sqrt();
+            let sw = (-(z / width).sq() / T::from_f64(4.0)).exp() * credit.sqrt();
             let quadratic = if by_columns {
                 Shape::half_quadratic_by_columns(self.mem.v, row, self.mem.lambda)
             } else {

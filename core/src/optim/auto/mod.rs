@@ -10,8 +10,8 @@
 //!   the model's coefficients; when full, the point farthest from θ gives way, and
 //!   a survey's rows only to points older than the survey, not θ's own). Each
 //!   iteration fits the model m(θ + σu) = c + gᵀu + ½uᵀHu to the remembered points
-//!   within reach, weighted by w = exp(−½(z/ρ)²), z = ‖L⁻¹(x − θ)‖/(σ√n),
-//!   ρ = [`REACH`], by ridge regression towards the previous iteration's model (the
+//!   within 2ρ (ρ = [`REACH`]), weighted by w = exp(−½z²), z = ‖L⁻¹(x − θ)‖/(σ√n)
+//!   ([`FIT_WIDTH`]), by ridge regression towards the previous iteration's model (the
 //!   `model` module; from zero instead where that model misses the points by far more
 //!   than their own spread, as one fitted to a wall that σ has since shrunk past does):
 //!   an overdetermined fit averages the points over a Gaussian of width
@@ -290,8 +290,15 @@ pub const PROBES: usize = 20;
 pub const CONTINUATION_SCALE: f64 = 1.5;
 
 /// ρ: the kernel's reach in units of σ√n (the distance of a fresh sample). Points with
-/// z ≤ ρ count as nearby; points with z ≤ 2ρ are fitted, with weight exp(−½(z/ρ)²) ≥ e⁻².
+/// z ≤ ρ count as nearby; points with z ≤ 2ρ are fitted ([`FIT_WIDTH`]).
 pub const REACH: f64 = 2.0;
+
+/// The width of the fit's weights in units of σ√n: a point at z enters the fit with
+/// weight w = exp(−½(z/FIT_WIDTH)²), from 1 at θ through e^(−½) at a fresh sample's
+/// distance to e⁻⁸ at the fit's limit 2ρ. Points left by wider scales (z of 2–4 after
+/// σ has shrunk) show f's shape there, which a quadratic at σ need not share; they
+/// still inform what the nearer points leave undetermined.
+pub const FIT_WIDTH: f64 = 1.0;
 
 /// How often an exploring pair drawn after a failed model step must lower f(θ) for the
 /// next such failure to draw one. Below it, a failure draws none (up to
