@@ -65,7 +65,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.mem.h.fill(T::ZERO);
         }
         let limit = T::from_f64(2.0 * REACH);
-        let width = T::from_f64(FIT_WIDTH);
+        let width = T::from_f64(if memory_determines_model(n) {
+            FIT_WIDTH
+        } else {
+            REACH
+        });
         let mut m = 0;
         // Σ wᵢ(m₀(uᵢ) − vᵢ)² and Σ wᵢvᵢ², vᵢ the scaled (f − f(θ)): the prior's misfit
         // and that of the flat model f(θ).

@@ -10,8 +10,9 @@
 //!   the model's coefficients; when full, the point farthest from θ gives way, and
 //!   a survey's rows only to points older than the survey, not θ's own). Each
 //!   iteration fits the model m(θ + σu) = c + gᵀu + ½uᵀHu to the remembered points
-//!   within 2ρ (ρ = [`REACH`]), weighted by w = exp(−½z²), z = ‖L⁻¹(x − θ)‖/(σ√n)
-//!   ([`FIT_WIDTH`]), by ridge regression towards the previous iteration's model (the
+//!   within 2ρ (ρ = [`REACH`]), weighted by w = exp(−½(z/b)²), z = ‖L⁻¹(x − θ)‖/(σ√n),
+//!   b = 1 where the memory determines the model and b = ρ above ([`FIT_WIDTH`]), by ridge
+//!   regression towards the previous iteration's model (the
 //!   `model` module; from zero instead where that model misses the points by far more
 //!   than their own spread, as one fitted to a wall that σ has since shrunk past does):
 //!   an overdetermined fit averages the points over a Gaussian of width
@@ -293,11 +294,14 @@ pub const CONTINUATION_SCALE: f64 = 1.5;
 /// z ≤ ρ count as nearby; points with z ≤ 2ρ are fitted ([`FIT_WIDTH`]).
 pub const REACH: f64 = 2.0;
 
-/// The width of the fit's weights in units of σ√n: a point at z enters the fit with
-/// weight w = exp(−½(z/FIT_WIDTH)²), from 1 at θ through e^(−½) at a fresh sample's
-/// distance to e⁻⁸ at the fit's limit 2ρ. Points left by wider scales (z of 2–4 after
-/// σ has shrunk) show f's shape there, which a quadratic at σ need not share; they
-/// still inform what the nearer points leave undetermined.
+/// The width of the fit's weights in units of σ√n where the memory determines the model
+/// (a full model, n ≤ 14): a point at z enters the fit with weight
+/// w = exp(−½(z/FIT_WIDTH)²), from 1 at θ through e^(−½) at a fresh sample's distance to
+/// e⁻⁸ at the fit's limit 2ρ. Points left by wider scales (z of 2–4 after σ has shrunk)
+/// show f's shape there, which a quadratic at σ need not share, and the nearer points
+/// determine the model without them. Where the memory cannot determine it, each fit
+/// leans on its prior for what its points leave open, and the width is ρ (w ≥ e⁻² within
+/// 2ρ): a far point the fit gives up is a constraint the older prior fills instead.
 pub const FIT_WIDTH: f64 = 1.0;
 
 /// How often an exploring pair drawn after a failed model step must lower f(θ) for the
