@@ -282,6 +282,48 @@ fn a_restart_keeps_its_survey() {
     }
 }
 
+/// A model exact at its scale (its prior predicts the fitted points to rounding,
+/// `EXACT`) confirms its minimum in shrinks of σ by `EXACT_SHRINK` rather than ½. On a
+/// bowl run from x₀ = 1, 10 seeds per n, the first descent (to the first restart, where
+/// σ first grows after a shrink) takes a median of at most 28·(n + 1) evaluations, and
+/// some validated minimum shrinks σ by exactly ⅛. Measured: medians of 15.7–21.7·(n + 1)
+/// at n = 2, 5, 10, 20 and 50, against 23.7–38.4·(n + 1) with halvings alone (a seed whose
+/// prior never predicts to rounding still halves). Deterministic: the same runs every
+/// time.
+#[test]
+fn an_exact_model_confirms_its_minimum_in_eighths() {
+    for n in [2, 5, 10, 20, 50] {
+        let mut descents = Vec::new();
+        let mut eighths = 0;
+        for seed in 0..10 {
+            let (mut shrunk, mut ended) = (false, None);
+            bowl_to_convergence(n, seed, |report| {
+                if ended.is_some() {
+                    return;
+                }
+                if report.kind == AutoStep::AtModelMinimum
+                    && report.next_sigma == report.sigma * hodr_core::optim::auto::EXACT_SHRINK
+                {
+                    eighths += 1;
+                }
+                if report.next_sigma < report.sigma {
+                    shrunk = true;
+                } else if shrunk && report.next_sigma > report.sigma {
+                    ended = Some(report.evaluations);
+                }
+            });
+            descents.push(ended.expect("the run restarts"));
+        }
+        descents.sort_unstable();
+        let median = descents[descents.len() / 2];
+        assert!(eighths > 0, "n = {n}: no shrink by 1/8");
+        assert!(
+            median <= 28 * (n + 1),
+            "n = {n}: first descents took {descents:?} evaluations"
+        );
+    }
+}
+
 /// NaN and ∞ count as worse than any finite value by default: the run goes round them.
 #[test]
 fn non_finite_values_count_as_worst_by_default() {

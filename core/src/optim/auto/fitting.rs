@@ -7,7 +7,7 @@ use rand_core::Rng;
 
 use super::memory::memory_determines_model;
 use super::model::{self, Ridge, Shape};
-use super::{Auto, BY_COLUMNS_MIN_DIM, FIT_WIDTH, REACH, metric};
+use super::{Auto, BY_COLUMNS_MIN_DIM, EXACT, FIT_WIDTH, REACH, metric};
 use crate::optim::vector::{dot, mat_vec_by_columns, norm, transpose};
 use crate::real::Real;
 
@@ -35,9 +35,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
 
     /// Fits the model around θ to the remembered points within 2ρ, values scaled by
     /// `scale`, from the prior moved to θ and σ — unless the points refute the prior
-    /// ([`REFUTED`]), when the fit starts from zero and the prior is forgotten. Returns
-    /// the fit's noise level and the number of points fitted; `None` when the fit
-    /// failed.
+    /// ([`REFUTED`]), when the fit starts from zero and the prior is forgotten; or unless
+    /// the prior predicts them to rounding ([`EXACT`]; deterministic objectives only),
+    /// when it is the fit and no system is solved. Returns the fit's noise level (the
+    /// weighted RMS residual, as `model::fit` gives it) and the number of points fitted;
+    /// `None` when the fit failed.
     pub(super) fn fit(&mut self, value: T, scale: T) -> Option<(T, usize)> {
         let n = self.theta.len();
         let sigma = self.st.sigma;
@@ -143,9 +145,28 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // A second pass at this θ (below) compares its rows with these, which the
         // system does not hold beyond `kept`.
         self.st.factored = kept.min(m);
+        // The prior predicts every point to rounding (EXACT): it is the fit, which
+        // could change it by no more than that.
+        self.st.exact_prior = self.st.has_prior
+            && !self.st.noisy
+            && !self.st.unseeded
+            && spread > T::ZERO
+            && misfit <= T::from_f64(EXACT).sq() * spread;
         if self.st.has_prior && spread > T::ZERO && misfit > T::from_f64(REFUTED).sq() * spread {
             self.st.has_prior = false;
             return self.fit(value, scale);
+        }
+        if self.st.exact_prior {
+            // The system is not factored, so the next fit keeps none of its rows.
+            self.st.factored = 0;
+            let p = shape.coefficients(n);
+            let noise = if m > p {
+                let weight = self.mem.sw[..m].iter().fold(T::ZERO, |s, &x| s + x.sq());
+                (misfit / weight * T::from_usize(m) / T::from_usize(m - p)).sqrt()
+            } else {
+                T::ZERO
+            };
+            return Some((noise, m));
         }
         let ridge = self.ridge();
         let fitted = model::fit(
