@@ -282,44 +282,31 @@ fn a_restart_keeps_its_survey() {
     }
 }
 
-/// A model exact at its scale (its prior predicts the fitted points to rounding,
-/// `EXACT`) confirms its minimum in shrinks of σ by `EXACT_SHRINK` rather than ½. On a
-/// bowl run from x₀ = 1, 10 seeds per n, the first descent (to the first restart, where
-/// σ first grows after a shrink) takes a median of at most 28·(n + 1) evaluations, and
-/// some validated minimum shrinks σ by exactly ⅛. Measured: medians of 15.7–21.7·(n + 1)
-/// at n = 2, 5, 10, 20 and 50, against 23.7–38.4·(n + 1) with halvings alone (a seed whose
-/// prior never predicts to rounding still halves). Deterministic: the same runs every
-/// time.
+/// A run on a bowl with no budget (its first descent and `RESTARTS` restarts, each
+/// confirming the minimum as σ halves) ends within a median of 64·(n + 1) evaluations
+/// over seeds 0–4 from x₀ = 1, at n = 2, 5, 10 and 20, at f below 10⁻²⁰. Measured
+/// 110–118, 294–318, 578–632 and 1 141–1 204 evaluations (38–56·(n + 1)). The fits of
+/// those confirmations keep their exact prior (`EXACT`) and solve no system; a variant
+/// that also shrank σ by ⅛ on an exact prior took 210–220 evaluations at n = 2, its
+/// restarts alternating exact and inexact priors. Deterministic: the same runs every time.
 #[test]
-fn an_exact_model_confirms_its_minimum_in_eighths() {
-    for n in [2, 5, 10, 20, 50] {
-        let mut descents = Vec::new();
-        let mut eighths = 0;
-        for seed in 0..10 {
-            let (mut shrunk, mut ended) = (false, None);
+fn a_bowl_run_with_no_budget_ends_soon() {
+    for n in [2, 5, 10, 20] {
+        let mut runs = Vec::new();
+        for seed in 0..5 {
+            let mut evaluations = 0;
+            let mut best = f64::INFINITY;
             bowl_to_convergence(n, seed, |report| {
-                if ended.is_some() {
-                    return;
-                }
-                if report.kind == AutoStep::AtModelMinimum
-                    && report.next_sigma == report.sigma * hodr_core::optim::auto::EXACT_SHRINK
-                {
-                    eighths += 1;
-                }
-                if report.next_sigma < report.sigma {
-                    shrunk = true;
-                } else if shrunk && report.next_sigma > report.sigma {
-                    ended = Some(report.evaluations);
-                }
+                evaluations = report.evaluations;
+                best = report.value.map_or(best, |v| best.min(v));
             });
-            descents.push(ended.expect("the run restarts"));
+            assert!(best < 1e-20, "n = {n}, seed {seed}: f {best:e}");
+            runs.push(evaluations);
         }
-        descents.sort_unstable();
-        let median = descents[descents.len() / 2];
-        assert!(eighths > 0, "n = {n}: no shrink by 1/8");
+        runs.sort_unstable();
         assert!(
-            median <= 28 * (n + 1),
-            "n = {n}: first descents took {descents:?} evaluations"
+            runs[runs.len() / 2] <= 64 * (n + 1),
+            "n = {n}: runs took {runs:?} evaluations"
         );
     }
 }

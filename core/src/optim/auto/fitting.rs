@@ -145,19 +145,19 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // A second pass at this θ (below) compares its rows with these, which the
         // system does not hold beyond `kept`.
         self.st.factored = kept.min(m);
-        // The prior predicts every point to rounding (EXACT): it is the fit, which
-        // could change it by no more than that.
-        self.st.exact_prior = self.st.has_prior
-            && !self.st.noisy
-            && !self.st.unseeded
-            && spread > T::ZERO
-            && misfit <= T::from_f64(EXACT).sq() * spread;
         if self.st.has_prior && spread > T::ZERO && misfit > T::from_f64(REFUTED).sq() * spread {
             self.st.has_prior = false;
             return self.fit(value, scale);
         }
-        if self.st.exact_prior {
-            // The system is not factored, so the next fit keeps none of its rows.
+        // The prior predicts every point to rounding (EXACT): it is the fit, which could
+        // change it by no more than that. The system is not factored, so the next fit
+        // keeps none of its rows.
+        let exact = self.st.has_prior
+            && !self.st.noisy
+            && !self.st.unseeded
+            && spread > T::ZERO
+            && misfit <= T::from_f64(EXACT).sq() * spread;
+        if exact {
             self.st.factored = 0;
             let p = shape.coefficients(n);
             let noise = if m > p {

@@ -31,12 +31,10 @@
 //!   σ only once more than 2q − 2 remembered points lie within reach, q the count
 //!   above; short of that, the next iteration draws the pairs it lacks in one batch
 //!   (one pair per iteration on a declared-noisy objective): one fit instead of one per
-//!   pair, and a batch the caller can evaluate in parallel. Where the model was exact
-//!   at this scale — its prior, the last model moved to θ and σ, predicted every fitted
-//!   point to rounding ([`EXACT`]), and was then the fit itself, no system solved — σ
-//!   shrinks by [`EXACT_SHRINK`] instead of ½, and the iteration after draws the whole
-//!   validating batch: on a quadratic, confirming the minimum at each halving of σ
-//!   costs n evaluations and a fit that learn nothing. A restart's survey of a
+//!   pair, and a batch the caller can evaluate in parallel. A fit whose prior (the
+//!   last model, moved to θ and σ) already predicts every point to rounding
+//!   ([`EXACT`]) keeps it and solves no system: on a quadratic, the confirmations of
+//!   its minimum at each smaller σ are such fits. A restart's survey of a
 //!   full model runs along the parameter axes instead, each scaled to unit length in
 //!   whitened coordinates, wherever the metric keeps them nearly orthogonal there
 //!   ([`AXIS_COHERENCE`]) — except a noisy objective's from θ on a face of the box,
@@ -388,19 +386,14 @@ pub const NOISY_TOLERANCE: f64 = 1e-3;
 pub const SHRINK: f64 = 0.7;
 
 /// How closely a fit's prior (the last model, moved to θ and σ) must predict the points
-/// for the model to count as exact at this scale: a weighted RMS misfit of at most this
-/// fraction of theirs about f(θ) (the flat model's). That is rounding's level for f64, on a
-/// deterministic objective that is a quadratic over the points' span; f32's rounding
-/// never reaches it. An exact prior is the fit (a regression could change it by no more),
-/// and where its minimum lies at θ, σ shrinks by [`EXACT_SHRINK`].
+/// for the fit to keep it as it is: a weighted RMS misfit of at most this fraction of
+/// theirs about f(θ) (the flat model's). That is rounding's level for f64, on a
+/// deterministic objective that is a quadratic over the points' span (f32's rounding
+/// never reaches it): a regression could change such a prior by no more, and its
+/// O(m²n + m³) system is not solved. It is what a confirmation of a quadratic's minimum
+/// at each smaller σ finds. A looser bound (10⁻⁶) changed the runs: a model within 10⁻⁶
+/// of the spread of values that span 10⁴ is not exact enough to step to 10⁻⁸.
 pub const EXACT: f64 = 1e-10;
-
-/// σ's factor at a validated model minimum whose prior was exact ([`EXACT`]), where it
-/// is otherwise ½; the next iteration then draws the pairs that validate the model at the
-/// new σ in one batch. A model that predicts a quadratic's points to rounding predicts
-/// them at every smaller σ, so each halving would spend about n evaluations, and a fit,
-/// on confirming it.
-pub const EXACT_SHRINK: f64 = 0.125;
 
 /// σ's growth after a step to the trust region's boundary that lowered f by less than a
 /// tenth of the decrease its model predicted: 2^¼, so that four such steps double σ as
@@ -639,8 +632,6 @@ struct State<T> {
     /// Model steps in a row whose predicted decrease f's arithmetic does not resolve
     /// ([`UNRESOLVED_FITS`]).
     unresolved: u32,
-    /// The last fit's prior predicted its points to rounding ([`EXACT`]), and was the fit.
-    exact_prior: bool,
     /// Fresh descents start at σ₀ rather than at their jump's scale from now on
     /// (`Auto::fresh_start`): a probe of this run has found a point below the record,
     /// or two wide descents in a row ended on the same value.
@@ -719,7 +710,6 @@ impl<T: Real> State<T> {
             record: None,
             hopeless: 0,
             unresolved: 0,
-            exact_prior: false,
             fresh: 0,
             fresh_narrow: false,
             fresh_wide: false,

@@ -8,9 +8,9 @@ use rand_core::Rng;
 use super::memory::{memory_determines_model, validating};
 use super::options::AutoStep;
 use super::{
-    Auto, CONTINUATION_SCALE, DETERMINED_METRIC_WEIGHT, EXACT_SHRINK, GROWTH_WIDTH, NOISE_MARGIN,
-    PAIRS_PAY, PAIRS_SKIPPED, PLATEAU_WIDTH, REACH, ROUGH, SHRINK, SMOOTH, STRIDE, THETA_DRAWS,
-    lower_median, metric, tie_width,
+    Auto, CONTINUATION_SCALE, DETERMINED_METRIC_WEIGHT, GROWTH_WIDTH, NOISE_MARGIN, PAIRS_PAY,
+    PAIRS_SKIPPED, PLATEAU_WIDTH, REACH, ROUGH, SHRINK, SMOOTH, STRIDE, THETA_DRAWS, lower_median,
+    metric, tie_width,
 };
 use crate::error::Error;
 use crate::objective::Objective;
@@ -104,14 +104,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         );
         if predicted <= T::ZERO || !predicted.is_finite() || length <= T::from_f64(1e-3) * radius {
             if validated {
-                // A model exact at this scale: σ shrinks by more, and the next
-                // iteration draws the pairs that validate it in one batch.
-                if self.st.exact_prior {
-                    self.st.sigma = sigma * T::from_f64(EXACT_SHRINK);
-                    self.st.validate = true;
-                } else {
-                    self.st.sigma = sigma * T::HALF;
-                }
+                self.st.sigma = sigma * T::HALF;
             } else {
                 self.st.resample = true;
                 self.st.validate = !self.st.noisy;
