@@ -159,13 +159,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             && misfit <= T::from_f64(EXACT).sq() * spread;
         if exact {
             self.st.factored = 0;
-            let p = shape.coefficients(n);
-            let noise = if m > p {
-                let weight = self.mem.sw[..m].iter().fold(T::ZERO, |s, &x| s + x.sq());
-                (misfit / weight * T::from_usize(m) / T::from_usize(m - p)).sqrt()
-            } else {
-                T::ZERO
-            };
+            let noise = model::noise_level(&self.mem.sw[..m], misfit, shape.coefficients(n));
             return Some((noise, m));
         }
         let ridge = self.ridge();

@@ -475,13 +475,7 @@ pub(super) fn fit<T: Real>(
             .saturating_sub(1)
     });
     let p = shape.coefficients(n) + offsets;
-    let noise = if m > p {
-        let weight = sw[..m].iter().fold(T::ZERO, |s, &x| s + x.sq());
-        let sum = alpha.iter().fold(T::ZERO, |s, &a| s + a.sq());
-        (sum / weight * T::from_usize(m) / T::from_usize(m - p)).sqrt()
-    } else {
-        T::ZERO
-    };
+    let noise = noise_level(&sw[..m], alpha.iter().fold(T::ZERO, |s, &a| s + a.sq()), p);
     for j in 1..cols {
         g[j - 1] += beta[j];
     }
@@ -510,6 +504,18 @@ pub(super) fn fit<T: Real>(
         .chain(h.iter())
         .all(|x| x.is_finite())
         .then_some(noise)
+}
+
+/// The noise level η of a fit to the m = `sw.len()` points with square-root weights `sw`,
+/// whose weighted residuals √wᵢ·resᵢ have the sum of squares `sum`, for p coefficients:
+/// √(sum / Σᵢ wᵢ · m/(m − p)), or 0 when m ≤ p (the points are interpolated).
+pub(super) fn noise_level<T: Real>(sw: &[T], sum: T, p: usize) -> T {
+    let m = sw.len();
+    if m <= p {
+        return T::ZERO;
+    }
+    let weight = sw.iter().fold(T::ZERO, |s, &x| s + x.sq());
+    (sum / weight * T::from_usize(m) / T::from_usize(m - p)).sqrt()
 }
 
 #[cfg(test)]
