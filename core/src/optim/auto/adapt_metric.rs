@@ -16,6 +16,13 @@ use super::{
 use crate::real::Real;
 
 impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
+    /// Counts a change of the sampling metric, made next: the prior, saved in the
+    /// standardised units of the metric about to go, is first put in parameter units.
+    pub(super) fn change_metric(&mut self) {
+        self.prior_to_parameters();
+        self.st.metric_changes = self.st.metric_changes.wrapping_add(1);
+    }
+
     /// Whether an accepted step teaches the metric its direction ([`Auto::follow_path`]):
     /// a full model on a deterministic objective that has shown neither ties nor
     /// roughness since the last restart. (On a lattice, or where f is rough at some
@@ -51,7 +58,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             let y = (self.theta[i] - self.mem.tmp[i]) / sigma;
             self.mem.path[i] = keep * self.mem.path[i] + push * y;
         }
-        self.st.metric_changes = self.st.metric_changes.wrapping_add(1);
+        self.change_metric();
         metric::rank_one(
             self.mem.c,
             self.mem.l,
@@ -126,12 +133,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if flat == 0 || moving == 0 {
             return;
         }
-        self.st.metric_changes = self.st.metric_changes.wrapping_add(1);
+        self.change_metric();
         metric::stretch(
             self.mem.c,
             self.mem.l,
             self.mem.li,
-            factors,
+            &self.mem.gx[..n],
             self.mem.a,
             self.mem.v,
         );
@@ -141,7 +148,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// `weight` of the metric's rate.
     pub(super) fn learn_metric(&mut self, weight: f64) {
         let n = self.theta.len();
-        self.st.metric_changes = self.st.metric_changes.wrapping_add(1);
+        self.change_metric();
         metric::update(
             self.shape,
             self.mem.c,

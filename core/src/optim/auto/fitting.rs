@@ -8,7 +8,7 @@ use rand_core::Rng;
 use super::memory::memory_determines_model;
 use super::model::{self, Ridge, Shape};
 use super::{Auto, BY_COLUMNS_MIN_DIM, EXACT, FIT_WIDTH, REACH, metric};
-use crate::optim::vector::{dot, mat_vec_by_columns, norm, transpose};
+use crate::optim::vector::{dot, norm, transpose};
 use crate::real::Real;
 
 /// How far the prior must miss the points to be dropped: its weighted RMS residual over
@@ -25,11 +25,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// fit computes it) and returns its reach ‖u‖/√n.
     pub(super) fn offset_of(&mut self, k: usize) -> T {
         let n = self.theta.len();
-        let x = &self.mem.xs[k * n..(k + 1) * n];
-        for ((ri, &xi), &ti) in self.mem.rs.iter_mut().zip(x).zip(self.theta.iter()) {
-            *ri = (xi - ti) / self.st.sigma;
+        self.whiten_positions();
+        let y = &self.mem.ys[k * n..(k + 1) * n];
+        for ((u, &yk), &t) in self.mem.gx.iter_mut().zip(y).zip(self.mem.yt.iter()) {
+            *u = (yk - t) / self.st.sigma;
         }
-        metric::apply(self.shape, self.mem.li, self.mem.rs, self.mem.gx);
         norm(self.mem.gx) / T::from_usize(n).sqrt()
     }
 
@@ -44,28 +44,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let n = self.theta.len();
         let sigma = self.st.sigma;
         let shape = self.shape;
-        let hl = shape.hessian_len(n);
-        // The prior in standardised units: g = σLᵀ(g₀ + H₀(θ − c₀))/F, H = σ²LᵀH₀L/F.
-        if self.st.has_prior {
-            for i in 0..n {
-                self.mem.s[i] = self.theta[i] - self.mem.c0[i];
-            }
-            shape.apply(self.mem.h0, self.mem.s, self.mem.rs);
-            for i in 0..n {
-                self.mem.rs[i] += self.mem.g0[i];
-            }
-            metric::apply_transposed(shape, self.mem.l, self.mem.rs, self.mem.g);
-            for gi in self.mem.g.iter_mut() {
-                *gi = sigma * *gi / scale;
-            }
-            metric::congruence(shape, self.mem.l, self.mem.h0, n, self.mem.a, self.mem.h);
-            for k in 0..hl {
-                self.mem.h[k] = sigma * sigma * self.mem.h[k] / scale;
-            }
-        } else {
-            self.mem.g.fill(T::ZERO);
-            self.mem.h.fill(T::ZERO);
-        }
+        self.whiten_positions();
+        self.move_prior(scale);
         let limit = T::from_f64(2.0 * REACH);
         let width = T::from_f64(if memory_determines_model(n) {
             FIT_WIDTH
@@ -77,12 +57,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // and that of the flat model f(θ).
         let (mut misfit, mut spread) = (T::ZERO, T::ZERO);
         let root_n = T::from_usize(n).sqrt();
-        // From BY_COLUMNS_MIN_DIM coordinates on, L⁻¹ and H by columns for the products
+        // From BY_COLUMNS_MIN_DIM coordinates on, H by columns for the prior's values
         // below (the same sums as by rows, in contiguous passes that vectorise); below
-        // it the transposes cost more than they save.
+        // it the transpose costs more than it saves.
         let by_columns = shape == Shape::Full && n >= BY_COLUMNS_MIN_DIM;
         if by_columns {
-            transpose(self.mem.li, n, self.mem.a);
             transpose(self.mem.h, n, self.mem.v);
         }
         // Rows of the last fit's system that this fit keeps: those before the first
@@ -101,16 +80,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             if known_far.is_some_and(|far| self.mem.zs[k] > far) {
                 continue;
             }
-            // Row m of u = L⁻¹(x − θ)/σ, kept if z = ‖u‖/√n is within the limit.
-            let x = &self.mem.xs[k * n..(k + 1) * n];
-            for ((ri, &xi), &ti) in self.mem.rs.iter_mut().zip(x).zip(self.theta.iter()) {
-                *ri = (xi - ti) / sigma;
-            }
+            // Row m of u = L⁻¹(x − θ)/σ = (ys_k − yt)/σ, kept if z = ‖u‖/√n is within
+            // the limit.
+            let y = &self.mem.ys[k * n..(k + 1) * n];
             let row = &mut *self.mem.gx;
-            if by_columns {
-                mat_vec_by_columns(self.mem.a, self.mem.rs, row);
-            } else {
-                metric::apply(shape, self.mem.li, self.mem.rs, row);
+            for ((ri, &yk), &t) in row.iter_mut().zip(y).zip(self.mem.yt.iter()) {
+                *ri = (yk - t) / sigma;
             }
             let z = norm(row) / root_n;
             if z > limit {
@@ -188,6 +163,54 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         fitted.map(|noise| (noise, m))
     }
 
+    /// Writes the prior, moved to θ and σ with values scaled by `scale`, to the model
+    /// (`g`, `h`, standardised units); zero without one.
+    pub(super) fn move_prior(&mut self, scale: T) {
+        let n = self.theta.len();
+        let sigma = self.st.sigma;
+        let shape = self.shape;
+        let hl = shape.hessian_len(n);
+        if self.st.has_prior && self.st.saved.2 == self.st.metric_changes {
+            // The prior saved at σₚ and Fₚ under this metric, moved to θ, σ and F:
+            // g = (σFₚ/(σₚF))(gₚ + Hₚ L⁻¹(θ − c₀)/σₚ), H = (σ²Fₚ/(σₚ²F))Hₚ, O(n²).
+            let (sigma_p, scale_p, _) = self.st.saved;
+            metric::whiten(shape, self.mem.li, self.theta, self.mem.c0, self.mem.s);
+            for si in self.mem.s.iter_mut() {
+                *si /= sigma_p;
+            }
+            shape.apply(self.mem.hp, self.mem.s, self.mem.g);
+            let ratio = sigma * scale_p / (sigma_p * scale);
+            for (gi, &gp) in self.mem.g.iter_mut().zip(self.mem.gp.iter()) {
+                *gi = ratio * (gp + *gi);
+            }
+            let ratio = ratio * sigma / sigma_p;
+            for (hi, &hp) in self.mem.h[..hl].iter_mut().zip(self.mem.hp.iter()) {
+                *hi = ratio * hp;
+            }
+        } else if self.st.has_prior {
+            // The prior in standardised units: g = σLᵀ(g₀ + H₀(θ − c₀))/F, H = σ²LᵀH₀L/F.
+            self.prior_to_parameters();
+            for i in 0..n {
+                self.mem.s[i] = self.theta[i] - self.mem.c0[i];
+            }
+            shape.apply(self.mem.h0, self.mem.s, self.mem.rs);
+            for i in 0..n {
+                self.mem.rs[i] += self.mem.g0[i];
+            }
+            metric::apply_transposed(shape, self.mem.l, self.mem.rs, self.mem.g);
+            for gi in self.mem.g.iter_mut() {
+                *gi = sigma * *gi / scale;
+            }
+            metric::congruence(shape, self.mem.l, self.mem.h0, n, self.mem.a, self.mem.h);
+            for k in 0..hl {
+                self.mem.h[k] = sigma * sigma * self.mem.h[k] / scale;
+            }
+        } else {
+            self.mem.g.fill(T::ZERO);
+            self.mem.h.fill(T::ZERO);
+        }
+    }
+
     /// The ridge of the next fit ([`Ridge`]); all but [`Ridge::Prior`] make the fit
     /// reproduce a quadratic where its points determine it, and a survey's pairs stay on
     /// their lines to let them. A full model's fits where the memory determines the model
@@ -211,19 +234,36 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         -(dot(self.mem.g, self.mem.s) + self.shape.half_quadratic(self.mem.h, self.mem.s))
     }
 
-    /// Keeps this iteration's model, in parameter units at θ, as the next prior.
+    /// Keeps this iteration's model, at θ in the standardised units of σ, the scale F and
+    /// the metric, as the next prior. Its parameter units, which a change of the metric
+    /// needs, wait for [`Auto::prior_to_parameters`].
     pub(super) fn save_prior(&mut self, scale: T, sigma: T) {
-        let n = self.theta.len();
+        let hl = self.shape.hessian_len(self.theta.len());
         self.mem.c0.copy_from_slice(self.theta);
-        // g₀ = F L⁻ᵀg/σ, H₀ = F L⁻ᵀHL⁻¹/σ².
-        metric::apply_transposed(self.shape, self.mem.li, self.mem.g, self.mem.g0);
+        self.mem.gp.copy_from_slice(self.mem.g);
+        self.mem.hp.copy_from_slice(&self.mem.h[..hl]);
+        self.st.saved = (sigma, scale, self.st.metric_changes);
+        self.st.in_parameters = false;
+        self.st.has_prior = true;
+    }
+
+    /// Puts the saved prior in parameter units at c₀, g₀ = Fₚ L⁻ᵀgₚ/σₚ and
+    /// H₀ = Fₚ L⁻ᵀHₚL⁻¹/σₚ² (O(n³) for a full model), unless they are there already;
+    /// L must still be the metric it was saved under.
+    pub(super) fn prior_to_parameters(&mut self) {
+        if !self.st.has_prior || self.st.in_parameters {
+            return;
+        }
+        let n = self.theta.len();
+        let (sigma, scale, _) = self.st.saved;
+        metric::apply_transposed(self.shape, self.mem.li, self.mem.gp, self.mem.g0);
         for g0 in self.mem.g0.iter_mut() {
             *g0 = scale * *g0 / sigma;
         }
         metric::congruence(
             self.shape,
             self.mem.li,
-            self.mem.h,
+            self.mem.hp,
             n,
             self.mem.a,
             self.mem.h0,
@@ -231,6 +271,6 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         for k in 0..self.shape.hessian_len(n) {
             self.mem.h0[k] = scale * self.mem.h0[k] / (sigma * sigma);
         }
-        self.st.has_prior = true;
+        self.st.in_parameters = true;
     }
 }

@@ -89,13 +89,13 @@ mod tests {
                 (n, 0, 1)
             };
             let r = 2 * n.min(m / 2) + 2;
-            let formula = m * (2 * n + 8)
+            let formula = m * (3 * n + 8)
                 + m * m
                 + m * p
                 + p * p
                 + p
-                + 28 * n
-                + 7 * h
+                + 32 * n
+                + 8 * h
                 + r * (n + 1)
                 + n * n
                 + 2 * f;

@@ -7,7 +7,14 @@ use rand_core::Rng;
 
 use super::model::{self, Shape};
 use super::{Auto, FULL_MEMORY_PER_DIM, MAX_MEMORY, metric, ties_with};
+use crate::optim::vector::norm;
 use crate::real::Real;
+
+/// How far θ may move from the whitened positions' anchor, in units of σ√n (whitened),
+/// before they are computed again about θ ([`Auto::whiten_positions`]): the offsets
+/// (ys_k − yt)/σ then lose at most about this many times rounding's share of |u| to the
+/// subtraction, where L⁻¹(x_k − θ)/σ loses rounding's.
+const ANCHOR_REACH: f64 = 32.0;
 
 /// Regions of the caller's buffer.
 pub(super) struct Memory<'b, T> {
@@ -22,6 +29,14 @@ pub(super) struct Memory<'b, T> {
     /// [`State::reach_key`](super::State::reach_key) (see `Auto::refresh_reach`).
     pub(super) zs: &'b mut [T],
     pub(super) zt: &'b mut [T],
+    /// Whitened positions of the remembered points (rows of n), ys_k = L⁻¹(x_k − a)
+    /// about the anchor a = `ya`, for the metric of
+    /// [`State::positions`](super::State::positions); and `yt` = L⁻¹(θ − a) for
+    /// θ = `ytheta` (see `Auto::whiten_positions`).
+    pub(super) ys: &'b mut [T],
+    pub(super) ya: &'b mut [T],
+    pub(super) yt: &'b mut [T],
+    pub(super) ytheta: &'b mut [T],
     /// The fit's rows u, √w, noise groups, residuals, and its m×m system. The first
     /// [`State::factored`](super::State::factored) rows of `u`, `sw` and `gid`, with
     /// `gram`'s and `kp`'s, are the last fit's, which the next one extends
@@ -35,12 +50,17 @@ pub(super) struct Memory<'b, T> {
     pub(super) norms: &'b mut [T],
     pub(super) schur: &'b mut [T],
     pub(super) beta: &'b mut [T],
-    /// The model (standardised units) and the prior (parameter units, at `c0`).
+    /// The model (standardised units) and the prior (parameter units, at `c0`; see
+    /// `Auto::prior_to_parameters`).
     pub(super) g: &'b mut [T],
     pub(super) h: &'b mut [T],
     pub(super) g0: &'b mut [T],
     pub(super) h0: &'b mut [T],
     pub(super) c0: &'b mut [T],
+    /// The prior as it was saved, in the standardised units of its σ, scale and metric
+    /// ([`State::saved`](super::State::saved)).
+    pub(super) gp: &'b mut [T],
+    pub(super) hp: &'b mut [T],
     /// Trust-region scratch.
     pub(super) a: &'b mut [T],
     pub(super) v: &'b mut [T],
@@ -97,7 +117,7 @@ pub(super) struct Memory<'b, T> {
 }
 
 /// Region lengths for dimension n, in [`Memory`]'s order.
-pub(super) const fn regions(n: usize) -> [usize; 45] {
+pub(super) const fn regions(n: usize) -> [usize; 51] {
     let shape = Shape::for_dim(n);
     let m = history_len(n);
     let hl = shape.hessian_len(n);
@@ -117,6 +137,10 @@ pub(super) const fn regions(n: usize) -> [usize; 45] {
         m,
         n,
         m * n,
+        n,
+        n,
+        n,
+        m * n,
         m,
         m,
         m,
@@ -130,6 +154,8 @@ pub(super) const fn regions(n: usize) -> [usize; 45] {
         n,
         hl,
         n,
+        n,
+        hl,
         full,
         full,
         n,
@@ -159,7 +185,7 @@ pub(super) const fn regions(n: usize) -> [usize; 45] {
 
 /// Floats of buffer an [`Auto`] run needs in dimension n, for m = [`Auto::history_len`]
 /// points remembered:
-/// m(2n + 8) + m² + mp + p² + p + 28n + 7h + r(n + 1) + n² + 2f,
+/// m(3n + 8) + m² + mp + p² + p + 32n + 8h + r(n + 1) + n² + 2f,
 /// with, for the full model (n ≤ [`FULL_MODEL_MAX_DIM`](super::FULL_MODEL_MAX_DIM)), h = f = n² and p = n + 1, and
 /// for the diagonal one h = n, f = 0 and p = 1; r = 2·min(n, ⌊m/2⌋) + 2 staged points.
 /// A `const fn`, so that storage can be sized at compile time ([`FixedAuto`](super::FixedAuto)).
@@ -266,6 +292,10 @@ pub(super) fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         gs: take(),
         zs: take(),
         zt: take(),
+        ys: take(),
+        ya: take(),
+        yt: take(),
+        ytheta: take(),
         u: take(),
         sw: take(),
         gid: take(),
@@ -280,6 +310,8 @@ pub(super) fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         g0: take(),
         h0: take(),
         c0: take(),
+        gp: take(),
+        hp: take(),
         a: take(),
         v: take(),
         gamma: take(),
@@ -380,6 +412,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 }
                 let gone = free.0.unwrap_or(held.0);
                 self.mem.xs.copy_within((gone + 1) * n..count * n, gone * n);
+                self.mem.ys.copy_within((gone + 1) * n..count * n, gone * n);
                 for values in [
                     &mut *self.mem.fs,
                     &mut *self.mem.gs,
@@ -397,12 +430,17 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.mem.fs[slot] = f;
             self.mem.gs[slot] = group;
             self.mem.credit[slot] = T::ONE;
+            if self.st.positions == Some(self.st.metric_changes) {
+                self.whiten_position(slot);
+            }
             if self.reach_is_current() {
+                self.whiten_positions();
                 let z = self.reach_of(slot);
                 self.mem.zs[slot] = if keep_batch { kept(z) } else { z };
             }
         }
         if keep_batch && self.reach_is_current() {
+            self.whiten_positions();
             for k in 0..self.st.count {
                 if self.mem.zs[k] < T::ZERO {
                     self.mem.zs[k] = self.reach_of(k);
@@ -420,10 +458,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
 
     /// Brings [`Memory::zs`] (z of remembered point k at index k) up to date, computing
     /// it afresh only when θ, σ or the metric changed since it was filled: most
-    /// iterations ask several times (ties, spread, counts, the memory's replacements),
-    /// each O(mn²) for a full metric.
+    /// iterations ask several times (ties, spread, counts, the memory's replacements).
     pub(super) fn refresh_reach(&mut self) {
         if !self.reach_is_current() {
+            self.whiten_positions();
             for k in 0..self.st.count {
                 self.mem.zs[k] = self.reach_of(k);
             }
@@ -432,12 +470,61 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
     }
 
-    /// z = ‖L⁻¹(x − θ)‖/(σ√n) of remembered point k.
+    /// z = ‖ys_k − yt‖/(σ√n) = ‖L⁻¹(x − θ)‖/(σ√n) of remembered point k, from positions
+    /// brought up to date for θ ([`Auto::whiten_positions`]).
     pub(super) fn reach_of(&self, k: usize) -> T {
         let n = self.theta.len();
-        let x = &self.mem.xs[k * n..(k + 1) * n];
-        metric::whitened_distance(self.shape, self.mem.li, x, self.theta)
-            / (self.st.sigma * T::from_usize(n).sqrt())
+        let y = &self.mem.ys[k * n..(k + 1) * n];
+        let sum = y
+            .iter()
+            .zip(self.mem.yt.iter())
+            .fold(T::ZERO, |s, (&a, &b)| s + (a - b).sq());
+        sum.sqrt() / (self.st.sigma * T::from_usize(n).sqrt())
+    }
+
+    /// Brings the whitened positions up to date for θ and the metric ([`Memory::ys`],
+    /// [`Memory::yt`]), so that remembered point k's standardised offset
+    /// u = L⁻¹(x_k − θ)/σ is (ys_k − yt)/σ, O(n) for each of the m points where the
+    /// product costs O(n²). yt is computed afresh, O(n²), when θ moved; every ys_k,
+    /// O(mn²) about the anchor a = θ, when the metric changed since they were computed
+    /// or θ lies farther than [`ANCHOR_REACH`]·σ√n from the anchor in whitened units.
+    pub(super) fn whiten_positions(&mut self) {
+        let n = self.theta.len();
+        let root_n = T::from_usize(n).sqrt();
+        if self.st.positions == Some(self.st.metric_changes) {
+            if *self.mem.ytheta != *self.theta {
+                metric::whiten(
+                    self.shape,
+                    self.mem.li,
+                    self.theta,
+                    self.mem.ya,
+                    self.mem.yt,
+                );
+                self.mem.ytheta.copy_from_slice(self.theta);
+            }
+            if norm(self.mem.yt) <= T::from_f64(ANCHOR_REACH) * self.st.sigma * root_n {
+                return;
+            }
+        }
+        self.mem.ya.copy_from_slice(self.theta);
+        self.mem.ytheta.copy_from_slice(self.theta);
+        self.mem.yt.fill(T::ZERO);
+        for k in 0..self.st.count {
+            self.whiten_position(k);
+        }
+        self.st.positions = Some(self.st.metric_changes);
+    }
+
+    /// ys_k = L⁻¹(x_k − a) for remembered point k.
+    fn whiten_position(&mut self, k: usize) {
+        let n = self.theta.len();
+        metric::whiten(
+            self.shape,
+            self.mem.li,
+            &self.mem.xs[k * n..(k + 1) * n],
+            self.mem.ya,
+            &mut self.mem.ys[k * n..(k + 1) * n],
+        );
     }
 
     /// Remembered points within z.

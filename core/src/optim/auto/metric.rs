@@ -100,16 +100,21 @@ pub fn apply_transposed<T: Real>(shape: Shape, m: &[T], d: &[T], out: &mut [T]) 
     }
 }
 
-/// ‖L⁻¹(x − y)‖ without scratch.
-pub fn whitened_distance<T: Real>(shape: Shape, li: &[T], x: &[T], y: &[T]) -> T {
+/// out = L⁻¹(x − y), each entry a sum over j in four interleaved partial sums.
+pub fn whiten<T: Real>(shape: Shape, li: &[T], x: &[T], y: &[T], out: &mut [T]) {
     let n = x.len();
     match shape {
-        Shape::Full => li[..n * n]
-            .chunks_exact(n)
-            .fold(T::ZERO, |s, row| s + row_times_difference(row, x, y).sq()),
-        Shape::Diagonal => (0..n).fold(T::ZERO, |s, i| s + (li[i] * (x[i] - y[i])).sq()),
+        Shape::Full => {
+            for (o, row) in out[..n].iter_mut().zip(li[..n * n].chunks_exact(n)) {
+                *o = row_times_difference(row, x, y);
+            }
+        }
+        Shape::Diagonal => {
+            for (((o, &l), &xi), &yi) in out[..n].iter_mut().zip(li).zip(x).zip(y) {
+                *o = l * (xi - yi);
+            }
+        }
     }
-    .sqrt()
 }
 
 /// Σⱼ aⱼ(xⱼ − yⱼ) in four interleaved partial sums (as [`dot_lanes`](crate::optim::vector::dot_lanes)).

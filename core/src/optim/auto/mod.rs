@@ -522,6 +522,12 @@ struct State<T> {
     /// Remembered points.
     count: usize,
     has_prior: bool,
+    /// The prior's σ, scale F and `metric_changes` when it was saved (`Auto::save_prior`),
+    /// in whose standardised units [`Memory::gp`] and [`Memory::hp`] hold it; and whether
+    /// [`Memory::g0`] and [`Memory::h0`] hold it in parameter units yet
+    /// (`Auto::prior_to_parameters`).
+    saved: (T, T, u32),
+    in_parameters: bool,
     /// Next unused column of the sampling frame (n: draw a new frame).
     frame_next: usize,
     /// Draw a pair this iteration whatever the count of nearby points: σ widened on a
@@ -620,6 +626,9 @@ struct State<T> {
     /// (σ, `metric_changes`) for which [`Memory::zs`] holds the remembered points' z
     /// (with θ = [`Memory::zt`]); `None` before it is first filled.
     reach_key: Option<(T, u32)>,
+    /// `metric_changes` for which [`Memory::ys`] holds the remembered points' whitened
+    /// positions; `None` before they are first computed.
+    positions: Option<u32>,
     /// f at [`Memory::record`], the best point of the descents before the current one
     /// (`Auto::fresh_start`); `None` before the first fresh start.
     record: Option<T>,
@@ -674,6 +683,8 @@ impl<T: Real> State<T> {
             centre_known: false,
             count: 0,
             has_prior: false,
+            saved: (T::ONE, T::ONE, 0),
+            in_parameters: false,
             frame_next: n,
             resample: false,
             validate: false,
@@ -707,6 +718,7 @@ impl<T: Real> State<T> {
             unconfirmed: 0,
             best_value: None,
             reach_key: None,
+            positions: None,
             record: None,
             hopeless: 0,
             unresolved: 0,
@@ -944,6 +956,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             }
             sigma0
         };
+        self.change_metric();
+        let m = &mut self.mem;
         metric::axes(self.shape, m.tmp, m.c, m.l, m.li);
         self.st.sigma = sigma0;
         self.st.sigma0 = sigma0;
@@ -1437,5 +1451,89 @@ mod tests {
             room_along(&[3.0, -2.0], &[0.6, -0.8], 1.0, &lower, &upper),
             f64::MAX
         );
+    }
+
+    /// A rotated ellipsoid of condition 10⁴ in 6 dimensions with its minimum near 10³, and
+    /// a run of Auto on it from 1 with σ₀ = 1, 150 iterations long; `check` is called after
+    /// each iteration.
+    fn on_ellipsoid(mut check: impl FnMut(&mut Auto<'_, f64, rand_xoshiro::Xoshiro256PlusPlus>)) {
+        use rand_xoshiro::rand_core::SeedableRng;
+        const N: usize = 6;
+        let mut f = |x: &[f64]| {
+            (0..N).fold(0.0, |s, i| {
+                let along = (x[i] - 1000.0) + 0.5 * (x[(i + 1) % N] - 1000.0);
+                s + libm::pow(10.0, 4.0 * i as f64 / 5.0) * along * along
+            })
+        };
+        let mut theta = [1.0; N];
+        let mut buffer = [0.0; buffer_len(N)];
+        let rng = rand_xoshiro::Xoshiro256PlusPlus::seed_from_u64(3);
+        let mut auto = Auto::new(&mut theta, 1.0, &mut buffer, rng).unwrap();
+        for _ in 0..150 {
+            if !matches!(auto.step(&mut f), Ok(Some(_))) {
+                break;
+            }
+            check(&mut auto);
+        }
+    }
+
+    /// The remembered points' offsets from their whitened positions
+    /// (`Auto::offset_of`, `Auto::reach_of`) are L⁻¹(x − θ)/σ computed directly, up to
+    /// rounding, whichever anchor the positions were last computed about.
+    #[test]
+    fn whitened_positions_give_the_direct_offsets() {
+        let mut direct = [0.0; 6];
+        let mut checked = 0;
+        on_ellipsoid(|auto| {
+            let n = auto.theta.len();
+            for k in 0..auto.st.count {
+                for i in 0..n {
+                    auto.mem.s[i] = (auto.mem.xs[k * n + i] - auto.theta[i]) / auto.st.sigma;
+                }
+                metric::apply(auto.shape, auto.mem.li, auto.mem.s, &mut direct);
+                let reach = auto.offset_of(k);
+                let size = libm::sqrt(direct.iter().map(|u| u * u).sum::<f64>());
+                for (u, d) in auto.mem.gx.iter().zip(direct.iter()) {
+                    assert!((u - d).abs() <= 1e-9 * (1.0 + size), "{u} against {d}");
+                }
+                assert!((reach - size / libm::sqrt(n as f64)).abs() <= 1e-9 * (1.0 + size));
+                assert!((auto.reach_of(k) - reach).abs() <= 1e-9 * (1.0 + reach));
+                checked += 1;
+            }
+        });
+        assert!(checked > 1000, "{checked} offsets checked");
+    }
+
+    /// A prior moved to θ and σ within the metric it was saved under (O(n²)) is the one
+    /// moved through parameter units (O(n³)), up to rounding.
+    #[test]
+    fn a_prior_moves_alike_with_and_without_parameter_units() {
+        let mut moved = 0;
+        on_ellipsoid(|auto| {
+            if !auto.st.has_prior || auto.st.saved.2 != auto.st.metric_changes {
+                return;
+            }
+            let n = auto.theta.len();
+            auto.move_prior(1.7);
+            let (g, h): ([f64; 6], [f64; 36]) = (
+                auto.mem.g[..n].try_into().unwrap(),
+                auto.mem.h[..n * n].try_into().unwrap(),
+            );
+            auto.prior_to_parameters();
+            let saved = auto.st.saved;
+            auto.st.saved.2 = saved.2.wrapping_add(1);
+            auto.move_prior(1.7);
+            auto.st.saved = saved;
+            let top = h.iter().chain(g.iter()).fold(0.0f64, |m, x| m.max(x.abs()));
+            for (a, b) in g
+                .iter()
+                .chain(h.iter())
+                .zip(auto.mem.g.iter().chain(auto.mem.h.iter()))
+            {
+                assert!((a - b).abs() <= 1e-8 * top, "{a} against {b}");
+            }
+            moved += 1;
+        });
+        assert!(moved > 10, "{moved} priors compared");
     }
 }
