@@ -76,7 +76,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // (its z is computed another way, equal to the fit's up to rounding; the margin
         // leaves every point near the limit to the fit's own z).
         let known_far = self.reach_is_current().then(|| limit * T::from_f64(1.001));
-        for k in 0..self.st.count {
+        for j in 0..self.st.count {
+            let k = self.slot(j);
             if known_far.is_some_and(|far| self.mem.zs[k] > far) {
                 continue;
             }

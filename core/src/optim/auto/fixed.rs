@@ -89,7 +89,7 @@ mod tests {
                 (n, 0, 1)
             };
             let r = 2 * n.min(m / 2) + 2;
-            let formula = m * (3 * n + 8)
+            let formula = m * (3 * n + 9)
                 + m * m
                 + m * p
                 + p * p

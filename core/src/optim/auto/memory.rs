@@ -20,7 +20,8 @@ const ANCHOR_REACH: f64 = 32.0;
 pub(super) struct Memory<'b, T> {
     pub(super) lower: &'b mut [T],
     pub(super) upper: &'b mut [T],
-    /// Remembered points (rows of n) and their values.
+    /// Remembered points (rows of n) and their values, in slots: a new point takes the
+    /// next free slot, or that of the point it replaces.
     pub(super) xs: &'b mut [T],
     pub(super) fs: &'b mut [T],
     /// The noise group of each remembered point (see [`State::groups`](super::State::groups)).
@@ -92,6 +93,9 @@ pub(super) struct Memory<'b, T> {
     /// objective draws unseeded noise ([`State::unseeded`](super::State::unseeded)), where points the model
     /// cannot explain (a Cauchy outlier) lose it (`Auto::reweigh`).
     pub(super) credit: &'b mut [T],
+    /// The slots of the remembered points in the order they came in, the newest last
+    /// (slot indices as floats, exact below 2²⁴; `Auto::slot`).
+    pub(super) order: &'b mut [T],
     /// The scale each coordinate was given ([`Auto::new`]'s σ₀ or
     /// [`Auto::with_scales`]), from which `Auto::shape_scales` sets σ₀ and C.
     pub(super) scale: &'b mut [T],
@@ -117,7 +121,7 @@ pub(super) struct Memory<'b, T> {
 }
 
 /// Region lengths for dimension n, in [`Memory`]'s order.
-pub(super) const fn regions(n: usize) -> [usize; 51] {
+pub(super) const fn regions(n: usize) -> [usize; 52] {
     let shape = Shape::for_dim(n);
     let m = history_len(n);
     let hl = shape.hessian_len(n);
@@ -174,6 +178,7 @@ pub(super) const fn regions(n: usize) -> [usize; 51] {
         hl,
         hl,
         m,
+        m,
         n,
         n,
         n,
@@ -185,7 +190,7 @@ pub(super) const fn regions(n: usize) -> [usize; 51] {
 
 /// Floats of buffer an [`Auto`] run needs in dimension n, for m = [`Auto::history_len`]
 /// points remembered:
-/// m(3n + 8) + m² + mp + p² + p + 32n + 8h + r(n + 1) + n² + 2f,
+/// m(3n + 9) + m² + mp + p² + p + 32n + 8h + r(n + 1) + n² + 2f,
 /// with, for the full model (n ≤ [`FULL_MODEL_MAX_DIM`](super::FULL_MODEL_MAX_DIM)), h = f = n² and p = n + 1, and
 /// for the diagonal one h = n, f = 0 and p = 1; r = 2·min(n, ⌊m/2⌋) + 2 staged points.
 /// A `const fn`, so that storage can be sized at compile time ([`FixedAuto`](super::FixedAuto)).
@@ -330,6 +335,7 @@ pub(super) fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
         l: take(),
         li: take(),
         credit: take(),
+        order: take(),
         scale: take(),
         best: take(),
         path: take(),
@@ -390,13 +396,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 self.st.varied = true;
             }
             let count = self.st.count;
-            if count >= cap {
-                // The farthest point not kept, else the farthest kept one, leaves; the
-                // points after it move up a place, so that the memory keeps its points
-                // in the order they came in, the newest last (and a fit at an unchanged
-                // θ and σ finds its last system's rows first: `Auto::fit`).
+            let slot = if count >= cap {
+                // The farthest point not kept, else the farthest kept one, leaves (the
+                // first in the order they came in, of equals); the new point takes its
+                // slot and the last place in `order`, the points after it there moving
+                // up one, so that a fit at an unchanged θ and σ finds its last system's
+                // rows first (`Auto::fit`).
                 let (mut free, mut held) = ((None, -T::ONE), (0, -T::ONE));
-                for (k, &z) in self.mem.zs[..count].iter().enumerate() {
+                for j in 0..count {
+                    let z = self.mem.zs[self.slot(j)];
                     if z >= T::ZERO {
                         let far = if !noisy_draws || z == T::ZERO {
                             z
@@ -404,27 +412,22 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                             z.max(T::ONE / z)
                         };
                         if far > free.1 {
-                            free = (Some(k), far);
+                            free = (Some(j), far);
                         }
                     } else if kept(z) > held.1 {
-                        held = (k, kept(z));
+                        held = (j, kept(z));
                     }
                 }
                 let gone = free.0.unwrap_or(held.0);
-                self.mem.xs.copy_within((gone + 1) * n..count * n, gone * n);
-                self.mem.ys.copy_within((gone + 1) * n..count * n, gone * n);
-                for values in [
-                    &mut *self.mem.fs,
-                    &mut *self.mem.gs,
-                    &mut *self.mem.zs,
-                    &mut *self.mem.credit,
-                ] {
-                    values.copy_within(gone + 1..count, gone);
-                }
-                self.st.count -= 1;
-            }
-            let slot = self.st.count;
-            self.st.count += 1;
+                let slot = self.slot(gone);
+                self.mem.order.copy_within(gone + 1..count, gone);
+                self.mem.order[count - 1] = T::from_usize(slot);
+                slot
+            } else {
+                self.mem.order[count] = T::from_usize(count);
+                self.st.count += 1;
+                count
+            };
             self.mem.xs[slot * n..(slot + 1) * n]
                 .copy_from_slice(&self.mem.stage[row * n..(row + 1) * n]);
             self.mem.fs[slot] = f;
@@ -525,6 +528,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.mem.ya,
             &mut self.mem.ys[k * n..(k + 1) * n],
         );
+    }
+
+    /// The slot (index into [`Memory::xs`], `fs`, …) of the remembered point that came
+    /// in j-th of those still held ([`Memory::order`]).
+    pub(super) fn slot(&self, j: usize) -> usize {
+        self.mem.order[j].to_f64() as usize
     }
 
     /// Remembered points within z.

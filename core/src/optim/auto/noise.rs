@@ -226,9 +226,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let n = self.theta.len();
         self.st.factored = 0;
         let mut pairs = 0;
-        for a in 0..self.st.count {
+        for i in 0..self.st.count {
+            let a = self.slot(i);
             let xa = &self.mem.xs[a * n..(a + 1) * n];
-            for b in 0..a {
+            for j in 0..i {
+                let b = self.slot(j);
                 if pairs < self.mem.sw.len() && *xa == self.mem.xs[b * n..(b + 1) * n] {
                     self.mem.sw[pairs] = (self.mem.fs[a] - self.mem.fs[b]).abs();
                     pairs += 1;
@@ -244,7 +246,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let n = self.theta.len();
         self.st.factored = 0;
         let mut draws = 0;
-        for k in 0..self.st.count {
+        for j in 0..self.st.count {
+            let k = self.slot(j);
             if self.mem.xs[k * n..(k + 1) * n] == *self.theta {
                 self.mem.sw[draws] = self.mem.fs[k];
                 draws += 1;
