@@ -215,7 +215,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// The ridge of the next fit ([`Ridge`]); all but [`Ridge::Prior`] make the fit
     /// reproduce a quadratic where its points determine it, and a survey's pairs stay on
     /// their lines to let them. A full model's fits where the memory determines the model
-    /// (n ≤ 14), and above that its first fit after a survey, which has no prior: the
+    /// (n ≤ 14), and above that its first fit after a survey that has no prior: the
     /// survey's pairs fix the model along their lines and the least change from zero
     /// fixes the rest, so that a round bowl's first model is exact at every n. Later fits
     /// of a full model above n = 14, and every fit of a diagonal one, lean on the prior

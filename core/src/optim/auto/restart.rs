@@ -264,11 +264,18 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Starts over from the best point at `sigma` with the memory of points and the
-    /// sampling metric, but without the model learnt at the scale the run had shrunk to.
-    /// The metric is kept: it is a shape, not a scale, and the shape that a narrow valley
-    /// or ridge taught is what the next descent along it needs.
+    /// sampling metric. The metric is kept: it is a shape, not a scale, and the shape that
+    /// a narrow valley or ridge taught is what the next descent along it needs. The last
+    /// model is kept too, as the survey's first prior, where the descent showed f neither
+    /// tied nor rough ([`State::tie_scale`](super::State::tie_scale),
+    /// [`State::rough_scale`](super::State::rough_scale)): a survey of n pairs measures n
+    /// of the curvature's n(n + 1)/2 coefficients, and on a smooth minimum the rest are
+    /// what the descent learnt, which the points it left near θ hold every later fit of
+    /// the restart to. Where f is rugged, the restart is a search at a wider scale, and a
+    /// local minimum's curvature would hold its fits back.
     pub(super) fn restart(&mut self, sigma: T) {
         self.restore_best();
+        let smooth = self.st.rough_scale <= T::ZERO && self.st.tie_scale <= T::ZERO;
         self.forget_scales();
         self.st.may_restart = false;
         self.st.stale = 0;
@@ -276,7 +283,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.unresolved = 0;
         self.st.sigma = sigma;
         self.st.survey = true;
-        self.st.has_prior = false;
+        self.st.has_prior &= smooth;
         // A run that ends its descent may have been held by noise: a lucky draw of
         // f(θ) that no later step can beat. Check, until noise is found.
         self.st.checked = self.st.unseeded;
