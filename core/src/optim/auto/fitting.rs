@@ -7,7 +7,7 @@ use rand_core::Rng;
 
 use super::memory::memory_determines_model;
 use super::model::{self, Ridge, Shape};
-use super::{Auto, BY_COLUMNS_MIN_DIM, EXACT, FIT_WIDTH, REACH, metric};
+use super::{Auto, BY_COLUMNS_MIN_DIM, EXACT, FIT_WIDTH, REACH, SavedPrior, metric};
 use crate::optim::vector::{dot, norm, transpose};
 use crate::real::Real;
 
@@ -171,10 +171,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let sigma = self.st.sigma;
         let shape = self.shape;
         let hl = shape.hessian_len(n);
-        if self.st.has_prior && self.st.saved.2 == self.st.metric_changes {
+        if self.st.has_prior && self.st.saved.metric == self.st.metric_changes {
             // The prior saved at σₚ and Fₚ under this metric, moved to θ, σ and F:
             // g = (σFₚ/(σₚF))(gₚ + Hₚ L⁻¹(θ − c₀)/σₚ), H = (σ²Fₚ/(σₚ²F))Hₚ, O(n²).
-            let (sigma_p, scale_p, _) = self.st.saved;
+            let (sigma_p, scale_p) = (self.st.saved.sigma, self.st.saved.scale);
             metric::whiten(shape, self.mem.li, self.theta, self.mem.c0, self.mem.s);
             for si in self.mem.s.iter_mut() {
                 *si /= sigma_p;
@@ -243,7 +243,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.mem.c0.copy_from_slice(self.theta);
         self.mem.gp.copy_from_slice(self.mem.g);
         self.mem.hp.copy_from_slice(&self.mem.h[..hl]);
-        self.st.saved = (sigma, scale, self.st.metric_changes);
+        self.st.saved = SavedPrior {
+            sigma,
+            scale,
+            metric: self.st.metric_changes,
+        };
         self.st.in_parameters = false;
         self.st.has_prior = true;
     }
@@ -256,7 +260,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             return;
         }
         let n = self.theta.len();
-        let (sigma, scale, _) = self.st.saved;
+        let SavedPrior { sigma, scale, .. } = self.st.saved;
         metric::apply_transposed(self.shape, self.mem.li, self.mem.gp, self.mem.g0);
         for g0 in self.mem.g0.iter_mut() {
             *g0 = scale * *g0 / sigma;

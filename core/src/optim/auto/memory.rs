@@ -59,7 +59,7 @@ pub(super) struct Memory<'b, T> {
     pub(super) h0: &'b mut [T],
     pub(super) c0: &'b mut [T],
     /// The prior as it was saved, in the standardised units of its σ, scale and metric
-    /// ([`State::saved`](super::State::saved)).
+    /// ([`SavedPrior`](super::SavedPrior)).
     pub(super) gp: &'b mut [T],
     pub(super) hp: &'b mut [T],
     /// Trust-region scratch.

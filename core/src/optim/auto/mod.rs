@@ -509,6 +509,16 @@ const BY_COLUMNS_MIN_DIM: usize = 10;
 const CHUNK: usize = 64;
 
 /// Auto's state between iterations.
+/// The σ, the value scale F and the `metric_changes` of the fit whose model
+/// `Auto::save_prior` kept: [`Memory::gp`] and [`Memory::hp`] hold it in their
+/// standardised units.
+#[derive(Clone, Copy, Debug)]
+struct SavedPrior<T> {
+    sigma: T,
+    scale: T,
+    metric: u32,
+}
+
 #[derive(Clone, Copy, Debug)]
 struct State<T> {
     sigma: T,
@@ -522,11 +532,10 @@ struct State<T> {
     /// Remembered points.
     count: usize,
     has_prior: bool,
-    /// The prior's σ, scale F and `metric_changes` when it was saved (`Auto::save_prior`),
-    /// in whose standardised units [`Memory::gp`] and [`Memory::hp`] hold it; and whether
-    /// [`Memory::g0`] and [`Memory::h0`] hold it in parameter units yet
+    /// Where the prior was saved (`Auto::save_prior`).
+    saved: SavedPrior<T>,
+    /// [`Memory::g0`] and [`Memory::h0`] hold the saved prior in parameter units
     /// (`Auto::prior_to_parameters`).
-    saved: (T, T, u32),
     in_parameters: bool,
     /// Next unused column of the sampling frame (n: draw a new frame).
     frame_next: usize,
@@ -683,7 +692,11 @@ impl<T: Real> State<T> {
             centre_known: false,
             count: 0,
             has_prior: false,
-            saved: (T::ONE, T::ONE, 0),
+            saved: SavedPrior {
+                sigma: T::ONE,
+                scale: T::ONE,
+                metric: 0,
+            },
             in_parameters: false,
             frame_next: n,
             resample: false,
@@ -1510,7 +1523,7 @@ mod tests {
     fn a_prior_moves_alike_with_and_without_parameter_units() {
         let mut moved = 0;
         on_ellipsoid(|auto| {
-            if !auto.st.has_prior || auto.st.saved.2 != auto.st.metric_changes {
+            if !auto.st.has_prior || auto.st.saved.metric != auto.st.metric_changes {
                 return;
             }
             let n = auto.theta.len();
@@ -1521,7 +1534,7 @@ mod tests {
             );
             auto.prior_to_parameters();
             let saved = auto.st.saved;
-            auto.st.saved.2 = saved.2.wrapping_add(1);
+            auto.st.saved.metric = saved.metric.wrapping_add(1);
             auto.move_prior(1.7);
             auto.st.saved = saved;
             let top = h.iter().chain(g.iter()).fold(0.0f64, |m, x| m.max(x.abs()));
