@@ -25,8 +25,10 @@ Styblinski-Tang's cut by a face; the bc-* names), also first run as Auto stood, 
 fifth, Moré, Garbow and Hillstrom's scalable problems at n = 48 (mgh-*48), and a sixth,
 objectives of low effective dimension (a quadratic of rank 3 in 20 dimensions and of rank
 5 in 40, Rosenbrock's function in a random plane of 20 dimensions: low-rank20,
-low-rank40, embedded-rosenbrock20), first run as Auto stood on 2026-12-01. Each
-problem states its dimension, box (or none), scale sigma0, budget,
+low-rank40, embedded-rosenbrock20), first run as Auto stood on 2026-12-01, and a seventh,
+kinks in more than 14 dimensions (the L1 norm at n = 20 and 30, rotated at n = 20, and the
+L-infinity norm at n = 20: l1-20, l1-30, l1-rotated20, linf20), first run on 2026-12-01
+too. Each problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
 succeeds when an evaluated point comes within the target of f* (COCO's rule); the table
@@ -590,6 +592,28 @@ LOW_EFFECTIVE = {
 }
 PROBLEMS.update({name: Problem(f, x_opt, 1.0, None, 2000 * len(x_opt), 1e-6)
                  for name, (f, x_opt) in LOW_EFFECTIVE.items()})
+
+
+# The seventh set (2026-12-01, forty-seventh session): kinks in more than 14 dimensions,
+# where Auto's full model has fewer remembered points than coefficients. A renderer's
+# loss has a kink wherever an edge crosses a pixel; these are the plainest such functions.
+def rotated_l1(n, seed):
+    """sum_i |q_i . (x - 0.3)| over the rows q_i of a rotation fixed by the seed: the L1
+    norm's kinks along n oblique planes through the minimum."""
+    q = rotation(n, seed)
+
+    def f(x):
+        return float(np.abs(q @ (x - 0.3)).sum())
+
+    return f
+
+
+PROBLEMS.update({
+    "l1-20": Problem(l1, full(20, 0.3), 1.0, None, 40_000, 1e-6),
+    "l1-30": Problem(l1, full(30, 0.3), 1.0, None, 60_000, 1e-6),
+    "l1-rotated20": Problem(rotated_l1(20, 9), full(20, 0.3), 1.0, None, 40_000, 1e-6),
+    "linf20": Problem(linf, full(20, 0.3), 1.0, None, 40_000, 1e-6),
+})
 
 
 def draw_start(problem, rng):
