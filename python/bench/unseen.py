@@ -42,9 +42,12 @@ half the box's width, and the box where the problem has one).
 
 With --sigma0-factor K every solver gets sigma0 times K instead of the problem's own: a
 user whose guess of the scale is off by K (starts, boxes and targets stay the problem's).
+With --hodr-model full|diagonal hodr runs with that options['model'] instead of the one
+Auto picks by dimension.
 """
 
 import argparse
+import functools
 import time
 import warnings
 from typing import Callable, NamedTuple, Optional
@@ -622,9 +625,10 @@ def draw_start(problem, rng):
     return np.clip(rng.uniform(low, high, problem.n), *problem.limits)
 
 
-def run_hodr(f, x0, problem, seed):
+def run_hodr(f, x0, problem, seed, options=None):
     bounds = None if problem.box is None else list(zip(*problem.limits))
-    hodr.minimize(f, x0, problem.scales, bounds=bounds, budget=problem.budget, seed=seed)
+    hodr.minimize(f, x0, problem.scales, bounds=bounds, budget=problem.budget, seed=seed,
+                  options=options)
 
 
 def run_cma(f, x0, problem, seed):
@@ -673,7 +677,12 @@ def main():
     parser.add_argument("--solvers", default=",".join(SOLVERS))
     parser.add_argument("--sigma0-factor", type=float, default=1.0,
                         help="multiply every problem's sigma0 by this (a mis-stated scale)")
+    parser.add_argument("--hodr-model", choices=("full", "diagonal"),
+                        help="hodr's options['model'] (default: Auto's own by dimension)")
     args = parser.parse_args()
+    runners = dict(SOLVERS)
+    if args.hodr_model is not None:
+        runners["hodr"] = functools.partial(run_hodr, options={"model": args.hodr_model})
     if not (np.isfinite(args.sigma0_factor) and args.sigma0_factor > 0):
         parser.error(f"--sigma0-factor must be positive and finite, got {args.sigma0_factor}")
     names = args.problems.split(",")
@@ -693,7 +702,7 @@ def main():
         problem = problem._replace(sigma0=problem.scales * args.sigma0_factor)
         cells, medians = [], {}
         for solver in solvers:
-            run, hits = SOLVERS[solver], []
+            run, hits = runners[solver], []
             for seed in range(args.seeds):
                 x0 = draw_start(problem, np.random.default_rng(seed))
                 counted = Counted(problem.f, problem.f_opt, problem.target, problem.budget)

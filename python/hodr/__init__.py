@@ -219,15 +219,16 @@ def _scales(sigma0: Any, n: int) -> list:
 
 OPTIONS = (
     "tolerance", "patience", "restarts", "fresh_starts", "centre", "probes", "non_finite",
+    "model",
 )
 
 
 def _settings(options: Any) -> tuple:
-    """(tolerance, patience, restarts, fresh_starts, centre, probes, non_finite) from the
-    ``options`` mapping, each None where it is not given; TypeError/ValueError naming the key. The
+    """(tolerance, patience, restarts, fresh_starts, centre, probes, non_finite, model) from
+    the ``options`` mapping, each None where it is not given; TypeError/ValueError naming the key. The
     extension checks the ranges."""
     if options is None:
-        return (None, None, None, None, None, None, None)
+        return (None, None, None, None, None, None, None, None)
     if not hasattr(options, "items"):
         raise TypeError(f"options must be a dict, got {type(options).__name__}")
     unknown = [k for k in options if k not in OPTIONS]
@@ -250,7 +251,10 @@ def _settings(options: Any) -> tuple:
     non_finite = options.get("non_finite")
     if non_finite is not None and not isinstance(non_finite, str):
         raise TypeError("options['non_finite'] must be 'worst' or 'error'")
-    return (tolerance, patience, restarts, fresh_starts, centre, probes, non_finite)
+    model = options.get("model")
+    if model is not None and not isinstance(model, str):
+        raise TypeError("options['model'] must be 'full' or 'diagonal'")
+    return (tolerance, patience, restarts, fresh_starts, centre, probes, non_finite, model)
 
 
 def _flag(options: Any, key: str) -> Any:
@@ -408,7 +412,13 @@ def minimize(
         first lower one starting the next descent (default 20; 0: none);
         ``non_finite``: ``"worst"`` (default: NaN or
         inf counts as worse than any value) or ``"error"`` (raise ValueError, whose
-        ``result`` attribute holds the run so far).
+        ``result`` attribute holds the run so far);
+        ``model``: the shape of Auto's local model and sampling metric, ``"full"`` (a
+        full Hessian and metric, which learn curvature along any directions; at most
+        n = 63) or ``"diagonal"`` (one curvature and one scale per coordinate: above
+        n = 14 it suits a ``fun`` whose parameters interact little, as a sum of terms
+        in one or a few of them, but a rotated ill-conditioned ``fun`` stalls it);
+        default: full up to n = 63, diagonal above.
     tol : float, optional
         scipy's name for ``options["tolerance"]`` (0 < tol < 1); give one or the other.
 

@@ -16,7 +16,7 @@ def minimize_auto(
     callback: Optional[Callable[[np.ndarray, float], Any]],
     settings: Tuple[
         Optional[float], Optional[int], Optional[int], Optional[bool], Optional[bool],
-        Optional[int], Optional[str],
+        Optional[int], Optional[str], Optional[str],
     ],
 ) -> dict[str, Any]: ...
 def gradient(
@@ -39,7 +39,7 @@ class AskTell:
         budget: Optional[int], seed: int, noisy: bool,
         settings: Tuple[
             Optional[float], Optional[int], Optional[int], Optional[bool], Optional[bool],
-            Optional[int], Optional[str],
+            Optional[int], Optional[str], Optional[str],
         ],
     ) -> None: ...
     def ask(self) -> np.ndarray: ...

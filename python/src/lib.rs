@@ -14,7 +14,8 @@
 //! numpy's C API is loaded when the module is imported ([`load_numpy`]): loaded on first
 //! use, its import would fail on a pending KeyboardInterrupt, and rust-numpy panics then.
 
-use hodr_core::optim::{Auto, AutoOptions, AutoTermination, NonFinite};
+use hodr_core::optim::auto::FULL_MODEL_MAX_DIM;
+use hodr_core::optim::{Auto, AutoModel, AutoOptions, AutoTermination, NonFinite};
 use hodr_core::{
     Batch, Error, Estimator, GradientMethod, HessianMethod, HvpMethod, NoiseSeed, Objective,
     Workspace,
@@ -203,8 +204,8 @@ pub(crate) fn positive(name: &str, sigma: f64) -> PyResult<f64> {
 }
 
 /// Auto's options from Python's `options` dict, its keys checked by the Python half:
-/// (tolerance, patience, restarts, fresh_starts, centre, probes, non_finite), each `None`
-/// for the default.
+/// (tolerance, patience, restarts, fresh_starts, centre, probes, non_finite, model), each
+/// `None` for the default.
 pub(crate) type Settings = (
     Option<f64>,
     Option<usize>,
@@ -213,11 +214,12 @@ pub(crate) type Settings = (
     Option<bool>,
     Option<usize>,
     Option<String>,
+    Option<String>,
 );
 
 /// The options `settings` asks for, or a `ValueError` naming the one out of range.
 fn apply_settings(settings: Settings, mut options: AutoOptions<f64>) -> PyResult<AutoOptions<f64>> {
-    let (tolerance, patience, restarts, fresh_starts, centre, probes, non_finite) = settings;
+    let (tolerance, patience, restarts, fresh_starts, centre, probes, non_finite, _) = settings;
     if let Some(t) = tolerance {
         options = options.with_tolerance(t).map_err(|_| {
             PyValueError::new_err(format!(
@@ -262,7 +264,24 @@ pub(crate) struct Problem {
     sigma0: Vec<f64>,
     bounds: Option<(Vec<f64>, Vec<f64>)>,
     options: AutoOptions<f64>,
+    model: AutoModel,
     seed: u64,
+}
+
+/// The model `options['model']` names (`None`: Auto's default), or a `ValueError` naming
+/// it; the full model holds at most [`FULL_MODEL_MAX_DIM`] parameters.
+fn model_named(name: Option<&str>, n: usize) -> PyResult<AutoModel> {
+    match name {
+        None => Ok(AutoModel::ByDimension),
+        Some("diagonal") => Ok(AutoModel::Diagonal),
+        Some("full") if n <= FULL_MODEL_MAX_DIM => Ok(AutoModel::Full),
+        Some("full") => Err(PyValueError::new_err(format!(
+            "options['model'] = 'full' holds at most {FULL_MODEL_MAX_DIM} parameters, got {n}"
+        ))),
+        Some(other) => Err(PyValueError::new_err(format!(
+            "options['model'] must be 'full' or 'diagonal', got {other:?}"
+        ))),
+    }
 }
 
 impl Problem {
@@ -286,6 +305,7 @@ impl Problem {
         for (i, &s) in sigma0.iter().enumerate() {
             positive(&format!("sigma0[{i}]"), s)?;
         }
+        let model = model_named(settings.7.as_deref(), n)?;
         let mut options = apply_settings(settings, AutoOptions::default())?;
         if let Some(budget) = budget {
             options = options
@@ -323,6 +343,7 @@ impl Problem {
             sigma0,
             bounds,
             options,
+            model,
             seed,
         };
         // Whatever else Auto refuses, refuse it here, before any evaluation.
@@ -352,7 +373,7 @@ impl Problem {
         buffer: &'b mut [f64],
     ) -> Result<Auto<'b, f64, Xoshiro256PlusPlus>, Error> {
         let rng = Xoshiro256PlusPlus::seed_from_u64(self.seed);
-        let auto = Auto::new(theta, self.sigma0[0], buffer, rng)?
+        let auto = Auto::with_model(theta, self.sigma0[0], buffer, rng, self.model)?
             .with_options(self.options)
             .with_scales(&self.sigma0)?;
         match &self.bounds {

@@ -327,6 +327,28 @@ def test_an_objective_unbounded_below_diverges():
         assert np.all(np.isfinite(res.x)) and np.isfinite(res.fun) and res.fun < -1e18
 
 
+def test_the_model_option():
+    """options['model'] names the shape Auto would pick by dimension, or the other: the
+    named default runs the default run, and the diagonal model takes a 20-D sum of kinks
+    to 1e-6 within the budget; ask/tell with the option is minimize with it."""
+    l1 = lambda x: float(np.abs(x - 0.3).sum())
+    x0 = np.linspace(-2.0, 2.0, 20)
+    default = hodr.minimize(l1, x0, 1.0, budget=300, seed=1)
+    full = hodr.minimize(l1, x0, 1.0, budget=300, seed=1, options={"model": "full"})
+    assert np.array_equal(default.history["fun"], full.history["fun"])
+    x70 = np.linspace(-2.0, 2.0, 70)
+    default = hodr.minimize(l1, x70, 1.0, budget=300, seed=1)
+    diagonal = hodr.minimize(l1, x70, 1.0, budget=300, seed=1, options={"model": "diagonal"})
+    assert np.array_equal(default.history["fun"], diagonal.history["fun"])
+    res = hodr.minimize(l1, x0, 1.0, budget=8000, seed=1, options={"model": "diagonal"})
+    assert res.fun < 1e-6, res.fun
+    opt = hodr.Optimizer(x0, 1.0, budget=300, seed=1, options={"model": "diagonal"})
+    while not opt.stop():
+        opt.tell([l1(x) for x in opt.ask()])
+    first = hodr.minimize(l1, x0, 1.0, budget=300, seed=1, options={"model": "diagonal"})
+    assert np.array_equal(opt.result.history["fun"], first.history["fun"])
+
+
 def test_options_change_the_run():
     x0 = [2.0, 2.0, -1.0]
     default = hodr.minimize(quadratic, x0, 1.0, seed=2)
@@ -381,6 +403,9 @@ def test_options_change_the_run():
         (lambda: hodr.minimize(quadratic, X, 1.0, options={"probes": -1}), ValueError, "probes"),
         (lambda: hodr.minimize(quadratic, X, 1.0, options={"probes": 2.5}), TypeError, "probes"),
         (lambda: hodr.minimize(quadratic, X, 1.0, options={"non_finite": "skip"}), ValueError, "non_finite"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, options={"model": "round"}), ValueError, "options['model'] must be 'full' or 'diagonal'"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, options={"model": 2}), TypeError, "model"),
+        (lambda: hodr.minimize(quadratic, [0.0] * 64, 1.0, options={"model": "full"}), ValueError, "at most 63 parameters, got 64"),
         (lambda: hodr.Optimizer(X, 1.0, options={"patience": -2}), ValueError, "patience"),
         (lambda: hodr.minimize(3, X, 1.0), TypeError, "fun"),
         (lambda: hodr.minimize(lambda x: "a", X, 1.0), TypeError, "fun must return a real number (a float), got str"),

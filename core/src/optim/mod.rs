@@ -52,7 +52,9 @@ use core::fmt;
 use rand_core::Rng;
 
 #[cfg(feature = "auto")]
-pub use auto::{Auto, AutoOptions, AutoReport, AutoStep, AutoTermination, FixedAuto, NonFinite};
+pub use auto::{
+    Auto, AutoModel, AutoOptions, AutoReport, AutoStep, AutoTermination, FixedAuto, NonFinite,
+};
 pub use first_order::Adam;
 #[cfg(feature = "gradient-descent")]
 pub use first_order::GradientDescent;

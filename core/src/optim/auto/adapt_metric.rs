@@ -77,7 +77,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// the trust region's scratch (`a`, `v`, `lambda`).
     pub(super) fn stalled_on_shape(&mut self) -> bool {
         let n = self.theta.len();
-        if self.shape != Shape::Full || memory_determines_model(n) || self.st.unconfirmed < n {
+        if self.shape != Shape::Full
+            || memory_determines_model(self.shape, n)
+            || self.st.unconfirmed < n
+        {
             return false;
         }
         self.mem.a[..n * n].copy_from_slice(&self.mem.h[..n * n]);

@@ -47,7 +47,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.whiten_positions();
         self.move_prior(scale);
         let limit = T::from_f64(2.0 * REACH);
-        let width = T::from_f64(if memory_determines_model(n) {
+        let width = T::from_f64(if memory_determines_model(shape, n) {
             FIT_WIDTH
         } else {
             REACH
@@ -221,7 +221,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// of a full model above n = 14, and every fit of a diagonal one, lean on the prior
     /// they carry and keep its weakly determined part.
     pub(super) fn ridge(&self) -> Ridge {
-        if memory_determines_model(self.theta.len()) {
+        if memory_determines_model(self.shape, self.theta.len()) {
             Ridge::Determined
         } else if self.shape == Shape::Full && !self.st.has_prior {
             Ridge::Survey

@@ -81,7 +81,7 @@ mod tests {
     #[test]
     fn the_documented_formula_is_the_buffer_length() {
         for n in 1..300 {
-            let m = super::super::history_len(n);
+            let m = super::super::history_len(super::super::model::Shape::for_dim(n), n);
             let full = n <= super::super::FULL_MODEL_MAX_DIM;
             let (h, f, p) = if full {
                 (n * n, n * n, n + 1)

@@ -121,16 +121,15 @@ pub(super) struct Memory<'b, T> {
 }
 
 /// Region lengths for dimension n, in [`Memory`]'s order.
-pub(super) const fn regions(n: usize) -> [usize; 52] {
-    let shape = Shape::for_dim(n);
-    let m = history_len(n);
+pub(super) const fn regions(shape: Shape, n: usize) -> [usize; 52] {
+    let m = history_len(shape, n);
     let hl = shape.hessian_len(n);
     let full = if matches!(shape, Shape::Full) {
         n * n
     } else {
         0
     };
-    let rows = stage_rows(n);
+    let rows = stage_rows(shape, n);
     let [gram, kp, norms, schur, beta] = model::scratch_lens(shape, m, n);
     [
         n,
@@ -194,8 +193,15 @@ pub(super) const fn regions(n: usize) -> [usize; 52] {
 /// with, for the full model (n ≤ [`FULL_MODEL_MAX_DIM`](super::FULL_MODEL_MAX_DIM)), h = f = n² and p = n + 1, and
 /// for the diagonal one h = n, f = 0 and p = 1; r = 2·min(n, ⌊m/2⌋) + 2 staged points.
 /// A `const fn`, so that storage can be sized at compile time ([`FixedAuto`](super::FixedAuto)).
+/// It is that of the model [`AutoModel::ByDimension`](super::AutoModel::ByDimension)
+/// picks, whose buffer holds either shape's.
 pub const fn buffer_len(n: usize) -> usize {
-    let lens = regions(n);
+    buffer_len_of(Shape::for_dim(n), n)
+}
+
+/// Floats of buffer a run with the model `shape` needs in dimension n.
+pub(super) const fn buffer_len_of(shape: Shape, n: usize) -> usize {
+    let lens = regions(shape, n);
     let mut sum = 0;
     let mut k = 0;
     while k < lens.len() {
@@ -205,39 +211,49 @@ pub const fn buffer_len(n: usize) -> usize {
     sum
 }
 
-pub(super) const fn history_len(n: usize) -> usize {
-    memory_of(n, 2)
+pub(super) const fn history_len(shape: Shape, n: usize) -> usize {
+    memory_of(shape, n, 2)
 }
 
 /// Points a run on a declared-noisy objective remembers ([`Auto::history_len`]).
-pub(super) const fn noisy_history_len(n: usize) -> usize {
-    memory_of(n, 1)
+pub(super) const fn noisy_history_len(shape: Shape, n: usize) -> usize {
+    memory_of(shape, n, 1)
 }
 
 /// `copies` times the model's coefficients plus n + 1, at most [`memory_cap`].
-pub(super) const fn memory_of(n: usize, copies: usize) -> usize {
-    let m = copies * Shape::for_dim(n).coefficients(n) + n + 1;
-    let cap = memory_cap(n);
+pub(super) const fn memory_of(shape: Shape, n: usize, copies: usize) -> usize {
+    let m = copies * shape.coefficients(n) + n + 1;
+    let cap = memory_cap(shape, n);
     if m > cap { cap } else { m }
 }
 
 /// Most points remembered in dimension n: [`MAX_MEMORY`], or for a full model
 /// [`FULL_MEMORY_PER_DIM`]·n where that is more (from n = 17; 504 at n = 63).
-pub(super) const fn memory_cap(n: usize) -> usize {
+pub(super) const fn memory_cap(shape: Shape, n: usize) -> usize {
     let grown = FULL_MEMORY_PER_DIM * n;
-    if matches!(Shape::for_dim(n), Shape::Full) && grown > MAX_MEMORY {
+    if matches!(shape, Shape::Full) && grown > MAX_MEMORY {
         grown
     } else {
         MAX_MEMORY
     }
 }
 
+// Where the full model is the default (n ≤ FULL_MODEL_MAX_DIM), its buffer holds the
+// diagonal model's ([`Auto::with_model`](super::Auto::with_model)).
+const _: () = {
+    let mut n = 1;
+    while n <= super::FULL_MODEL_MAX_DIM {
+        assert!(buffer_len_of(Shape::Diagonal, n) <= buffer_len_of(Shape::Full, n));
+        n += 1;
+    }
+};
+
 // A full model's memory never holds as many points as it has coefficients from n = 15
 // on, grown or not: which fits are determined does not depend on the memory's growth.
 const _: () = {
     let mut n = 15;
     while n <= super::FULL_MODEL_MAX_DIM {
-        assert!(memory_cap(n) < Shape::Full.coefficients(n));
+        assert!(memory_cap(Shape::Full, n) < Shape::Full.coefficients(n));
         n += 1;
     }
 };
@@ -247,39 +263,38 @@ const _: () = {
 /// which is n ≤ 14. Above, every fit after the first leans on its prior (and the
 /// diagonal model's penalised gradient is never exact); only a full model's first fit
 /// after a survey is made exact there ([`Auto::ridge`]).
-pub(super) const fn memory_determines_model(n: usize) -> bool {
-    let shape = Shape::for_dim(n);
-    matches!(shape, Shape::Full) && shape.coefficients(n) <= history_len(n)
+pub(super) const fn memory_determines_model(shape: Shape, n: usize) -> bool {
+    matches!(shape, Shape::Full) && shape.coefficients(n) <= history_len(shape, n)
 }
 
 /// Remembered points within reach that a model needs before it steps without sampling:
 /// n + 1, or half the memory where that holds fewer than 2n + 2 points.
-pub(super) const fn nearby_needed(n: usize) -> usize {
-    let half = history_len(n) / 2;
+pub(super) const fn nearby_needed(shape: Shape, n: usize) -> usize {
+    let half = history_len(shape, n) / 2;
     if n + 1 < half { n + 1 } else { half }
 }
 
 /// Points within reach above which a model that puts its minimum at θ is validated, so
 /// that σ may shrink on its word: 2q − 2 for q = [`nearby_needed`] — pairs in about as
 /// many directions as the model has linear coefficients.
-pub(super) const fn validating(n: usize) -> usize {
-    2 * nearby_needed(n) - 2
+pub(super) const fn validating(shape: Shape, n: usize) -> usize {
+    2 * nearby_needed(shape, n) - 2
 }
 
 /// Pairs a survey (the first iteration, a restart) draws: n, or as many as half the
 /// memory holds.
-pub(super) const fn survey_pairs(n: usize) -> usize {
-    let half = history_len(n) / 2;
+pub(super) const fn survey_pairs(shape: Shape, n: usize) -> usize {
+    let half = history_len(shape, n) / 2;
     if n < half { n } else { half }
 }
 
 /// Points one batch can hold: a survey's samples and θ, or a trial point and θ.
-pub(super) const fn stage_rows(n: usize) -> usize {
-    2 * survey_pairs(n) + 2
+pub(super) const fn stage_rows(shape: Shape, n: usize) -> usize {
+    2 * survey_pairs(shape, n) + 2
 }
 
-pub(super) fn carve<'b, T>(buffer: &'b mut [T], n: usize) -> Memory<'b, T> {
-    let lens = regions(n);
+pub(super) fn carve<'b, T>(buffer: &'b mut [T], shape: Shape, n: usize) -> Memory<'b, T> {
+    let lens = regions(shape, n);
     let mut lens = lens.iter();
     let mut rest = buffer;
     // Regions in `regions`' order: struct fields are initialised in source order.
@@ -369,9 +384,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     pub(super) fn remember(&mut self, rows: usize, group: T, keep_batch: bool) {
         let n = self.theta.len();
         let cap = if self.st.noisy {
-            noisy_history_len(n)
+            noisy_history_len(self.shape, n)
         } else {
-            history_len(n)
+            history_len(self.shape, n)
         };
         // A kept point's z is stored as −1 − z until the batch is in (and then
         // computed again: the round trip through −1 − z is not exact).

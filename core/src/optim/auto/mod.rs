@@ -246,8 +246,8 @@ mod trust;
 use centre::Centring;
 pub use fixed::FixedAuto;
 pub use memory::buffer_len;
-use memory::{Memory, carve, history_len, memory_determines_model};
-pub use options::{AutoOptions, AutoReport, AutoStep, AutoTermination, NonFinite};
+use memory::{Memory, buffer_len_of, carve, history_len, memory_determines_model};
+pub use options::{AutoModel, AutoOptions, AutoReport, AutoStep, AutoTermination, NonFinite};
 
 use core::fmt;
 
@@ -816,7 +816,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// (the fit's scatter, the counts of points that determine the model) are set for
     /// that memory (docs/notes/2026-11-27-memory-twice-the-coefficients.md).
     pub const fn history_len(n: usize) -> usize {
-        history_len(n)
+        history_len(Shape::for_dim(n), n)
     }
 
     /// A run from `theta` (x₀; updated in place to the best point found) with scale
@@ -829,6 +829,22 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// empty x₀, [`Error::WorkspaceTooSmall`] for a buffer shorter than
     /// [`Auto::buffer_len`].
     pub fn new(theta: &'b mut [T], sigma0: T, buffer: &'b mut [T], rng: R) -> Result<Self, Error> {
+        Self::with_model(theta, sigma0, buffer, rng, AutoModel::ByDimension)
+    }
+
+    /// A run as [`Auto::new`] makes it, with the model and metric of shape `model`
+    /// ([`AutoModel`]); a buffer of [`Auto::buffer_len`] floats holds any shape.
+    ///
+    /// # Errors
+    /// Those of [`Auto::new`], and [`Error::InvalidSetting`] (`model`) for
+    /// [`AutoModel::Full`] above n = [`FULL_MODEL_MAX_DIM`].
+    pub fn with_model(
+        theta: &'b mut [T],
+        sigma0: T,
+        buffer: &'b mut [T],
+        rng: R,
+        model: AutoModel,
+    ) -> Result<Self, Error> {
         let n = theta.len();
         if n == 0 {
             return Err(Error::DimensionMismatch {
@@ -845,7 +861,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // A scale below what x₀'s floats resolve samples x₀ itself: every value ties.
         let largest = theta.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
         let sigma0 = sigma0.max(T::TWO * resolution(largest));
-        let needed = Self::buffer_len(n);
+        let shape = match model {
+            AutoModel::ByDimension => Shape::for_dim(n),
+            AutoModel::Full if n > FULL_MODEL_MAX_DIM => {
+                return Err(Error::InvalidSetting { name: "model" });
+            }
+            AutoModel::Full => Shape::Full,
+            AutoModel::Diagonal => Shape::Diagonal,
+        };
+        let needed = buffer_len_of(shape, n);
         if buffer.len() < needed {
             return Err(Error::WorkspaceTooSmall {
                 needed,
@@ -854,18 +878,18 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         let buffer = &mut buffer[..needed];
         buffer.fill(T::ZERO);
-        let mem = carve(buffer, n);
+        let mem = carve(buffer, shape, n);
         mem.lower.fill(-T::MAX);
         mem.upper.fill(T::MAX);
         mem.scale.fill(sigma0);
         mem.tmp.fill(T::ONE);
-        metric::axes(Shape::for_dim(n), mem.tmp, mem.c, mem.l, mem.li);
+        metric::axes(shape, mem.tmp, mem.c, mem.l, mem.li);
         Ok(Auto {
             theta,
             mem,
             rng,
             options: AutoOptions::default(),
-            shape: Shape::for_dim(n),
+            shape,
             st: State::start(sigma0, n),
         })
     }

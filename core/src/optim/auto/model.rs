@@ -214,10 +214,10 @@ impl Ridge {
 ///   as a diagonal model does, and learns a rotation only as far as the points demand.
 fn deviation_share(shape: Shape, n: usize) -> f64 {
     match shape {
-        Shape::Full if super::memory_determines_model(n) => 0.0,
+        Shape::Full if super::memory_determines_model(shape, n) => 0.0,
         Shape::Full => n as f64,
         Shape::Diagonal => {
-            let determined = super::history_len(n) as f64 / (2 * n + 1) as f64;
+            let determined = super::history_len(shape, n) as f64 / (2 * n + 1) as f64;
             let share = determined.min(1.0);
             share * share
         }
@@ -766,7 +766,7 @@ mod tests {
     fn an_underdetermined_full_fit_learns_axis_curvatures() {
         const N: usize = 16;
         const M: usize = 3 * N;
-        assert!(!super::super::memory_determines_model(N));
+        assert!(!super::super::memory_determines_model(Shape::Full, N));
         let c: [f64; N] = core::array::from_fn(|j| libm::pow(10.0, 3.0 * j as f64 / 15.0));
         let mut u = [0.0; M * N];
         for (k, chunk) in u.chunks_mut(60).enumerate() {

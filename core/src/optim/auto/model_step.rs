@@ -94,7 +94,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // enough directions before σ shrinks on its word; the pairs it lacks come in
         // one batch (on a declared-noisy objective one pair per iteration, the rule its
         // runs were measured with).
-        let validated = self.count_around(T::from_f64(REACH)) > validating(n);
+        let validated = self.count_around(T::from_f64(REACH)) > validating(self.shape, n);
         self.judge_basin(
             value,
             scale * predicted.max(T::ZERO),
@@ -218,7 +218,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let blames_scale = poor
             && if self.st.noisy {
                 determined || validated
-            } else if memory_determines_model(n) {
+            } else if memory_determines_model(self.shape, n) {
                 self.count_around(T::from_f64(REACH)) > self.shape.coefficients(n)
             } else {
                 validated

@@ -18,6 +18,29 @@ pub enum NonFinite {
     Error,
 }
 
+/// The shape of Auto's local model of f and of its sampling metric, chosen when the run
+/// is made ([`Auto::with_model`](super::Auto::with_model)).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum AutoModel {
+    /// [`AutoModel::Full`] up to n = [`FULL_MODEL_MAX_DIM`](super::FULL_MODEL_MAX_DIM),
+    /// [`AutoModel::Diagonal`] above. Default.
+    #[default]
+    ByDimension,
+    /// A full Hessian, (n + 1)(n + 2)/2 coefficients, and a full metric C: learns
+    /// curvature along any directions, a rotated ellipsoid's or a curved valley's. From
+    /// n = 15 its memory holds fewer points than it has coefficients, and each fit leans
+    /// on the last. At most n = [`FULL_MODEL_MAX_DIM`](super::FULL_MODEL_MAX_DIM).
+    Full,
+    /// A diagonal Hessian, 2n + 1 coefficients, and a diagonal metric (one scale per
+    /// coordinate): determined by a memory of 2(2n + 1) + n + 1 points (at most
+    /// [`MAX_MEMORY`](super::MAX_MEMORY)) at every n, and O(n) per point; blind to
+    /// curvature across coordinates, so that a rotated ill-conditioned f stalls it.
+    /// Above n = 14, where the full model's fits lean on their priors, it suits an f
+    /// whose parameters interact little: a sum of terms in one or a few of them, kinks
+    /// about an isotropic minimum (BENCHMARKS.md, "A seventh set").
+    Diagonal,
+}
+
 /// Auto's options. Every one has a default; none is required.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]

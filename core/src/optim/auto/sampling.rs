@@ -35,16 +35,18 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let survey = first || self.st.survey;
         self.st.survey = false;
         let pairs = if survey {
-            survey_pairs(n)
+            survey_pairs(self.shape, n)
         } else if self.st.validate {
-            (validating(n) + 1)
+            (validating(self.shape, n) + 1)
                 .saturating_sub(self.count_around(T::from_f64(REACH)))
                 .div_ceil(2)
-                .clamp(1, survey_pairs(n))
+                .clamp(1, survey_pairs(self.shape, n))
         } else if self.st.resample {
             1
         } else {
-            nearby_needed(n).saturating_sub(near).div_ceil(2)
+            nearby_needed(self.shape, n)
+                .saturating_sub(near)
+                .div_ceil(2)
         };
         // θ is evaluated first, and again beside the samples of a noisy objective: they
         // share its seed, so that they compare with f(θ) on common noise.
@@ -419,7 +421,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         spent: &mut usize,
     ) -> Result<(), Error> {
         let n = self.theta.len();
-        let group = history_len(n).min(CHUNK);
+        let group = history_len(self.shape, n).min(CHUNK);
         debug_assert!(group * n <= self.mem.u.len());
         self.st.factored = 0;
         let seeds = [0 as NoiseSeed; CHUNK];
