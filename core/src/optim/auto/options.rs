@@ -32,10 +32,10 @@ pub enum AutoModel {
     /// on the last. At most n = [`FULL_MODEL_MAX_DIM`](super::FULL_MODEL_MAX_DIM).
     Full,
     /// A diagonal Hessian, 2n + 1 coefficients, and a diagonal metric (one scale per
-    /// coordinate): determined by a memory of 2(2n + 1) + n + 1 points (at most
-    /// [`MAX_MEMORY`](super::MAX_MEMORY)) at every n, and O(n) per point; blind to
-    /// curvature across coordinates, so that a rotated ill-conditioned f stalls it.
-    /// Above n = 14, where the full model's fits lean on their priors, it suits an f
+    /// coordinate): a memory of 2(2n + 1) + n + 1 points, at most
+    /// [`MAX_MEMORY`](super::MAX_MEMORY), more than its coefficients up to n = 63; O(n)
+    /// per point; blind to curvature across coordinates, so that a rotated
+    /// ill-conditioned f stalls it. Above n = 14, where the full model's fits lean on their priors, it suits an f
     /// whose parameters interact little: a sum of terms in one or a few of them, kinks
     /// about an isotropic minimum (BENCHMARKS.md, "A seventh set").
     Diagonal,
