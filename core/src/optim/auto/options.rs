@@ -35,9 +35,10 @@ pub enum AutoModel {
     /// coordinate): a memory of 2(2n + 1) + n + 1 points, at most
     /// [`MAX_MEMORY`](super::MAX_MEMORY), more than its coefficients up to n = 63; O(n)
     /// per point; blind to curvature across coordinates, so that a rotated
-    /// ill-conditioned f stalls it. Above n = 14, where the full model's fits lean on their priors, it suits an f
-    /// whose parameters interact little: a sum of terms in one or a few of them, kinks
-    /// about an isotropic minimum (BENCHMARKS.md, "A seventh set").
+    /// ill-conditioned f stalls it. Above n = 14, where the full model's fits lean on
+    /// their priors, it suits an f whose parameters interact little: a sum of terms in
+    /// one or a few of them, kinks about an isotropic minimum (BENCHMARKS.md, "A seventh
+    /// set").
     Diagonal,
 }
 
