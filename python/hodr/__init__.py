@@ -544,7 +544,8 @@ class Optimizer:
     ``minimize(fun, x0, sigma0, batch=True, ...)``. Arguments as in ``minimize``; with
     ``noisy=True``, render row k of the batch asked with noise seed ``seeds[k]``. The
     optimiser runs on a thread of its own between ``tell`` and the next ``ask``; a
-    batch must be told before the next is asked. ``result`` is available at any time
+    batch must be told before the next is asked (``ask`` before ``tell`` gives the
+    batch asked again). ``result`` is available at any time
     (the best point so far). Once the run has ended, ``ask()`` gives a (0, n) array and
     ``tell([])`` takes its values, so a plain ask/tell loop ends cleanly.
 
@@ -590,8 +591,9 @@ class Optimizer:
             raise
 
     def ask(self) -> np.ndarray:
-        """The next batch of points, a float64 array of shape (k, n); (0, n) once the
-        run has ended (``tell([])`` then takes its values)."""
+        """The next batch of points, a float64 array of shape (k, n) — the batch asked
+        last, again, until its values are told; (0, n) once the run has ended
+        (``tell([])`` then takes its values)."""
         points = self._call(self._run.ask)
         self._asked = points.copy()
         return points

@@ -284,25 +284,29 @@ impl AskTell {
         })
     }
 
-    /// The next batch as a (k, n) array; (0, n) once the run has ended.
+    /// The next batch as a (k, n) array, or the batch asked and not yet told, again;
+    /// (0, n) once the run has ended.
     fn ask<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        if self.asked.is_some() {
-            return Err(PyRuntimeError::new_err(
-                "ask() again before tell(): tell the values of the batch asked first",
-            ));
-        }
-        self.advance(py)?;
-        if let Some(error) = self.failure(py)? {
-            return Err(error);
-        }
-        let (points, seeds) = self.pending.take().unwrap_or_default();
-        self.seeds = seeds;
+        // A batch asked and not yet told is asked again, unchanged: a Ctrl-C that lands
+        // after it left the extension, before the caller held it, does not lose it.
+        let points = match &self.asked {
+            Some(points) => points.clone(),
+            None => {
+                self.advance(py)?;
+                if let Some(error) = self.failure(py)? {
+                    return Err(error);
+                }
+                let (points, seeds) = self.pending.take().unwrap_or_default();
+                self.seeds = seeds;
+                if !points.is_empty() {
+                    self.asked = Some(points.clone());
+                }
+                points
+            }
+        };
         let rows = points.len() / self.n;
-        let array = Array2::from_shape_vec((rows, self.n), points.clone())
+        let array = Array2::from_shape_vec((rows, self.n), points)
             .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-        if rows > 0 {
-            self.asked = Some(points);
-        }
         Ok(array.into_pyarray(py))
     }
 
