@@ -418,7 +418,9 @@ def minimize(
         n = 63) or ``"diagonal"`` (one curvature and one scale per coordinate: above
         n = 14 it suits a ``fun`` whose parameters interact little, as a sum of terms
         in one or a few of them, but a rotated ill-conditioned ``fun`` stalls it);
-        default: full up to n = 63, diagonal above.
+        default: full up to n = 14, diagonal above 63, and in between full unless
+        the first 2 + 2⌈log₂ n⌉ evaluations find ``fun`` separable (a sum of terms in
+        one coordinate each), when it is diagonal.
     tol : float, optional
         scipy's name for ``options["tolerance"]`` (0 < tol < 1); give one or the other.
 

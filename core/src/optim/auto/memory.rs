@@ -248,6 +248,21 @@ const _: () = {
     }
 };
 
+// A run that starts with the full model and finds f separable takes the diagonal one
+// (`Auto::take_diagonal_model`): each of its regions fits in the full model's.
+const _: () = {
+    let mut n = 1;
+    while n <= super::FULL_MODEL_MAX_DIM {
+        let (full, diagonal) = (regions(Shape::Full, n), regions(Shape::Diagonal, n));
+        let mut k = 0;
+        while k < full.len() {
+            assert!(diagonal[k] <= full[k]);
+            k += 1;
+        }
+        n += 1;
+    }
+};
+
 // A full model's memory never holds as many points as it has coefficients from n = 15
 // on, grown or not: which fits are determined does not depend on the memory's growth.
 const _: () = {
@@ -294,69 +309,201 @@ pub(super) const fn stage_rows(shape: Shape, n: usize) -> usize {
 }
 
 pub(super) fn carve<'b, T>(buffer: &'b mut [T], shape: Shape, n: usize) -> Memory<'b, T> {
-    let lens = regions(shape, n);
-    let mut lens = lens.iter();
     let mut rest = buffer;
-    // Regions in `regions`' order: struct fields are initialised in source order.
-    let mut take = || {
-        let len = lens.next().copied().unwrap_or(0);
+    Memory::from_regions(regions(shape, n).map(|len| {
         let (head, tail) = core::mem::take(&mut rest).split_at_mut(len);
         rest = tail;
         head
-    };
-    Memory {
-        lower: take(),
-        upper: take(),
-        xs: take(),
-        fs: take(),
-        gs: take(),
-        zs: take(),
-        zt: take(),
-        ys: take(),
-        ya: take(),
-        yt: take(),
-        ytheta: take(),
-        u: take(),
-        sw: take(),
-        gid: take(),
-        r: take(),
-        gram: take(),
-        kp: take(),
-        norms: take(),
-        schur: take(),
-        beta: take(),
-        g: take(),
-        h: take(),
-        g0: take(),
-        h0: take(),
-        c0: take(),
-        gp: take(),
-        hp: take(),
-        a: take(),
-        v: take(),
-        gamma: take(),
-        lambda: take(),
-        s: take(),
-        tmp: take(),
-        frame: take(),
-        stage: take(),
-        stage_f: take(),
-        rg: take(),
-        rh: take(),
-        rs: take(),
-        gx: take(),
-        hx: take(),
-        c: take(),
-        l: take(),
-        li: take(),
-        credit: take(),
-        order: take(),
-        scale: take(),
-        best: take(),
-        path: take(),
-        record: take(),
-        origin: take(),
-        bracket: take(),
+    }))
+}
+
+impl<'b, T> Memory<'b, T> {
+    /// A memory of empty regions, which holds nothing: what stands in a run's place while
+    /// its memory is being reshaped.
+    pub(super) fn empty() -> Self {
+        Self::from_regions(core::array::from_fn(|_| <&mut [T]>::default()))
+    }
+
+    /// The memory from its regions, in [`regions`]' order.
+    fn from_regions(regions: [&'b mut [T]; 52]) -> Self {
+        let [
+            lower,
+            upper,
+            xs,
+            fs,
+            gs,
+            zs,
+            zt,
+            ys,
+            ya,
+            yt,
+            ytheta,
+            u,
+            sw,
+            gid,
+            r,
+            gram,
+            kp,
+            norms,
+            schur,
+            beta,
+            g,
+            h,
+            g0,
+            h0,
+            c0,
+            gp,
+            hp,
+            a,
+            v,
+            gamma,
+            lambda,
+            s,
+            tmp,
+            frame,
+            stage,
+            stage_f,
+            rg,
+            rh,
+            rs,
+            gx,
+            hx,
+            c,
+            l,
+            li,
+            credit,
+            order,
+            scale,
+            best,
+            path,
+            record,
+            origin,
+            bracket,
+        ] = regions;
+        Memory {
+            lower,
+            upper,
+            xs,
+            fs,
+            gs,
+            zs,
+            zt,
+            ys,
+            ya,
+            yt,
+            ytheta,
+            u,
+            sw,
+            gid,
+            r,
+            gram,
+            kp,
+            norms,
+            schur,
+            beta,
+            g,
+            h,
+            g0,
+            h0,
+            c0,
+            gp,
+            hp,
+            a,
+            v,
+            gamma,
+            lambda,
+            s,
+            tmp,
+            frame,
+            stage,
+            stage_f,
+            rg,
+            rh,
+            rs,
+            gx,
+            hx,
+            c,
+            l,
+            li,
+            credit,
+            order,
+            scale,
+            best,
+            path,
+            record,
+            origin,
+            bracket,
+        }
+    }
+
+    /// The memory of a run that takes the model `shape` before anything is remembered
+    /// (`Auto::take_diagonal_model`): each region cut to `shape`'s length, which is at
+    /// most its length now (a constant assertion below), its first floats kept.
+    pub(super) fn reshaped(self, shape: Shape, n: usize) -> Self {
+        let Memory {
+            lower,
+            upper,
+            xs,
+            fs,
+            gs,
+            zs,
+            zt,
+            ys,
+            ya,
+            yt,
+            ytheta,
+            u,
+            sw,
+            gid,
+            r,
+            gram,
+            kp,
+            norms,
+            schur,
+            beta,
+            g,
+            h,
+            g0,
+            h0,
+            c0,
+            gp,
+            hp,
+            a,
+            v,
+            gamma,
+            lambda,
+            s,
+            tmp,
+            frame,
+            stage,
+            stage_f,
+            rg,
+            rh,
+            rs,
+            gx,
+            hx,
+            c,
+            l,
+            li,
+            credit,
+            order,
+            scale,
+            best,
+            path,
+            record,
+            origin,
+            bracket,
+        } = self;
+        let mut cut = [
+            lower, upper, xs, fs, gs, zs, zt, ys, ya, yt, ytheta, u, sw, gid, r, gram, kp, norms,
+            schur, beta, g, h, g0, h0, c0, gp, hp, a, v, gamma, lambda, s, tmp, frame, stage,
+            stage_f, rg, rh, rs, gx, hx, c, l, li, credit, order, scale, best, path, record,
+            origin, bracket,
+        ];
+        for (region, len) in cut.iter_mut().zip(regions(shape, n)) {
+            *region = core::mem::take(region).split_at_mut(len).0;
+        }
+        Self::from_regions(cut)
     }
 }
 

@@ -19,7 +19,8 @@
 //!   ~σ, as hodr's estimators average samples, so the model is that of the *smoothed*
 //!   objective; an underdetermined one changes the curvature least, as Powell's NEWUOA
 //!   does, so curvature learnt earlier is kept.
-//!   A full Hessian is modelled for n ≤ [`FULL_MODEL_MAX_DIM`], a diagonal one above;
+//!   A full Hessian is modelled for n ≤ [`FULL_MODEL_MAX_DIM`], a diagonal one above
+//!   and, from n = 15, where the first step finds f separable ([`AutoModel`]);
 //!   the memory holds at most [`MAX_MEMORY`] points, or [`FULL_MEMORY_PER_DIM`]·n for a
 //!   full model where that is more, so that an iteration's cost is bounded for a full
 //!   model and linear in n for a diagonal one (the `model` module says how a fit with
@@ -223,8 +224,9 @@
 //! trust-region step inside the box), `metric`, `eigen` and
 //! `adapt_metric` (the sampling metric and how it learns), `restart` (σ's control,
 //! restarts and fresh starts), `probe` (the probes before a fresh start), `centre` (a
-//! flat minimum's centre), `noise` (undeclared noise), `options` (the public types) and
-//! `fixed` ([`FixedAuto`]).
+//! flat minimum's centre), `noise` (undeclared noise), `separable` (the test that picks
+//! the diagonal model for a separable f), `options` (the public types) and `fixed`
+//! ([`FixedAuto`]).
 
 mod adapt_metric;
 mod centre;
@@ -240,6 +242,7 @@ mod options;
 mod probe;
 mod restart;
 mod sampling;
+mod separable;
 mod step;
 mod trust;
 
@@ -772,6 +775,9 @@ pub struct Auto<'b, T, R> {
     mem: Memory<'b, T>,
     rng: R,
     options: AutoOptions<T>,
+    /// The model asked for; [`AutoModel::ByDimension`] lets a separability test change
+    /// `shape` (the `separable` module).
+    model: AutoModel,
     shape: Shape,
     st: State<T>,
 }
@@ -889,6 +895,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             mem,
             rng,
             options: AutoOptions::default(),
+            model,
             shape,
             st: State::start(sigma0, n),
         })
@@ -1054,6 +1061,17 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             .map(|row| &self.mem.stage[row * n..(row + 1) * n])
     }
 
+    /// The model the run uses: [`AutoModel::Full`] or [`AutoModel::Diagonal`]. Under
+    /// [`AutoModel::ByDimension`] that is the one n picks, or, from n = 15 up to
+    /// [`FULL_MODEL_MAX_DIM`], the diagonal one once the first step has found f
+    /// separable (the test in the `separable` module, on a deterministic objective).
+    pub fn model(&self) -> AutoModel {
+        match self.shape {
+            Shape::Full => AutoModel::Full,
+            Shape::Diagonal => AutoModel::Diagonal,
+        }
+    }
+
     /// σ for the next iteration.
     pub fn sigma(&self) -> T {
         self.st.sigma
@@ -1128,7 +1146,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.gained = false;
         self.mem.tmp.copy_from_slice(self.theta);
         let mut spent = 0;
-        let mut kind = self.sample(objective, &mut spent)?;
+        let mut kind = if self.tests_separability(noisy) {
+            self.test_separability(objective, &mut spent)?
+        } else {
+            None
+        };
+        if kind.is_none() {
+            kind = self.sample(objective, &mut spent)?;
+        }
         if self.st.pair_pending {
             let gain = if self.st.gained { T::ONE } else { T::ZERO };
             self.st.pair_rate += (gain - self.st.pair_rate) / T::from_f64(PAIR_MEMORY);

@@ -1,0 +1,183 @@
+//! Whether f is separable, f(x) = Σᵢ gᵢ(xᵢ): the test by which the default model
+//! ([`AutoModel::ByDimension`](super::AutoModel::ByDimension)) takes the diagonal shape
+//! from n = 15, where the full model's memory no longer determines it.
+//!
+//! A separable f has no mixed differences: for disjoint sets of coordinates A and B and
+//! offsets d_A, d_B along them,
+//!
+//! D = f(θ + d_A + d_B) − f(θ + d_A) − f(θ + d_B) + f(θ) = 0,
+//!
+//! and a pair of coordinates that interact, one in A and one in B, makes D ≠ 0 (for a
+//! quadratic D = Σ_{i∈A, j∈B} H_ij d_i d_j). Splitting the coordinates by each bit of their
+//! index, A_b = {i : bit b of i is 1} and B_b its complement for b < ⌈log₂ n⌉, puts every
+//! pair on opposite sides in at least one split, and every split shares the point
+//! θ + d: the test costs 2 + 2⌈log₂ n⌉ evaluations (12 at n = 20), once, before the first
+//! survey. Only a D within rounding of zero in every split — |D| ≤ 4nε(|f(θ + d)| +
+//! |f(θ + d_A)| + |f(θ + d_B)| + |f(θ)|) — passes, so a function whose coordinates
+//! interact anywhere in the test's reach keeps the full model; values all equal to f(θ)
+//! (a plateau) tell nothing, and non-finite ones fail.
+//!
+//! Why it pays: above n = 14 the full model's (n + 1)(n + 2)/2 coefficients outnumber its
+//! memory, each fit leans on the last, and on kinks (the L1 norm) it mispredicts most
+//! steps; the diagonal model's 2n + 1 coefficients are determined by its memory, and it
+//! holds a separable f's curvature exactly. On a rotated f the diagonal model fails, and
+//! there the test keeps the full one.
+
+use rand_core::Rng;
+
+use super::memory::memory_determines_model;
+use super::model::Shape;
+use super::options::{AutoModel, AutoStep};
+use super::{Auto, Memory};
+use crate::error::Error;
+use crate::objective::Objective;
+use crate::real::Real;
+
+/// Splits of the coordinates the test makes in dimension n: ⌈log₂ n⌉, one per bit of an
+/// index below n.
+const fn splits(n: usize) -> usize {
+    (usize::BITS - (n - 1).leading_zeros()) as usize
+}
+
+/// Points the test evaluates in dimension n: θ, θ + d and two per split.
+pub(super) const fn test_rows(n: usize) -> usize {
+    2 + 2 * splits(n)
+}
+
+impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
+    /// Whether this run tests f's separability before its first survey: the default
+    /// model in a dimension where the full model's memory does not determine it
+    /// (15 ≤ n ≤ [`FULL_MODEL_MAX_DIM`](super::FULL_MODEL_MAX_DIM)), a deterministic
+    /// objective, nothing evaluated yet.
+    pub(super) fn tests_separability(&self, noisy: bool) -> bool {
+        let n = self.theta.len();
+        self.model == AutoModel::ByDimension
+            && self.shape == Shape::Full
+            && !memory_determines_model(Shape::Full, n)
+            && !noisy
+            && self.st.evaluations == 0
+    }
+
+    /// Evaluates the test's points (module header) and, where f is separable, takes the
+    /// diagonal model. The points are not remembered (the first survey's geometry is what
+    /// a first fit needs); the lowest is the run's record where it lies below f(x₀).
+    /// Offsets are each coordinate's starting scale σL_ii, turned back where that would
+    /// leave the box. Returns [`AutoStep::OutOfBudget`] where the budget ends
+    /// within the test (the points evaluated so far count).
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteObjective`] under [`NonFinite::Error`](super::NonFinite::Error).
+    pub(super) fn test_separability<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        spent: &mut usize,
+    ) -> Result<Option<AutoStep>, Error> {
+        let n = self.theta.len();
+        let rows = test_rows(n);
+        self.mem.record.copy_from_slice(self.theta);
+        self.mem.origin.copy_from_slice(self.theta);
+        // d in `rs`: each coordinate's scale, towards the side of the box with room.
+        for i in 0..n {
+            let h = self.st.sigma * self.mem.l[i * n + i];
+            let (x, low, high) = (self.theta[i], self.mem.lower[i], self.mem.upper[i]);
+            self.mem.rs[i] = if x + h <= high {
+                h
+            } else if x - h >= low {
+                -h
+            } else if high - x >= x - low {
+                high - x
+            } else {
+                low - x
+            };
+        }
+        for row in 0..rows {
+            let stage = &mut self.mem.stage[row * n..(row + 1) * n];
+            for (i, x) in stage.iter_mut().enumerate() {
+                // Row 0 is θ, row 1 θ + d, rows 2 + 2b and 3 + 2b θ + d_A and θ + d_B
+                // for split b.
+                let moved = match row {
+                    0 => false,
+                    1 => true,
+                    _ => (i >> ((row - 2) / 2)) & 1 == (row % 2 == 0) as usize,
+                };
+                *x = if moved {
+                    self.theta[i] + self.mem.rs[i]
+                } else {
+                    self.theta[i]
+                };
+            }
+        }
+        let allowed = rows.min(self.remaining());
+        self.evaluate(objective, allowed, spent, |_| 0)?;
+        let f = &self.mem.stage_f[..allowed];
+        // A point below f(x₀) is the run's record until a descent beats it, as an
+        // earlier descent's best would be (θ stays: the survey looks around x₀).
+        if let Some((k, &low)) = f
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| v.is_finite())
+            .min_by(|a, b| a.1.partial_cmp(b.1).unwrap_or(core::cmp::Ordering::Equal))
+            && (low < f[0] || !f[0].is_finite())
+        {
+            self.mem
+                .record
+                .copy_from_slice(&self.mem.stage[k * n..(k + 1) * n]);
+            self.st.record = Some(low);
+        }
+        if allowed < rows {
+            return Ok(Some(AutoStep::OutOfBudget));
+        }
+        if separable(f, n) {
+            self.take_diagonal_model();
+        }
+        Ok(None)
+    }
+
+    /// Changes the run's model to the diagonal one before anything is remembered: the
+    /// memory cut to the diagonal model's regions and the metric set up afresh from the
+    /// coordinates' starting scales.
+    fn take_diagonal_model(&mut self) {
+        let n = self.theta.len();
+        let memory = core::mem::replace(&mut self.mem, Memory::empty());
+        self.mem = memory.reshaped(Shape::Diagonal, n);
+        self.shape = Shape::Diagonal;
+        self.st.factored = 0;
+        self.shape_scales();
+        // `shape_scales` worked in `tmp`, which holds θ at the iteration's start: x₀.
+        self.mem.tmp.copy_from_slice(self.mem.origin);
+    }
+}
+
+/// Whether the test's values (`f`: θ, θ + d, then θ + d_A and θ + d_B per split) show no
+/// mixed difference beyond rounding, and not only ties with f(θ).
+fn separable<T: Real>(f: &[T], n: usize) -> bool {
+    let (centre, all) = (f[0], f[1]);
+    if f.iter().any(|v| !v.is_finite()) || f.iter().all(|&v| v == centre) {
+        return false;
+    }
+    let rounding = T::from_f64(4.0) * T::from_usize(n) * T::EPSILON;
+    f[2..].chunks_exact(2).all(|pair| {
+        let (a, b) = (pair[0], pair[1]);
+        let mixed = all - a - b + centre;
+        mixed.abs() <= rounding * (all.abs() + a.abs() + b.abs() + centre.abs())
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn splits_cover_every_pair_of_coordinates() {
+        for n in [15usize, 16, 17, 20, 32, 33, 63] {
+            let bits = splits(n);
+            assert!(1 << bits >= n && 1 << (bits - 1) < n, "n = {n}");
+            for i in 0..n {
+                for j in 0..i {
+                    assert!((0..bits).any(|b| (i >> b) & 1 != (j >> b) & 1));
+                }
+            }
+        }
+        assert_eq!(test_rows(20), 12);
+    }
+}
