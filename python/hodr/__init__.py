@@ -80,6 +80,9 @@ class OptimizeResult(dict):
     seed : int
         The seed the run used: the one given, or the one drawn for ``seed=None``.
         Passing it again repeats the run.
+    model : str
+        The model the run used, ``"full"`` or ``"diagonal"`` (``options["model"]``): the
+        one named, or Auto's own choice.
     """
 
     def __getattr__(self, name: str) -> Any:
@@ -92,7 +95,7 @@ class OptimizeResult(dict):
     __delattr__ = dict.__delitem__
 
     def __repr__(self) -> str:
-        keys = ("message", "success", "status", "fun", "x", "nit", "nfev", "seed")
+        keys = ("message", "success", "status", "fun", "x", "nit", "nfev", "model", "seed")
         width = max(map(len, keys))
         return "\n".join(f"{k.rjust(width)}: {self[k]!r}" for k in keys if k in self)
 

@@ -15,7 +15,7 @@ use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender, channel};
 use std::thread::JoinHandle;
 use std::time::Duration;
 
-use hodr_core::optim::AutoTermination;
+use hodr_core::optim::{AutoModel, AutoTermination};
 use hodr_core::{Batch, Error, NoiseSeed, Objective};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArrayDyn, PyUntypedArrayMethods};
@@ -34,12 +34,13 @@ enum FromAuto {
     /// Points to evaluate, row-major, and their noise seeds.
     Batch(Vec<f64>, Vec<NoiseSeed>),
     /// An iteration ended: evaluations so far, f at the best point (where Auto has seen
-    /// a finite one), σ, the best point.
+    /// a finite one), σ, the best point, the model the run uses.
     Iteration {
         evaluations: usize,
         value: Option<f64>,
         sigma: f64,
         theta: Vec<f64>,
+        model: AutoModel,
     },
     /// The run ended.
     Done {
@@ -130,6 +131,9 @@ pub struct AskTell {
     /// `options['non_finite'] = 'error'`: a non-finite value ends the run.
     non_finite_error: bool,
     history: (Vec<u64>, Vec<f64>, Vec<f64>),
+    /// The model the run uses, as of its last iteration ([`Problem::starting_model`]
+    /// before the first).
+    model: AutoModel,
     done: Option<(Option<AutoTermination>, usize, usize)>,
     error: Option<Failure>,
 }
@@ -157,7 +161,9 @@ impl AskTell {
                     value,
                     sigma,
                     theta,
+                    model,
                 }) => {
+                    self.model = model;
                     self.seen.settle();
                     self.history.0.push(evaluations as u64);
                     self.history.1.push(self.seen.best(value, &theta).1);
@@ -216,6 +222,7 @@ impl AskTell {
         let problem = Problem::new(x0, sigma0, bounds, budget, seed, settings)?;
         let n = problem.dim();
         let best = (problem.memory().0, None);
+        let model = problem.starting_model();
         let (to_caller, from_auto) = channel();
         let (values, from_caller) = channel();
         let thread = std::thread::spawn(move || {
@@ -238,6 +245,7 @@ impl AskTell {
                                     value: report.value,
                                     sigma: report.sigma,
                                     theta: auto.theta().to_vec(),
+                                    model: auto.model(),
                                 };
                                 if to_caller.send(iteration).is_err() {
                                     break;
@@ -279,6 +287,7 @@ impl AskTell {
             told: 0,
             non_finite_error,
             history: (Vec::new(), Vec::new(), Vec::new()),
+            model,
             done: None,
             error: None,
         })
@@ -397,6 +406,7 @@ impl AskTell {
             self.told,
             iterations,
             self.seen.any_finite(),
+            self.model,
         )?;
         if self.done.is_none() {
             result.set_item("success", false)?;

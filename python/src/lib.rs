@@ -357,6 +357,17 @@ impl Problem {
         self.x0.len()
     }
 
+    /// The model a run starts with: the one named, or by the dimension the full model up
+    /// to [`FULL_MODEL_MAX_DIM`] and the diagonal one above (from n = 15 the default may
+    /// take the diagonal model after its first step: [`Auto::model`]).
+    pub(crate) fn starting_model(&self) -> AutoModel {
+        match self.model {
+            AutoModel::ByDimension if self.dim() > FULL_MODEL_MAX_DIM => AutoModel::Diagonal,
+            AutoModel::ByDimension => AutoModel::Full,
+            named => named,
+        }
+    }
+
     /// θ (x₀) and Auto's buffer.
     pub(crate) fn memory(&self) -> (Vec<f64>, Vec<f64>) {
         let n = self.dim();
@@ -457,6 +468,7 @@ fn minimize_auto<'py>(
         objective.calls,
         auto.iteration(),
         objective.seen.any_finite(),
+        auto.model(),
     )?;
     result.set_item("history_nfev", nfev.into_pyarray(py))?;
     result.set_item("history_fun", best.into_pyarray(py))?;
@@ -488,8 +500,10 @@ pub(crate) enum End {
 }
 
 /// The `OptimizeResult` fields of a run, history aside: `x` and `fun` the best point and
-/// its value, `nfev` the evaluations, `nit` the iterations. A run in which `fun` never
-/// returned a finite value (`finite` false) has not succeeded, whatever ended it.
+/// its value, `nfev` the evaluations, `nit` the iterations, `model` the model the run
+/// uses (`"full"` or `"diagonal"`, [`Auto::model`]). A run in which `fun` never returned a
+/// finite value (`finite` false) has not succeeded, whatever ended it.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn result_dict<'py>(
     py: Python<'py>,
     end: End,
@@ -498,6 +512,7 @@ pub(crate) fn result_dict<'py>(
     nfev: usize,
     nit: usize,
     finite: bool,
+    model: AutoModel,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (success, status, mut message) = match end {
         End::Callback => (false, 3, "stopped by the callback".to_string()),
@@ -526,6 +541,11 @@ pub(crate) fn result_dict<'py>(
     result.set_item("success", success && finite)?;
     result.set_item("status", status)?;
     result.set_item("message", message)?;
+    let model = match model {
+        AutoModel::Diagonal => "diagonal",
+        _ => "full",
+    };
+    result.set_item("model", model)?;
     Ok(result)
 }
 

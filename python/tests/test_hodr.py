@@ -328,18 +328,27 @@ def test_an_objective_unbounded_below_diverges():
 
 
 def test_the_model_option():
-    """options['model'] names the shape Auto would pick by dimension, or the other: the
-    named default runs the default run, and the diagonal model takes a 20-D sum of kinks
-    to 1e-6 within the budget; ask/tell with the option is minimize with it."""
+    """options['model'] names a model, and result.model says which one the run used. By
+    default a 20-D run first tests whether fun is separable (12 evaluations), then runs
+    the model the test picked: the diagonal one for a sum of kinks, the full one where a
+    squared sum couples the coordinates; above n = 63 the default is the diagonal model.
+    The diagonal model takes the 20-D sum of kinks to 1e-6 within the budget; ask/tell
+    with the option is minimize with it."""
     l1 = lambda x: float(np.abs(x - 0.3).sum())
+    coupled = lambda x: l1(x) + 0.1 * float(np.sum(x - 0.3)) ** 2
     x0 = np.linspace(-2.0, 2.0, 20)
-    default = hodr.minimize(l1, x0, 1.0, budget=300, seed=1)
-    full = hodr.minimize(l1, x0, 1.0, budget=300, seed=1, options={"model": "full"})
-    assert np.array_equal(default.history["fun"], full.history["fun"])
+    for fun, picked in ((l1, "diagonal"), (coupled, "full")):
+        default = hodr.minimize(fun, x0, 1.0, budget=312, seed=1)
+        named = hodr.minimize(fun, x0, 1.0, budget=300, seed=1, options={"model": picked})
+        assert default.model == named.model == picked
+        assert np.array_equal(default.history["nfev"], named.history["nfev"] + 12)
+        assert np.array_equal(default.history["sigma"], named.history["sigma"])
+    assert hodr.minimize(l1, x0, 1.0, budget=300, seed=1, options={"model": "full"}).model == "full"
     x70 = np.linspace(-2.0, 2.0, 70)
     default = hodr.minimize(l1, x70, 1.0, budget=300, seed=1)
     diagonal = hodr.minimize(l1, x70, 1.0, budget=300, seed=1, options={"model": "diagonal"})
     assert np.array_equal(default.history["fun"], diagonal.history["fun"])
+    assert default.model == "diagonal"
     res = hodr.minimize(l1, x0, 1.0, budget=8000, seed=1, options={"model": "diagonal"})
     assert res.fun < 1e-6, res.fun
     opt = hodr.Optimizer(x0, 1.0, budget=300, seed=1, options={"model": "diagonal"})
@@ -347,6 +356,11 @@ def test_the_model_option():
         opt.tell([l1(x) for x in opt.ask()])
     first = hodr.minimize(l1, x0, 1.0, budget=300, seed=1, options={"model": "diagonal"})
     assert np.array_equal(opt.result.history["fun"], first.history["fun"])
+    opt = hodr.Optimizer(x0, 1.0, budget=312, seed=1)
+    assert opt.result.model == "full"
+    while not opt.stop():
+        opt.tell([l1(x) for x in opt.ask()])
+    assert opt.result.model == "diagonal"
 
 
 def test_options_change_the_run():
