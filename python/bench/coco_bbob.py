@@ -11,7 +11,9 @@ with COCO's standard observer, then COCO's own post-processing (cocopp) compares
     python -m cocopp -o ppdata exdata/bbob-hodr* exdata/bbob-cma* exdata/bbob-bobyqa*
 
 `--functions 17,18` (or a range, `10-14`) runs a subset of the suite's functions, as
-COCO numbers them. `--suite bbob-mixint` runs the mixed-integer suite (integer
+COCO numbers them. At the end the script prints, per function and dimension, how many
+instances hit COCO's final target (f - f* <= 1e-8) within the budget and their median
+evaluations. `--suite bbob-mixint` runs the mixed-integer suite (integer
 variables: plateaus) in its own dimensions (5, 10, 20, ...), where the solvers see the
 same continuous box and the suite rounds the integer coordinates. `--suite bbob-noisy`
 runs COCO's noisy functions f101-f130, which draw fresh noise at every call: every
@@ -96,6 +98,7 @@ def main():
     observer = cocoex.Observer(args.suite, f"result_folder: {folder} algorithm_name: {args.solver}")
     rng = np.random.default_rng(0)
     start = time.perf_counter()
+    hits = {}
     for k, problem in enumerate(suite):
         problem.observe_with(observer)
         budget = args.budget * problem.dimension
@@ -105,11 +108,19 @@ def main():
             solve(problem, x0, budget - problem.evaluations, seed=restart)
             restart += 1
             x0 = rng.uniform(-4.0, 4.0, problem.dimension)
+        key = (problem.id_function, problem.dimension)
+        hits.setdefault(key, []).append(problem.evaluations if problem.final_target_hit else None)
         problem.free()
         if k % 60 == 0:
             print(f"{args.solver}: {k + 1}/{len(suite)} problems, {time.perf_counter() - start:.0f} s",
                   flush=True)
     print(f"{args.solver}: done in {time.perf_counter() - start:.0f} s")
+    print("function, n: instances whose run hit the final target (f - f* <= 1e-8) within the"
+          " budget, and the median evaluations of those")
+    for (function, n), runs in sorted(hits.items()):
+        solved = sorted(e for e in runs if e is not None)
+        median = solved[(len(solved) - 1) // 2] if solved else "-"
+        print(f"  f{function:02d}, {n}: {len(solved)}/{len(runs)}, {median}")
 
 
 if __name__ == "__main__":
