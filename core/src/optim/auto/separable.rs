@@ -65,8 +65,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// leave the box. Returns [`AutoStep::OutOfBudget`] where the budget ends
     /// within the test (the points evaluated so far count).
     ///
+    /// Kept out of line: its frame (the memory's regions while they are cut) then adds
+    /// nothing to the stack of a step that does not test.
+    ///
     /// # Errors
     /// [`Error::NonFiniteObjective`] under [`NonFinite::Error`](super::NonFinite::Error).
+    #[inline(never)]
     pub(super) fn test_separability<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,
