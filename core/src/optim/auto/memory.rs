@@ -324,188 +324,43 @@ impl<'b, T> Memory<'b, T> {
         Self::from_regions(core::array::from_fn(|_| <&mut [T]>::default()))
     }
 
-    /// The memory from its regions, in [`regions`]' order.
-    fn from_regions(regions: [&'b mut [T]; 52]) -> Self {
-        let [
-            lower,
-            upper,
-            xs,
-            fs,
-            gs,
-            zs,
-            zt,
-            ys,
-            ya,
-            yt,
-            ytheta,
-            u,
-            sw,
-            gid,
-            r,
-            gram,
-            kp,
-            norms,
-            schur,
-            beta,
-            g,
-            h,
-            g0,
-            h0,
-            c0,
-            gp,
-            hp,
-            a,
-            v,
-            gamma,
-            lambda,
-            s,
-            tmp,
-            frame,
-            stage,
-            stage_f,
-            rg,
-            rh,
-            rs,
-            gx,
-            hx,
-            c,
-            l,
-            li,
-            credit,
-            order,
-            scale,
-            best,
-            path,
-            record,
-            origin,
-            bracket,
-        ] = regions;
-        Memory {
-            lower,
-            upper,
-            xs,
-            fs,
-            gs,
-            zs,
-            zt,
-            ys,
-            ya,
-            yt,
-            ytheta,
-            u,
-            sw,
-            gid,
-            r,
-            gram,
-            kp,
-            norms,
-            schur,
-            beta,
-            g,
-            h,
-            g0,
-            h0,
-            c0,
-            gp,
-            hp,
-            a,
-            v,
-            gamma,
-            lambda,
-            s,
-            tmp,
-            frame,
-            stage,
-            stage_f,
-            rg,
-            rh,
-            rs,
-            gx,
-            hx,
-            c,
-            l,
-            li,
-            credit,
-            order,
-            scale,
-            best,
-            path,
-            record,
-            origin,
-            bracket,
-        }
-    }
-
     /// The memory of a run that takes the model `shape` before anything is remembered
     /// (`Auto::take_diagonal_model`): each region cut to `shape`'s length, which is at
-    /// most its length now (a constant assertion below), its first floats kept.
+    /// most its length now (a constant assertion above), its first floats kept.
     pub(super) fn reshaped(self, shape: Shape, n: usize) -> Self {
-        let Memory {
-            lower,
-            upper,
-            xs,
-            fs,
-            gs,
-            zs,
-            zt,
-            ys,
-            ya,
-            yt,
-            ytheta,
-            u,
-            sw,
-            gid,
-            r,
-            gram,
-            kp,
-            norms,
-            schur,
-            beta,
-            g,
-            h,
-            g0,
-            h0,
-            c0,
-            gp,
-            hp,
-            a,
-            v,
-            gamma,
-            lambda,
-            s,
-            tmp,
-            frame,
-            stage,
-            stage_f,
-            rg,
-            rh,
-            rs,
-            gx,
-            hx,
-            c,
-            l,
-            li,
-            credit,
-            order,
-            scale,
-            best,
-            path,
-            record,
-            origin,
-            bracket,
-        } = self;
-        let mut cut = [
-            lower, upper, xs, fs, gs, zs, zt, ys, ya, yt, ytheta, u, sw, gid, r, gram, kp, norms,
-            schur, beta, g, h, g0, h0, c0, gp, hp, a, v, gamma, lambda, s, tmp, frame, stage,
-            stage_f, rg, rh, rs, gx, hx, c, l, li, credit, order, scale, best, path, record,
-            origin, bracket,
-        ];
+        let mut cut = self.into_regions();
         for (region, len) in cut.iter_mut().zip(regions(shape, n)) {
             *region = core::mem::take(region).split_at_mut(len).0;
         }
         Self::from_regions(cut)
     }
 }
+
+/// [`Memory::from_regions`] and [`Memory::into_regions`], from one list of its fields in
+/// [`regions`]' order.
+macro_rules! region_order {
+    ($($field:ident),* $(,)?) => {
+        impl<'b, T> Memory<'b, T> {
+            /// The memory from its regions, in [`regions`]' order.
+            fn from_regions(regions: [&'b mut [T]; 52]) -> Self {
+                let [$($field),*] = regions;
+                Memory { $($field),* }
+            }
+
+            /// The memory's regions, in [`regions`]' order.
+            fn into_regions(self) -> [&'b mut [T]; 52] {
+                let Memory { $($field),* } = self;
+                [$($field),*]
+            }
+        }
+    };
+}
+
+region_order!(
+    lower, upper, xs, fs, gs, zs, zt, ys, ya, yt, ytheta, u, sw, gid, r, gram, kp, norms, schur,
+    beta, g, h, g0, h0, c0, gp, hp, a, v, gamma, lambda, s, tmp, frame, stage, stage_f, rg, rh, rs,
+    gx, hx, c, l, li, credit, order, scale, best, path, record, origin, bracket,
+);
 
 impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// A fresh noise group's id.

@@ -1,6 +1,6 @@
 //! Whether f is separable, f(x) = Σᵢ gᵢ(xᵢ): the test by which the default model
-//! ([`AutoModel::ByDimension`](super::AutoModel::ByDimension)) takes the diagonal shape
-//! from n = 15, where the full model's memory no longer determines it.
+//! ([`AutoModel::ByDimension`]) takes the diagonal shape from n = 15, where the full
+//! model's memory no longer determines it.
 //!
 //! A separable f has no mixed differences: for disjoint sets of coordinates A and B and
 //! offsets d_A, d_B along them,
