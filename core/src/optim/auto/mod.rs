@@ -1145,6 +1145,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.shared = None;
         self.st.gained = false;
         self.mem.tmp.copy_from_slice(self.theta);
+        if self.st.evaluations == 0 {
+            // x₀ is the run's record and origin until a descent ends (`Auto::keep_record`).
+            self.mem.record.copy_from_slice(self.theta);
+            self.mem.origin.copy_from_slice(self.theta);
+        }
         let mut spent = 0;
         let mut kind = if self.tests_separability(noisy) {
             self.test_separability(objective, &mut spent)?

@@ -25,10 +25,6 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         spent: &mut usize,
     ) -> Result<Option<AutoStep>, Error> {
         let n = self.theta.len();
-        if self.st.evaluations == 0 {
-            self.mem.record.copy_from_slice(self.theta);
-            self.mem.origin.copy_from_slice(self.theta);
-        }
         let sigma = self.st.sigma;
         let first = !self.st.centre_known;
         let near = self.count_within(T::from_f64(REACH));

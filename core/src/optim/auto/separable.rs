@@ -40,7 +40,7 @@ const fn splits(n: usize) -> usize {
 }
 
 /// Points the test evaluates in dimension n: θ, θ + d and two per split.
-pub(super) const fn test_rows(n: usize) -> usize {
+const fn test_rows(n: usize) -> usize {
     2 + 2 * splits(n)
 }
 
@@ -78,8 +78,6 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     ) -> Result<Option<AutoStep>, Error> {
         let n = self.theta.len();
         let rows = test_rows(n);
-        self.mem.record.copy_from_slice(self.theta);
-        self.mem.origin.copy_from_slice(self.theta);
         // d in `rs`: each coordinate's scale, towards the side of the box with room.
         for i in 0..n {
             let h = self.st.sigma * self.mem.l[i * n + i];
