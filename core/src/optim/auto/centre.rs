@@ -191,7 +191,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                     continue;
                 }
                 pending = true;
-                self.evaluate(objective, staged, spent, |_| 0)?;
+                self.evaluate(objective, 0, staged, spent, |_| 0)?;
                 let mut lowest: Option<(usize, T)> = None;
                 let mut r = 0;
                 for side in start..k {
@@ -243,7 +243,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if self.remaining() == 0 {
             return Ok(Centring::OutOfBudget);
         }
-        self.evaluate(objective, 1, spent, |_| 0)?;
+        self.evaluate(objective, 0, 1, spent, |_| 0)?;
         let f = self.mem.stage_f[0];
         if f == value {
             self.mem.origin.copy_from_slice(self.theta);

@@ -532,6 +532,9 @@ struct State<T> {
     value: Option<T>,
     /// θ has been evaluated (its value may be non-finite).
     centre_known: bool,
+    /// f(θ) as the separability test measured it (possibly non-finite): the first
+    /// survey takes it rather than evaluating θ again.
+    tested_centre: Option<T>,
     /// Remembered points.
     count: usize,
     has_prior: bool,
@@ -693,6 +696,7 @@ impl<T: Real> State<T> {
             evaluations: 0,
             value: None,
             centre_known: false,
+            tested_centre: None,
             count: 0,
             has_prior: false,
             saved: SavedPrior {

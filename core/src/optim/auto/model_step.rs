@@ -136,7 +136,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             Some(shared) => shared,
             None => (seed, self.next_group()),
         };
-        self.evaluate(objective, rows, spent, |_| seed)?;
+        self.evaluate(objective, 0, rows, spent, |_| seed)?;
         let trial = self.mem.stage_f[0];
         let mut reference = if compare { self.mem.stage_f[1] } else { value };
         self.remember(rows, group, false);

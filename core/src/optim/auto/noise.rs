@@ -48,7 +48,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     ) -> Result<T, Error> {
         let n = self.theta.len();
         self.mem.stage[..n].copy_from_slice(self.theta);
-        self.evaluate(objective, 1, spent, |_| 0)?;
+        self.evaluate(objective, 0, 1, spent, |_| 0)?;
         Ok(self.mem.stage_f[0])
     }
 

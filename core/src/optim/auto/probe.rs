@@ -69,7 +69,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.stage_probe(row);
         }
         let mut spent = 0;
-        self.evaluate(objective, rows, &mut spent, |_| 0)?;
+        self.evaluate(objective, 0, rows, &mut spent, |_| 0)?;
         self.st.iteration += 1;
         self.st.probes -= rows;
         let record = self.st.record.unwrap_or(T::MAX);

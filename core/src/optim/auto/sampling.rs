@@ -119,7 +119,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 rows += 1;
             }
         }
-        let allowed = rows.min(self.remaining());
+        // θ's value from the separability test, where it measured one, is not drawn
+        // again.
+        let known = if first {
+            self.st.tested_centre.take()
+        } else {
+            None
+        };
+        let from = usize::from(known.is_some());
+        let allowed = from + (rows - from).min(self.remaining());
         if rows > 0 && allowed == 0 {
             return Ok(Some(AutoStep::OutOfBudget));
         }
@@ -130,7 +138,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             let seed_base = self.rng.next_u64();
             let centre_rows = usize::from(centre);
             let noisy = self.st.noisy;
-            self.evaluate(objective, allowed, spent, |row| {
+            if let Some(f) = known {
+                self.mem.stage_f[0] = f;
+            }
+            self.evaluate(objective, from, allowed, spent, |row| {
                 if row < centre_rows || noisy {
                     seed_base
                 } else {
@@ -273,7 +284,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         k
     }
 
-    /// Evaluates the first `rows` staged points with the given seeds, in chunks; with
+    /// Evaluates staged rows `from … rows − 1` with the given seeds (`seed(row)`), in
+    /// chunks; with
     /// [`NonFinite::Error`] the first chunk that leaves a point non-finite ends the batch
     /// with [`Error::NonFiniteObjective`], naming that point's first draw.
     ///
@@ -285,13 +297,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     pub(super) fn evaluate<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,
+        from: usize,
         rows: usize,
         spent: &mut usize,
         seed: impl Fn(usize) -> NoiseSeed,
     ) -> Result<(), Error> {
         let n = self.theta.len();
         let mut seeds = [0 as NoiseSeed; CHUNK];
-        let mut start = 0;
+        let mut start = from;
         while start < rows {
             let len = (rows - start).min(CHUNK);
             for (k, s) in seeds[..len].iter_mut().enumerate() {

@@ -12,7 +12,7 @@
 //! index, A_b = {i : bit b of i is 1} and B_b its complement for b < ⌈log₂ n⌉, puts every
 //! pair on opposite sides in at least one split, and every split shares the point
 //! θ + d: the test costs 2 + 2⌈log₂ n⌉ evaluations (12 at n = 20), once, before the first
-//! survey. Only a D within rounding of zero in every split — |D| ≤ 4nε(|f(θ + d)| +
+//! survey, which takes the test's f(θ) rather than evaluating θ again. Only a D within rounding of zero in every split — |D| ≤ 4nε(|f(θ + d)| +
 //! |f(θ + d_A)| + |f(θ + d_B)| + |f(θ)|) — passes, so a function whose coordinates
 //! interact anywhere in the test's reach keeps the full model; values all equal to f(θ)
 //! (a plateau) tell nothing, and non-finite ones fail.
@@ -59,8 +59,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Evaluates the test's points (module header) and, where f is separable, takes the
-    /// diagonal model. The points are not remembered (the first survey's geometry is what
-    /// a first fit needs); the lowest is the run's record where it lies below f(x₀).
+    /// diagonal model. The points but θ are not remembered (the first survey's geometry
+    /// is what a first fit needs; θ's value is the survey's centre); the lowest is the
+    /// run's record where it lies below f(x₀).
     /// Offsets are each coordinate's starting scale σL_ii, turned back where that would
     /// leave the box. Returns [`AutoStep::OutOfBudget`] where the budget ends
     /// within the test (the points evaluated so far count).
@@ -110,8 +111,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             }
         }
         let allowed = rows.min(self.remaining());
-        self.evaluate(objective, allowed, spent, |_| 0)?;
+        self.evaluate(objective, 0, allowed, spent, |_| 0)?;
         let f = &self.mem.stage_f[..allowed];
+        self.st.tested_centre = f.first().copied();
         // A point below f(x₀) is the run's record until a descent beats it, as an
         // earlier descent's best would be (θ stays: the survey looks around x₀).
         if let Some((k, &low)) = f
