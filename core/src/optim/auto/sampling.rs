@@ -285,7 +285,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Evaluates staged rows `from … rows − 1` with the given seeds (`seed(row)`), in
-    /// chunks; with
+    /// chunks (rows before `from` keep the values staged for them); with
     /// [`NonFinite::Error`] the first chunk that leaves a point non-finite ends the batch
     /// with [`Error::NonFiniteObjective`], naming that point's first draw.
     ///
