@@ -27,8 +27,8 @@ pub enum AutoModel {
     /// in between the full model, unless the first step finds a deterministic f
     /// separable, f(x) = Σᵢ gᵢ(xᵢ), to rounding — a test of 2 + 2⌈log₂ n⌉ evaluations
     /// (12 at n = 20), f(x₀) among them, which the run does not evaluate again — and
-    /// takes the diagonal one, which holds such an f's curvature
-    /// exactly ([`Auto::model`](super::Auto::model) says which). Default.
+    /// takes the diagonal one, which holds such an f's curvature exactly
+    /// ([`Auto::model`](super::Auto::model) says which). Default.
     #[default]
     ByDimension,
     /// A full Hessian, (n + 1)(n + 2)/2 coefficients, and a full metric C: learns

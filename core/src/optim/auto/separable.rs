@@ -12,8 +12,9 @@
 //! index, A_b = {i : bit b of i is 1} and B_b its complement for b < ⌈log₂ n⌉, puts every
 //! pair on opposite sides in at least one split, and every split shares the point
 //! θ + d: the test costs 2 + 2⌈log₂ n⌉ evaluations (12 at n = 20), once, before the first
-//! survey, which takes the test's f(θ) rather than evaluating θ again. Only a D within rounding of zero in every split — |D| ≤ 4nε(|f(θ + d)| +
-//! |f(θ + d_A)| + |f(θ + d_B)| + |f(θ)|) — passes, so a function whose coordinates
+//! survey, which takes the test's f(θ) rather than evaluating θ again. Only a D within
+//! rounding of zero in every split — |D| ≤ 4nε(|f(θ + d)| + |f(θ + d_A)| + |f(θ + d_B)| +
+//! |f(θ)|) — passes, so a function whose coordinates
 //! interact anywhere in the test's reach keeps the full model; values all equal to f(θ)
 //! (a plateau) tell nothing, and non-finite ones fail.
 //!
