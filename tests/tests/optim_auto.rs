@@ -241,9 +241,9 @@ fn a_round_bowl_is_solved_by_the_first_model() {
     }
 }
 
-/// Runs Auto with its defaults on the bowl ‖x‖² from x₀ = 1 (n coordinates), σ₀ = 1,
-/// until it ends by itself, handing each iteration's report to `each`.
-fn bowl_to_convergence(n: usize, seed: u64, mut each: impl FnMut(&AutoReport<f64>)) {
+/// Runs Auto with its defaults on the bowl `offset` + ‖x‖² from x₀ = 1 (n coordinates),
+/// σ₀ = 1, until it ends by itself, handing each iteration's report to `each`.
+fn bowl_to_convergence(n: usize, offset: f64, seed: u64, mut each: impl FnMut(&AutoReport<f64>)) {
     let mut theta = vec![1.0; n];
     let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)];
     let mut auto = Auto::new(
@@ -253,7 +253,8 @@ fn bowl_to_convergence(n: usize, seed: u64, mut each: impl FnMut(&AutoReport<f64
         Xoshiro256PlusPlus::seed_from_u64(seed),
     )
     .unwrap();
-    let mut bowl = sphere(0.0, 1.0);
+    let mut sphere = sphere(0.0, 1.0);
+    let mut bowl = |x: &[f64]| offset + sphere(x);
     auto.run(&mut bowl, |report, _| each(report)).unwrap();
 }
 
@@ -270,7 +271,7 @@ fn a_claimed_minimum_draws_its_validation_at_once() {
         let (mut claims, mut repeats) = (0, 0);
         for seed in 0..10 {
             let mut last_unvalidated = false;
-            bowl_to_convergence(n, seed, |report| {
+            bowl_to_convergence(n, 0.0, seed, |report| {
                 let unvalidated =
                     report.kind == AutoStep::AtModelMinimum && report.next_sigma == report.sigma;
                 claims += usize::from(unvalidated);
@@ -298,7 +299,7 @@ fn a_restart_keeps_its_survey() {
     for n in [2, 5, 10, 20] {
         let (mut restarts, mut rejected) = (0, 0);
         for seed in 0..10 {
-            bowl_to_convergence(n, seed, |report| {
+            bowl_to_convergence(n, 0.0, seed, |report| {
                 restarts += usize::from(report.next_sigma > report.sigma);
                 rejected += usize::from(report.kind == AutoStep::Rejected);
             });
@@ -325,11 +326,43 @@ fn a_bowl_run_with_no_budget_ends_soon() {
         for seed in 0..5 {
             let mut evaluations = 0;
             let mut best = f64::INFINITY;
-            bowl_to_convergence(n, seed, |report| {
+            bowl_to_convergence(n, 0.0, seed, |report| {
                 evaluations = report.evaluations;
                 best = report.value.map_or(best, |v| best.min(v));
             });
             assert!(best < 1e-20, "n = {n}, seed {seed}: f {best:e}");
+            runs.push(evaluations);
+        }
+        runs.sort_unstable();
+        assert!(
+            runs[runs.len() / 2] <= 64 * (n + 1),
+            "n = {n}: runs took {runs:?} evaluations"
+        );
+    }
+}
+
+/// On a bowl whose minimum is away from zero, 10 + ‖x‖², f's values tie by rounding
+/// once σ is a few 10⁻⁸ (16 ulps of 10 is 3.6·10⁻¹⁴), and σ never falls to the
+/// tolerance: the descent ends there as converged, because the points that tie with θ
+/// lie within the distance over which rounding hides the bowl's rise and the model at
+/// twice that σ has just confirmed θ as its minimum (`Auto::ties_are_rounding`). Before,
+/// σ went back and forth between that scale and twice it until the patience ran out,
+/// 10n + 20 iterations of two evaluations, and again after each restart. Medians over
+/// seeds 0–4: 100, 264, 536 and 1 069 evaluations at n = 2, 5, 10 and 20 (the largest
+/// 110, 268, 546 and 1 084), where before 806, 2 591, 3 017 and 1 101 (the largest
+/// 1 170, 3 387, 5 182 and 4 576); the bound is the zero-offset bowl's, 64(n + 1). Deterministic: the same runs every time.
+#[test]
+fn a_bowl_away_from_zero_with_no_budget_ends_soon() {
+    for n in [2, 5, 10, 20] {
+        let mut runs = Vec::new();
+        for seed in 0..5 {
+            let mut evaluations = 0;
+            let mut best = f64::INFINITY;
+            bowl_to_convergence(n, 10.0, seed, |report| {
+                evaluations = report.evaluations;
+                best = report.value.map_or(best, |v| best.min(v));
+            });
+            assert!(best - 10.0 <= 1e-14, "n = {n}, seed {seed}: f {best:e}");
             runs.push(evaluations);
         }
         runs.sort_unstable();
@@ -1095,12 +1128,15 @@ fn a_descent_in_a_worse_basin_ends_unpolished() {
 
 /// A descent at a minimum whose value is far from zero ends once f's arithmetic no
 /// longer resolves what its model promises ([`hodr_core::optim::auto::UNRESOLVED_FITS`])
-/// rather than after its patience: f(x) = 10³ + Σᵢ (i + 1)(xᵢ − 1)² in 10-D, one descent
-/// (fresh starts off, its restarts included) from xᵢ = 0.3 with σ₀ = 1, seeds 0–39.
-/// Measured over the ten blocks of 40 seeds in 0–399: 24 389 to 26 175 evaluations in
-/// all with the rule, 103 578 to 117 403 without it (each descent's σ went back and forth
-/// between scales where the ratio test compared rounding errors), and θ within 6.3·10⁻⁹
-/// of the minimum in every run either way. Bounds: 50 000 evaluations, 10⁻⁷.
+/// or its samples tie with f(θ) by rounding right after the model confirmed θ
+/// (`Auto::ties_are_rounding`), rather than after its patience: f(x) = 10³ +
+/// Σᵢ (i + 1)(xᵢ − 1)² in 10-D, one descent (fresh starts off, its restarts included) from
+/// xᵢ = 0.3 with σ₀ = 1, seeds 0–39. Measured over blocks of 40 seeds in 0–359: 15 567 to
+/// 16 192 evaluations in all with both rules and θ within 6.6·10⁻⁸ to 1.26·10⁻⁷ of the
+/// minimum (f's 16-ulp resolution alone would allow 1.9·10⁻⁶); 24 389 to 26 175 and
+/// 6.3·10⁻⁹ with the first rule only, 103 578 to 117 403 with neither (each descent's σ
+/// went back and forth between scales where the ratio test compared rounding errors).
+/// Bounds: 25 000 evaluations, 5·10⁻⁷.
 #[test]
 fn a_minimum_far_from_zero_ends_where_f_stops_resolving() {
     let n = 10;
@@ -1115,9 +1151,9 @@ fn a_minimum_far_from_zero_ends_where_f_stops_resolving() {
         };
         let (theta, _, _) = descend(&mut f, &vec![0.3; n], 1.0, 100_000, seed);
         let error = theta.iter().map(|v| (v - 1.0).abs()).fold(0.0, f64::max);
-        assert!(error <= 1e-7, "seed {seed}: θ {error:.1e} from the minimum");
+        assert!(error <= 5e-7, "seed {seed}: θ {error:.1e} from the minimum");
     }
-    assert!(evaluations <= 50_000, "{evaluations} evaluations");
+    assert!(evaluations <= 25_000, "{evaluations} evaluations");
 }
 
 /// Once two wide fresh descents in a row have ended on the same value, later fresh

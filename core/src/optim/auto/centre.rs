@@ -27,7 +27,7 @@
 
 use rand_core::Rng;
 
-use super::{Auto, PLATEAU_WIDTH, tie_width};
+use super::{Auto, PLATEAU_WIDTH, tie_width, ties_with};
 use crate::error::Error;
 use crate::objective::Objective;
 use crate::real::Real;
@@ -85,6 +85,23 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             .filter(|&k| self.mem.fs[k] == value)
             .fold(T::ZERO, |d, k| d.max(self.scaled_distance(theta, k)));
         tied > T::ZERO && !self.rounding_explains(theta, value, tied)
+    }
+
+    /// Whether the remembered points that tie with f(θ) (within [`tie_width`], θ aside)
+    /// do so by f's rounding alone ([`Auto::rounding_explains`]), on an objective whose
+    /// values are exact: θ is at a smooth minimum that T resolves no further at this σ,
+    /// not on a flat piece. False where none ties.
+    pub(super) fn ties_are_rounding(&self) -> bool {
+        if self.st.noisy || self.st.unseeded {
+            return false;
+        }
+        let Some(value) = self.st.value else {
+            return false;
+        };
+        let tied = (0..self.st.count)
+            .filter(|&k| ties_with(self.mem.fs[k], value))
+            .fold(T::ZERO, |d, k| d.max(self.scaled_distance(self.theta, k)));
+        tied > T::ZERO && self.rounding_explains(self.theta, value, tied)
     }
 
     /// Whether f's rounding alone explains ties with `value` out to `tied` from θ (in

@@ -151,7 +151,8 @@
 //!   fresh descents (below). When every coordinate's spread σ√Cᵢᵢ falls
 //!   below [`AutoOptions::tolerance`] of its start (σ below it times σ₀ on a noisy
 //!   objective; or σ below what T resolves at θ, or the model's promised decrease below
-//!   what T resolves of f(θ), [`UNRESOLVED_FITS`]), or after
+//!   what T resolves of f(θ), [`UNRESOLVED_FITS`], or samples that tie with f(θ) by
+//!   rounding alone at a minimum the model confirmed), or after
 //!   [`AutoOptions::patience`] iterations without a lower f(θ), the run restarts from
 //!   the best point with a survey of pairs, as the first iteration's, at the next scale of the cycle σ₀, 2σ₀,
 //!   …, [`PLATEAU_WIDTH`]·σ₀, σ₀, … (wider scales average over more of the basin that
@@ -656,6 +657,13 @@ struct State<T> {
     /// Model steps in a row whose predicted decrease f's arithmetic does not resolve
     /// ([`UNRESOLVED_FITS`]).
     unresolved: u32,
+    /// The last iteration's model, its points validating it, put its minimum at θ and
+    /// σ halved (`Auto::model_step`). Cleared once this iteration's samples are read.
+    confirmed: bool,
+    /// This iteration's samples tied with f(θ) by rounding alone right after a model
+    /// confirmed θ as its minimum ([`Auto::ties_are_rounding`]): σ is below the scale at
+    /// which T resolves f about that minimum, and the descent has converged.
+    rounded: bool,
     /// Fresh descents start at σ₀ rather than at their jump's scale from now on
     /// (`Auto::fresh_start`): a probe of this run has found a point below the record,
     /// or two wide descents in a row ended on the same value.
@@ -742,6 +750,8 @@ impl<T: Real> State<T> {
             record: None,
             hopeless: 0,
             unresolved: 0,
+            confirmed: false,
+            rounded: false,
             fresh: 0,
             fresh_narrow: false,
             fresh_wide: false,
@@ -1148,6 +1158,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.noisy = noisy;
         self.st.shared = None;
         self.st.gained = false;
+        self.st.rounded = false;
         self.mem.tmp.copy_from_slice(self.theta);
         if self.st.evaluations == 0 {
             // x₀ is the run's record and origin until a descent ends (`Auto::keep_record`).
@@ -1163,6 +1174,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if kind.is_none() {
             kind = self.sample(objective, &mut spent)?;
         }
+        self.st.confirmed = false;
         if self.st.pair_pending {
             let gain = if self.st.gained { T::ONE } else { T::ZERO };
             self.st.pair_rate += (gain - self.st.pair_rate) / T::from_f64(PAIR_MEMORY);
@@ -1198,7 +1210,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // finds that scale or θ's resolution.
         let tolerated = self.st.improved || self.st.noisy;
         let converged = tolerated
-            && (self.sigma_converged() || self.st.unresolved >= UNRESOLVED_FITS)
+            && (self.sigma_converged() || self.st.unresolved >= UNRESOLVED_FITS || self.st.rounded)
             || self.st.sigma <= resolution(scale)
             || self.st.hopeless >= HOPELESS_FITS;
         // A descent that has found no finite value has nothing to wait for once σ has

@@ -105,6 +105,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if predicted <= T::ZERO || !predicted.is_finite() || length <= T::from_f64(1e-3) * radius {
             if validated {
                 self.st.sigma = sigma * T::HALF;
+                self.st.confirmed = true;
             } else {
                 self.st.resample = true;
                 self.st.validate = !self.st.noisy;

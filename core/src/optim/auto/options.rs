@@ -225,8 +225,10 @@ impl<T: Real> AutoOptions<T> {
 pub enum AutoTermination {
     /// The samples' spread fell below [`AutoOptions::tolerance`] of its start, or σ below
     /// what T resolves at θ, or the model's promise below what T resolves of f(θ)
-    /// ([`UNRESOLVED_FITS`](super::UNRESOLVED_FITS)), or the box leaves a single point
-    /// (every lower bound equal to its upper bound), which has been evaluated.
+    /// ([`UNRESOLVED_FITS`](super::UNRESOLVED_FITS)), or the samples tie with f(θ) by
+    /// f's rounding alone right after the model confirmed θ as its minimum, or the box
+    /// leaves a single point (every lower bound equal to its upper bound), which has
+    /// been evaluated.
     Converged,
     /// [`AutoOptions::patience`] iterations passed without a lower f(θ).
     Stagnated,

@@ -232,10 +232,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if self.st.value.is_none() || 2 * ties > near || ties == near {
             // Ties say that f is flat here only where the values around θ differ by far
             // more than the 16 ulps within which they tie: at a smooth minimum they tie
-            // once σ is small enough that the arithmetic no longer resolves f.
+            // once σ is small enough that the arithmetic no longer resolves f. There,
+            // right after the model at the scale above confirmed θ as its minimum, the
+            // descent has converged where the rise of f about θ explains the ties (not
+            // before: the models at the scales between may still move θ closer).
             if let Some(v) = self.st.value {
                 if self.spread(T::from_f64(2.0 * REACH)) > T::EPSILON.sqrt() * v.abs() {
                     self.st.tie_scale = self.st.tie_scale.max(sigma);
+                } else {
+                    self.st.rounded = self.st.confirmed && self.ties_are_rounding();
                 }
             }
             self.st.sigma = self.widened_sigma(PLATEAU_WIDTH);
