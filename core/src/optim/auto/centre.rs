@@ -65,9 +65,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// lower than every earlier descent's, and a remembered point other than θ has
     /// exactly its value farther from θ than f's rounding explains
     /// ([`Auto::rounding_explains`]: a smooth f ties only where its rise near its
-    /// minimum falls below its resolution).
+    /// minimum falls below its resolution). Never where the descent ended because its
+    /// ties are rounding's ([`Auto::ties_are_rounding`], this iteration): the exact ties
+    /// may lie too close to θ for an untied point to be near enough to tell.
     pub(super) fn rests_on_flat_piece(&self) -> bool {
-        if !self.options.centre || self.st.noisy || (self.st.unseeded && !self.st.voting) {
+        if !self.options.centre
+            || self.st.rounded
+            || self.st.noisy
+            || (self.st.unseeded && !self.st.voting)
+        {
             return false;
         }
         let Some(value) = self.st.best_value.or(self.st.value) else {

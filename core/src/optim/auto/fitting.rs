@@ -56,6 +56,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // Σ wᵢ(m₀(uᵢ) − vᵢ)² and Σ wᵢvᵢ², vᵢ the scaled (f − f(θ)): the prior's misfit
         // and that of the flat model f(θ).
         let (mut misfit, mut spread) = (T::ZERO, T::ZERO);
+        // The same sums over the points remembered since the last fit, which the prior
+        // has not seen: (misfit, spread, points).
+        let mut unseen = (T::ZERO, T::ZERO, 0);
+        let first_unseen = self.st.count.saturating_sub(self.st.unfitted);
         let root_n = T::from_usize(n).sqrt();
         // From BY_COLUMNS_MIN_DIM coordinates on, H by columns for the prior's values
         // below (the same sums as by rows, in contiguous passes that vectorise); below
@@ -116,11 +120,20 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.mem.r[m] = sw * (v - prior);
             misfit += self.mem.r[m].sq();
             spread += (sw * v).sq();
+            if j >= first_unseen {
+                unseen = (
+                    unseen.0 + self.mem.r[m].sq(),
+                    unseen.1 + (sw * v).sq(),
+                    unseen.2 + 1,
+                );
+            }
             m += 1;
         }
         // A second pass at this θ (below) compares its rows with these, which the
         // system does not hold beyond `kept`.
         self.st.factored = kept.min(m);
+        self.st.prior_misfit = (self.st.has_prior && unseen.1 > T::ZERO && unseen.2 >= n)
+            .then(|| (unseen.0 / unseen.1).sqrt());
         if self.st.has_prior && spread > T::ZERO && misfit > T::from_f64(REFUTED).sq() * spread {
             self.st.has_prior = false;
             return self.fit(value, scale);

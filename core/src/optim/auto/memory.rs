@@ -449,6 +449,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 .copy_from_slice(&self.mem.stage[row * n..(row + 1) * n]);
             self.mem.fs[slot] = f;
             self.mem.gs[slot] = group;
+            self.st.unfitted += 1;
             self.mem.credit[slot] = T::ONE;
             if self.st.positions == Some(self.st.metric_changes) {
                 self.whiten_position(slot);

@@ -28,9 +28,11 @@
 //! * **Samples.** Where fewer than n + 1 remembered points (or half the memory, if
 //!   smaller) lie within z ≤ ρ, the iteration evaluates antithetic pairs θ ± σ√n·b along
 //!   Lb, b the columns of a random orthonormal frame (n pairs, or half the memory's
-//!   worth, and θ on the first iteration). A model that puts its minimum at θ shrinks
-//!   σ only once more than 2q − 2 remembered points lie within reach, q the count
-//!   above; short of that, the next iteration draws the pairs it lacks in one batch
+//!   worth, and θ on the first iteration). A model that puts its minimum at θ halves
+//!   σ (k times at its k-th such confirmation in a row, up to [`SETTLED_HALVINGS`],
+//!   where the model of the scale above predicted the points drawn since to
+//!   [`SETTLED_FIT`]) only once more than 2q − 2 remembered points lie within reach, q
+//!   the count above; short of that, the next iteration draws the pairs it lacks in one batch
 //!   (one pair per iteration on a declared-noisy objective): one fit instead of one per
 //!   pair, and a batch the caller can evaluate in parallel. A fit whose prior (the
 //!   last model, moved to θ and σ) already predicts every point to rounding
@@ -158,7 +160,11 @@
 //!   …, [`PLATEAU_WIDTH`]·σ₀, σ₀, … (wider scales average over more of the basin that
 //!   held it; a gain does not send the next restart back to σ₀, since on a lattice of
 //!   small steps some gain is always found there); after [`AutoOptions::restarts`]
-//!   restarts in a row without a gain its descent ends, converged or stagnated.
+//!   restarts in a row without a gain its descent ends, converged or stagnated. A
+//!   restart's gains count only once they have moved the best point, summed over the
+//!   gains, by the tolerance in some coordinate (in units of its start scale): a
+//!   restart that lowers f by moving θ less than the caller asked to resolve has found
+//!   the descent's own minimum again.
 //! * **Fresh starts.** A run with a budget on a deterministic objective then starts a
 //!   new descent about its best point (about x₀ while no value has been finite), as
 //!   basin hopping does ([`AutoOptions::fresh_starts`]): each coordinate moves by its
@@ -388,6 +394,24 @@ pub const NOISY_TOLERANCE: f64 = 1e-3;
 /// objective (a render on the caller's seed) still halves σ: the gentler factor was
 /// measured to lose runs there (docs/notes/2026-11-27-shrink.md).
 pub const SHRINK: f64 = 0.7;
+
+/// The most halvings of σ one validated model minimum makes. Where a model validated by
+/// its points puts its minimum at θ on a deterministic objective for the k-th time in a
+/// row, each time having predicted the points drawn since the fit before to
+/// [`SETTLED_FIT`], σ halves min(k, `SETTLED_HALVINGS`) times (a confirmation that drew
+/// no new points neither counts nor breaks the row; one whose prior mispredicted them
+/// ends it). A quadratic confirmed at one scale is confirmed at every smaller one, and
+/// halving once per validating survey spends a survey per factor 2 on the way to the
+/// tolerance. A model wrong below the scale it was confirmed at shows it at the next
+/// one, whose step, tie or misfit ends the row.
+pub const SETTLED_HALVINGS: u32 = 4;
+
+/// The largest misfit of a confirmed model on the points of the next scale, as a
+/// fraction of their spread about f(θ), for a confirmation there to count towards
+/// [`SETTLED_HALVINGS`]: the model of the scale above predicted the points at this one.
+/// A smooth f's misfit about its quadratic falls with σ; a piecewise-constant one's does
+/// not fall below its steps'.
+pub const SETTLED_FIT: f64 = 1e-3;
 
 /// How closely a fit's prior (the last model, moved to θ and σ) must predict the points
 /// for the fit to keep it as it is: a weighted RMS misfit of at most this fraction of
@@ -660,6 +684,21 @@ struct State<T> {
     /// The last iteration's model, its points validating it, put its minimum at θ and
     /// σ halved (`Auto::model_step`). Cleared once this iteration's samples are read.
     confirmed: bool,
+    /// Validated model minima in a row at θ on a smooth, deterministic objective
+    /// (`Auto::model_step`; [`SETTLED_HALVINGS`]); 0 after any other iteration.
+    settled: u32,
+    /// Σ over the gains since the descent's last restart (or its start) of how far each
+    /// moved the best point: maxᵢ |Δxᵢ| / sᵢ, sᵢ coordinate i's start scale (as
+    /// [`AutoOptions::tolerance`] measures it); at least how far the restart has taken
+    /// the best point in those units.
+    travelled: T,
+    /// Points remembered since the last model fit.
+    unfitted: usize,
+    /// The last fit's prior (the model before it, moved to θ and σ): its weighted RMS
+    /// misfit on the points remembered since the fit before, as a fraction of theirs
+    /// about f(θ); `None` without a prior, with fewer than n such points, or where they
+    /// all tie with f(θ).
+    prior_misfit: Option<T>,
     /// This iteration's samples tied with f(θ) by rounding alone right after a model
     /// confirmed θ as its minimum ([`Auto::ties_are_rounding`]): σ is below the scale at
     /// which T resolves f about that minimum, and the descent has converged.
@@ -751,6 +790,10 @@ impl<T: Real> State<T> {
             hopeless: 0,
             unresolved: 0,
             confirmed: false,
+            settled: 0,
+            travelled: T::ZERO,
+            unfitted: 0,
+            prior_misfit: None,
             rounded: false,
             fresh: 0,
             fresh_narrow: false,
@@ -1189,12 +1232,20 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             ratio = r;
         }
         let kind = kind.unwrap_or(AutoStep::OutOfBudget);
+        if kind != AutoStep::AtModelMinimum || self.st.gained {
+            self.st.settled = 0;
+        }
         self.st.iteration += 1;
         self.st.resample |= kind == AutoStep::Plateau;
         self.hold_sigma(sigma, kind, ratio);
         if self.st.gained {
             self.st.stale = 0;
-            self.st.may_restart |= self.below_best();
+            // A restart whose gains have moved the best point by less than the tolerance
+            // has found only what the descent before it had: it earns no further restart.
+            if self.below_best() {
+                self.st.travelled += self.best_moved();
+                self.st.may_restart |= self.st.travelled >= self.tolerance();
+            }
         } else {
             self.st.stale += 1;
         }
@@ -1370,6 +1421,22 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         let least = self.least_start_scale();
         (0..n).all(|i| self.axis_spread(i) < limit * self.start_scale(i).max(least))
+    }
+
+    /// How far θ, below the best point, lies from it, in units of each coordinate's
+    /// start scale: maxᵢ |θᵢ − bᵢ| / max(sᵢ, [`Auto::least_start_scale`]), b the point a
+    /// continuation move left ([`Memory::best`]) or else θ where this iteration began
+    /// ([`Memory::tmp`]).
+    fn best_moved(&self) -> T {
+        let least = self.least_start_scale();
+        let from: &[T] = if self.st.best_value.is_some() {
+            self.mem.best
+        } else {
+            self.mem.tmp
+        };
+        (0..self.theta.len()).fold(T::ZERO, |m, i| {
+            m.max((self.theta[i] - from[i]).abs() / self.start_scale(i).max(least))
+        })
     }
 
     /// Coordinate i's scale at the start before [`Auto::least_start_scale`]: the scale

@@ -9,8 +9,8 @@ use super::memory::{memory_determines_model, validating};
 use super::options::AutoStep;
 use super::{
     Auto, CONTINUATION_SCALE, DETERMINED_METRIC_WEIGHT, GROWTH_WIDTH, NOISE_MARGIN, PAIRS_PAY,
-    PAIRS_SKIPPED, PLATEAU_WIDTH, REACH, ROUGH, SHRINK, SMOOTH, STRIDE, THETA_DRAWS, lower_median,
-    metric, tie_width,
+    PAIRS_SKIPPED, PLATEAU_WIDTH, REACH, ROUGH, SETTLED_FIT, SETTLED_HALVINGS, SHRINK, SMOOTH,
+    STRIDE, THETA_DRAWS, lower_median, metric, tie_width,
 };
 use crate::error::Error;
 use crate::objective::Objective;
@@ -42,6 +42,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.st.sigma = sigma * T::HALF;
             return Ok((AutoStep::Rejected, None));
         };
+        self.st.unfitted = 0;
         let mut value = value;
         // θ's draw lies below the robust model's value at θ: it may be a lucky one.
         let mut lucky = false;
@@ -104,7 +105,22 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         );
         if predicted <= T::ZERO || !predicted.is_finite() || length <= T::from_f64(1e-3) * radius {
             if validated {
-                self.st.sigma = sigma * T::HALF;
+                // σ halves once, or more where the model confirmed at the scale above
+                // predicted the points drawn since (SETTLED_HALVINGS). A confirmation on
+                // points the last fit saw already says nothing new either way.
+                let smooth = !self.st.noisy && !self.st.unseeded;
+                match self.st.prior_misfit {
+                    Some(m) if smooth && m <= T::from_f64(SETTLED_FIT) => {
+                        self.st.settled = (self.st.settled + 1).min(SETTLED_HALVINGS);
+                    }
+                    None if smooth => {}
+                    _ => self.st.settled = 0,
+                }
+                let mut next = sigma * T::HALF;
+                for _ in 1..self.st.settled {
+                    next *= T::HALF;
+                }
+                self.st.sigma = next;
                 self.st.confirmed = true;
             } else {
                 self.st.resample = true;

@@ -281,6 +281,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.stale = 0;
         self.st.hopeless = 0;
         self.st.unresolved = 0;
+        self.st.settled = 0;
+        self.st.travelled = T::ZERO;
         self.st.sigma = sigma;
         self.st.survey = true;
         self.st.has_prior &= smooth;
