@@ -160,11 +160,11 @@
 //!   …, [`PLATEAU_WIDTH`]·σ₀, σ₀, … (wider scales average over more of the basin that
 //!   held it; a gain does not send the next restart back to σ₀, since on a lattice of
 //!   small steps some gain is always found there); after [`AutoOptions::restarts`]
-//!   restarts in a row without a gain its descent ends, converged or stagnated. A
-//!   restart's gains count only once they have moved the best point, summed over the
-//!   gains, by the tolerance in some coordinate (in units of its start scale): a
-//!   restart that lowers f by moving θ less than the caller asked to resolve has found
-//!   the descent's own minimum again.
+//!   restarts in a row without a gain its descent ends, converged or stagnated. Where
+//!   no fresh start follows (below), a restart's gains count only once they have moved
+//!   the best point, summed over the gains, by the tolerance in some coordinate (in
+//!   units of its start scale): a restart that lowers f by moving θ less than the
+//!   caller asked to resolve has found the descent's own minimum again.
 //! * **Fresh starts.** A run with a budget on a deterministic objective then starts a
 //!   new descent about its best point (about x₀ while no value has been finite), as
 //!   basin hopping does ([`AutoOptions::fresh_starts`]): each coordinate moves by its
@@ -1240,11 +1240,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.hold_sigma(sigma, kind, ratio);
         if self.st.gained {
             self.st.stale = 0;
-            // A restart whose gains have moved the best point by less than the tolerance
-            // has found only what the descent before it had: it earns no further restart.
+            // Without a fresh start to follow, a restart whose gains have moved the best
+            // point by less than the tolerance has found only what the descent before it
+            // had: it earns no further restart. (With one, any gain does: the restarts'
+            // cycle through the wider scales is what finds a multi-modal f's better
+            // basins, and the budget bounds it.)
             if self.below_best() {
                 self.st.travelled += self.best_moved();
-                self.st.may_restart |= self.st.travelled >= self.tolerance();
+                self.st.may_restart |=
+                    self.may_start_fresh() || self.st.travelled >= self.tolerance();
             }
         } else {
             self.st.stale += 1;

@@ -66,8 +66,9 @@ pub struct AutoOptions<T> {
     /// A descent restarts from its best point whenever it converges or stagnates with a
     /// lower f(θ) since its last restart (or its start); once a restart has found none,
     /// `restarts` more in a row without a lower f(θ) are made before the descent ends.
-    /// (A restart's gains count once they have moved the best point by `tolerance`
-    /// times its start scale in some coordinate, summed over the gains.)
+    /// (Where no fresh start follows, a restart's gains count once they have moved the
+    /// best point by `tolerance` times its start scale in some coordinate, summed over
+    /// the gains.)
     /// The k-th restart of a run is at σ₀·2^(k mod 5): σ₀, 2σ₀, …, [`PLATEAU_WIDTH`](super::PLATEAU_WIDTH)·σ₀
     /// (and, with bounds, at most half the box's widest side), then σ₀ again. Each
     /// looks around its scale with n antithetic pairs (at most half the memory's
