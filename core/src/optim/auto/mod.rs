@@ -684,8 +684,9 @@ struct State<T> {
     /// The last iteration's model, its points validating it, put its minimum at θ and
     /// σ halved (`Auto::model_step`). Cleared once this iteration's samples are read.
     confirmed: bool,
-    /// Validated model minima in a row at θ on a smooth, deterministic objective
-    /// (`Auto::model_step`; [`SETTLED_HALVINGS`]); 0 after any other iteration.
+    /// Validated model minima in a row whose prior predicted the points drawn since the
+    /// fit before ([`SETTLED_HALVINGS`], `Auto::model_step`); 0 after an iteration of
+    /// another kind, a gain or a restart.
     settled: u32,
     /// Σ over the gains since the descent's last restart (or its start) of how far each
     /// moved the best point: maxᵢ |Δxᵢ| / sᵢ, sᵢ coordinate i's start scale (as

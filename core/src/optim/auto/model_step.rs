@@ -108,12 +108,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 // σ halves once, or more where the model confirmed at the scale above
                 // predicted the points drawn since (SETTLED_HALVINGS). A confirmation on
                 // points the last fit saw already says nothing new either way.
-                let smooth = !self.st.noisy && !self.st.unseeded;
+                let exact = !self.st.noisy && !self.st.unseeded;
                 match self.st.prior_misfit {
-                    Some(m) if smooth && m <= T::from_f64(SETTLED_FIT) => {
+                    Some(m) if exact && m <= T::from_f64(SETTLED_FIT) => {
                         self.st.settled = (self.st.settled + 1).min(SETTLED_HALVINGS);
                     }
-                    None if smooth => {}
+                    None if exact => {}
                     _ => self.st.settled = 0,
                 }
                 let mut next = sigma * T::HALF;
