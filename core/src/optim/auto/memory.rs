@@ -296,6 +296,20 @@ pub(super) const fn validating(shape: Shape, n: usize) -> usize {
     2 * nearby_needed(shape, n) - 2
 }
 
+/// Points within reach above which a full model's poor step (ρ̂ < 0.1) is blamed on σ
+/// where the memory cannot determine the model (n ≥ 15), after `blamed` such steps since
+/// the model last proved right (a confirmed step or minimum): [`validating`]'s count,
+/// doubled for each, up to every remembered point but n + 1. A smooth f's model fails at
+/// too wide a σ and holds at a narrower one; a kink's fails alike at every σ (its
+/// smoothed curvature grows as σ shrinks), and σ shrinking at each shortfall falls far
+/// below the distance still to go.
+pub(super) const fn blaming(n: usize, blamed: u32) -> usize {
+    let most = history_len(Shape::Full, n) - n - 1;
+    let doublings = if blamed < 8 { blamed } else { 8 };
+    let need = validating(Shape::Full, n) << doublings;
+    if need < most { need } else { most }
+}
+
 /// Pairs a survey (the first iteration, a restart) draws: n, or as many as half the
 /// memory holds.
 pub(super) const fn survey_pairs(shape: Shape, n: usize) -> usize {

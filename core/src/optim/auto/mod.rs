@@ -118,7 +118,9 @@
 //!   shrinks σ towards twice its length (at most halving it); ρ̂ < 0.1 shrinks σ by
 //!   [`SHRINK`] (halves it on a declared-noisy objective) — unless
 //!   the points within reach do not determine the model (no more of them than it has
-//!   coefficients, for n ≤ 14; at most 2n, or all but two of a full memory, above), so
+//!   coefficients, for n ≤ 14; above, at most 2n, or all but two of a full memory, for
+//!   the diagonal model, and for the full one 2n doubled for each shortfall blamed on
+//!   σ since the model last proved right, up to all but n + 1 of its memory), so
 //!   that it rests on its prior or on points from wider scales, where a kink's
 //!   smoothed curvature is flatter (a cone's falls as 1/σ) and the model would
 //!   mispredict alike at every smaller σ (on a declared-noisy objective: at most 2n
@@ -688,6 +690,9 @@ struct State<T> {
     /// fit before ([`SETTLED_HALVINGS`], `Auto::model_step`); 0 after an iteration of
     /// another kind, a gain or a restart.
     settled: u32,
+    /// Poor steps blamed on σ since the model last confirmed a step (ρ̂ ≥ 0.1) or its
+    /// minimum, or since the descent's last restart (`memory::blaming`).
+    blamed: u32,
     /// Σ over the gains since the descent's last restart (or its start) of how far each
     /// moved the best point: maxᵢ |Δxᵢ| / sᵢ, sᵢ coordinate i's start scale (as
     /// [`AutoOptions::tolerance`] measures it); at least how far the restart has taken
@@ -792,6 +797,7 @@ impl<T: Real> State<T> {
             unresolved: 0,
             confirmed: false,
             settled: 0,
+            blamed: 0,
             travelled: T::ZERO,
             unfitted: 0,
             prior_misfit: None,

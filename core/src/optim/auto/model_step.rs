@@ -5,7 +5,8 @@
 
 use rand_core::Rng;
 
-use super::memory::{memory_determines_model, validating};
+use super::memory::{blaming, memory_determines_model, validating};
+use super::model::Shape;
 use super::options::AutoStep;
 use super::{
     Auto, CONTINUATION_SCALE, DETERMINED_METRIC_WEIGHT, GROWTH_WIDTH, NOISE_MARGIN, PAIRS_PAY,
@@ -122,6 +123,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 }
                 self.st.sigma = next;
                 self.st.confirmed = true;
+                self.st.blamed = 0;
             } else {
                 self.st.resample = true;
                 self.st.validate = !self.st.noisy;
@@ -228,15 +230,20 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // at this scale. Points farther out (z ≤ 2ρ fits them) do not count: they saw f
         // at wider scales, and a kink's smoothed curvature falls with the scale (a
         // cone's as 1/σ), so a model resting on them mispredicts alike at every smaller
-        // σ and shrinking on its word only cascades σ down. Where the memory cannot
-        // determine the model (n ≥ 15, the diagonal model), a validated one may be
-        // blamed. A declared-noisy objective keeps the rule it was measured with: a fit
-        // determined by its points, or a validated one (holding σ lost SHADOW runs).
+        // σ and shrinking on its word only cascades σ down. Where a full model cannot be
+        // determined by the memory (n ≥ 15), the points it needs double with each
+        // shortfall blamed since the model last proved right (`blaming`): a kink looks
+        // alike at every scale, and each smaller σ fails as the last did. The diagonal
+        // model may be blamed once validated. A declared-noisy objective keeps the rule it
+        // was measured with: a fit determined by its points, or a validated one (holding
+        // σ lost SHADOW runs).
         let blames_scale = poor
             && if self.st.noisy {
                 determined || validated
             } else if memory_determines_model(self.shape, n) {
                 self.count_around(T::from_f64(REACH)) > self.shape.coefficients(n)
+            } else if self.shape == Shape::Full {
+                self.count_around(T::from_f64(REACH)) > blaming(n, self.st.blamed)
             } else {
                 validated
             };
@@ -280,6 +287,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else if poor && self.st.noisy {
             sigma * T::HALF
         } else if poor {
+            self.st.blamed = self.st.blamed.saturating_add(1);
             sigma * T::from_f64(SHRINK)
         } else if ratio >= T::from_f64(0.7) && boundary {
             self.widened_sigma(GROWTH_WIDTH)
@@ -292,6 +300,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if accepted && ratio >= T::from_f64(0.1) {
             // The model predicted the decrease: trust its curvature's shape.
             self.learn_metric(1.0);
+            self.st.blamed = 0;
             self.st.unconfirmed = 0;
         } else if !self.st.noisy
             && (!self.st.unseeded || self.st.voting)

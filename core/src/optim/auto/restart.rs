@@ -282,6 +282,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.hopeless = 0;
         self.st.unresolved = 0;
         self.st.settled = 0;
+        self.st.blamed = 0;
         self.st.travelled = T::ZERO;
         self.st.sigma = sigma;
         self.st.survey = true;
