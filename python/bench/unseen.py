@@ -28,7 +28,10 @@ objectives of low effective dimension (a quadratic of rank 3 in 20 dimensions an
 low-rank40, embedded-rosenbrock20), first run as Auto stood on 2026-12-01, and a seventh,
 kinks in more than 14 dimensions (the L1 norm at n = 20 and 30, rotated at n = 20, and the
 L-infinity norm at n = 20: l1-20, l1-30, l1-rotated20, linf20), first run on 2026-12-01
-too. Each problem states its dimension, box (or none), scale sigma0, budget,
+too, and an eighth, coupled problems above n = 63 (a curve fitted with a smoothness term,
+a rotated ellipsoid of condition 100 and Broyden's tridiagonal system, all at n = 100:
+smooth-fit100, ellipsoid-rotated100, mgh-broyden-tridiagonal100), first run on
+2026-12-02. Each problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
 succeeds when an evaluated point comes within the target of f* (COCO's rule); the table
@@ -616,6 +619,47 @@ PROBLEMS.update({
     "l1-30": Problem(l1, full(30, 0.3), 1.0, None, 60_000, 1e-6),
     "l1-rotated20": Problem(rotated_l1(20, 9), full(20, 0.3), 1.0, None, 40_000, 1e-6),
     "linf20": Problem(linf, full(20, 0.3), 1.0, None, 40_000, 1e-6),
+})
+
+
+# The eighth set (2026-12-02, fifty-third session): coupled problems above n = 63, where
+# Auto's model had been diagonal (per-coordinate curvature, no rotation). A renderer with
+# a hundred parameters (a curve's control points, a height field's samples) couples
+# neighbours through a smoothness term or the image, and its loss is no sum of
+# one-parameter terms.
+def smooth_fit(n, weight, seed):
+    """A curve of n samples fitted to targets c_i uniform in [-1, 1] (fixed by the seed)
+    with a smoothness term: sum_i (x_i - c_i)^2 + weight * sum_i (x_{i+1} - x_i)^2, whose
+    Hessian is tridiagonal with condition about 1 + 4 * weight."""
+    c = np.random.default_rng(seed).uniform(-1.0, 1.0, n)
+    laplacian = 2 * np.eye(n) - np.eye(n, k=1) - np.eye(n, k=-1)
+    laplacian[0, 0] = laplacian[-1, -1] = 1.0
+
+    def f(x):
+        return float(np.sum((x - c) ** 2) + weight * np.sum(np.diff(x) ** 2))
+
+    return f, np.linalg.solve(np.eye(n) + weight * laplacian, c)
+
+
+def rotated_ellipsoid(n, condition, seed):
+    """sum_i condition^(i/(n-1)) (q_i . (x - 0.3))^2 over the rows q_i of a rotation fixed
+    by the seed."""
+    q = rotation(n, seed)
+    weights = condition ** (np.arange(n) / (n - 1))
+
+    def f(x):
+        return float(np.dot(weights, (q @ (x - 0.3)) ** 2))
+
+    return f
+
+
+PROBLEMS.update({
+    "smooth-fit100": Problem(*smooth_fit(100, 10.0, 10), 1.0, None, 100_000, 1e-6),
+    "ellipsoid-rotated100": Problem(rotated_ellipsoid(100, 100.0, 11), full(100, 0.3), 1.0,
+                                    None, 100_000, 1e-6),
+    "mgh-broyden-tridiagonal100": least_squares_problem(
+        least_squares.broyden_tridiagonal, full(100, -1),
+        least_squares.root(least_squares.broyden_tridiagonal, full(100, -1))),
 })
 
 

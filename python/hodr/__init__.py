@@ -418,10 +418,10 @@ def minimize(
         ``result`` attribute holds the run so far);
         ``model``: the shape of Auto's local model and sampling metric, ``"full"`` (a
         full Hessian and metric, which learn curvature along any directions; at most
-        n = 63) or ``"diagonal"`` (one curvature and one scale per coordinate: above
+        n = 127) or ``"diagonal"`` (one curvature and one scale per coordinate: above
         n = 14 it suits a ``fun`` whose parameters interact little, as a sum of terms
         in one or a few of them, but a rotated ill-conditioned ``fun`` stalls it);
-        default: full up to n = 14, diagonal above 63, and in between full unless
+        default: full up to n = 14, diagonal above 127, and in between full unless
         the first 2 + 2⌈log₂ n⌉ evaluations find ``fun`` separable (a sum of terms in
         one coordinate each), when it is diagonal.
     tol : float, optional

@@ -344,9 +344,9 @@ def test_the_model_option():
         assert np.array_equal(default.history["nfev"], named.history["nfev"] + 11)
         assert np.array_equal(default.history["sigma"], named.history["sigma"])
     assert hodr.minimize(l1, x0, 1.0, budget=300, seed=1, options={"model": "full"}).model == "full"
-    x70 = np.linspace(-2.0, 2.0, 70)
-    default = hodr.minimize(l1, x70, 1.0, budget=300, seed=1)
-    diagonal = hodr.minimize(l1, x70, 1.0, budget=300, seed=1, options={"model": "diagonal"})
+    x128 = np.linspace(-2.0, 2.0, 128)
+    default = hodr.minimize(l1, x128, 1.0, budget=300, seed=1)
+    diagonal = hodr.minimize(l1, x128, 1.0, budget=300, seed=1, options={"model": "diagonal"})
     assert np.array_equal(default.history["fun"], diagonal.history["fun"])
     assert default.model == "diagonal"
     res = hodr.minimize(l1, x0, 1.0, budget=8000, seed=1, options={"model": "diagonal"})
@@ -419,7 +419,7 @@ def test_options_change_the_run():
         (lambda: hodr.minimize(quadratic, X, 1.0, options={"non_finite": "skip"}), ValueError, "non_finite"),
         (lambda: hodr.minimize(quadratic, X, 1.0, options={"model": "round"}), ValueError, "options['model'] must be 'full' or 'diagonal'"),
         (lambda: hodr.minimize(quadratic, X, 1.0, options={"model": 2}), TypeError, "model"),
-        (lambda: hodr.minimize(quadratic, [0.0] * 64, 1.0, options={"model": "full"}), ValueError, "at most 63 parameters, got 64"),
+        (lambda: hodr.minimize(quadratic, [0.0] * 128, 1.0, options={"model": "full"}), ValueError, "at most 127 parameters, got 128"),
         (lambda: hodr.Optimizer(X, 1.0, options={"patience": -2}), ValueError, "patience"),
         (lambda: hodr.minimize(3, X, 1.0), TypeError, "fun"),
         (lambda: hodr.minimize(lambda x: "a", X, 1.0), TypeError, "fun must return a real number (a float), got str"),

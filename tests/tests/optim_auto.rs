@@ -1593,9 +1593,10 @@ fn convergence_rates_hold() {
         })
         .count();
     assert!(solved >= 38, "disc on a grid: {solved} of {seeds}");
-    // A 100-D ellipsoid of condition 100, where the diagonal model's memory (128 points)
-    // holds fewer points than its 201 coefficients, from 0 to a tenth of the start's
-    // parameter error within 800 evaluations. Measured: 400 of 400 (400 before).
+    // A 100-D ellipsoid of condition 100, which the separability test (16 evaluations)
+    // hands to the diagonal model, whose memory (128 points) holds fewer points than its
+    // 201 coefficients, from 0 to a tenth of the start's parameter error within 800
+    // evaluations. Measured: 400 of 400 (400 before, and without the test).
     // Bound: P(X < 38 | p = 0.99875, N = 40) = 1.9e-5.
     let n = 100;
     let centre: Vec<f64> = (0..n).map(|i| 0.5 + 0.25 * (i as f64).sin()).collect();
@@ -2348,7 +2349,7 @@ fn values_of(
     Ok((values, used))
 }
 
-/// The default model's separability test (n = 15–63) keeps the full model where it can
+/// The default model's separability test (n = 15–127) keeps the full model where it can
 /// tell nothing — a plateau, where every value ties, and a declared-noisy objective,
 /// which it does not test — and its points count: a run that ends within the test
 /// returns the lowest of them.
@@ -2379,13 +2380,13 @@ fn the_separability_test_keeps_what_it_cannot_tell() {
     assert_eq!(auto.theta(), &[1.0; 20][..]);
 }
 
-/// A model named ([`Auto::with_model`]), and the one the default picks. Above n = 63 the
+/// A model named ([`Auto::with_model`]), and the one the default picks. Above n = 127 the
 /// default's run is the diagonal model's, point for point; from n = 15 its first
 /// 2 + 2⌈log₂ n⌉ = 12 evaluations (n = 20) test whether f is separable, θ first, and the
 /// run after them is the model the test picked, point for point but for θ, which it does
 /// not evaluate again: the diagonal one on the L1 norm
 /// Σ|xᵢ − 0.3|, the full one where a term (Σᵢ(xᵢ − 0.3))² couples the coordinates. The
-/// full model above n = 63, whose buffer `Auto::buffer_len` does not size, is a typed
+/// full model above n = 127, whose buffer `Auto::buffer_len` does not size, is a typed
 /// error; the default takes the 20-D L1 norm to 10⁻⁶ within 8 000 evaluations.
 #[test]
 fn a_model_chosen_by_name() {
@@ -2399,9 +2400,10 @@ fn a_model_chosen_by_name() {
             .map(|i| -2.0 + 4.0 * i as f64 / (n - 1) as f64)
             .collect()
     };
-    let (by_dimension, used) = values_of(AutoModel::ByDimension, &mut l1, &start(70), 300).unwrap();
+    let (by_dimension, used) =
+        values_of(AutoModel::ByDimension, &mut l1, &start(128), 300).unwrap();
     assert_eq!(used, AutoModel::Diagonal);
-    let (named, _) = values_of(AutoModel::Diagonal, &mut l1, &start(70), 300).unwrap();
+    let (named, _) = values_of(AutoModel::Diagonal, &mut l1, &start(128), 300).unwrap();
     assert_eq!(by_dimension, named);
     let test = 12;
     for (f, picked) in [
@@ -2421,7 +2423,7 @@ fn a_model_chosen_by_name() {
         assert_eq!(by_dimension[test..], named[1..], "{picked:?}");
     }
     assert_eq!(
-        values_of(AutoModel::Full, &mut l1, &[0.0; 64], 300).unwrap_err(),
+        values_of(AutoModel::Full, &mut l1, &[0.0; 128], 300).unwrap_err(),
         Error::InvalidSetting { name: "model" }
     );
     let (values, _) = values_of(AutoModel::ByDimension, &mut l1, &start(20), 8_000).unwrap();

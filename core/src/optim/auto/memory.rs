@@ -228,7 +228,7 @@ pub(super) const fn memory_of(shape: Shape, n: usize, copies: usize) -> usize {
 }
 
 /// Most points remembered in dimension n: [`MAX_MEMORY`], or for a full model
-/// [`FULL_MEMORY_PER_DIM`]·n where that is more (from n = 17; 504 at n = 63).
+/// [`FULL_MEMORY_PER_DIM`]·n where that is more (from n = 17; 1 016 at n = 127).
 pub(super) const fn memory_cap(shape: Shape, n: usize) -> usize {
     let grown = FULL_MEMORY_PER_DIM * n;
     if matches!(shape, Shape::Full) && grown > MAX_MEMORY {

@@ -275,11 +275,14 @@ use model::Shape;
 /// are diagonal (2n + 1 coefficients instead of (n+1)(n+2)/2). Only a full model and
 /// metric represent a valley that runs along no parameter axis (a rotated one, the
 /// common case); a diagonal one learns per-coordinate scales from far fewer points, but
-/// no rotation. The bound is the full model's cost: O(m²n + m³) per iteration for its fit
+/// no rotation: a smooth f whose parameters are coupled (neighbours through a smoothness
+/// term, or all of them through a rotation) stalls a diagonal model at any condition
+/// number. The bound is the full model's cost: O(m²n + m³) per iteration for its fit
 /// to m = [`FULL_MEMORY_PER_DIM`]·n remembered points and O(mn² + n³) for their whitening,
 /// the trust step's and the metric's eigen-decompositions, with m² + 4n² floats of
-/// buffer (about 2 MB at n = 63).
-pub const FULL_MODEL_MAX_DIM: usize = 63;
+/// buffer (about 9 MB of f64 at n = 127); it grows as n³, a fit's system of m = 8n
+/// rows, where the diagonal model's is bounded by [`MAX_MEMORY`].
+pub const FULL_MODEL_MAX_DIM: usize = 127;
 
 /// Most points Auto remembers with a diagonal model, and with a full one up to n = 16
 /// (where [`FULL_MEMORY_PER_DIM`]·n is less): it reaches this for n ≥ 10 with a full
@@ -875,8 +878,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// Points remembered in dimension n: twice the model's coefficient count p
     /// ((n+1)(n+2)/2 for a full Hessian, 2n + 1 for a diagonal one) plus n + 1, at most
     /// [`MAX_MEMORY`] or, for a full model, [`FULL_MEMORY_PER_DIM`]·n where that is more:
-    /// 2p + n + 1 (15 at n = 2, 48 at n = 5), 128 for n = 10–16 and n ≥ 64, 8n for
-    /// n = 17–63. Twice p lets a fit average over the kernel rather than interpolate, and
+    /// 2p + n + 1 (15 at n = 2, 48 at n = 5), 128 for n = 10–16 and n ≥ 128, 8n for
+    /// n = 17–127. Twice p lets a fit average over the kernel rather than interpolate, and
     /// leaves room, once a converged descent has crowded θ's surroundings, for the wider
     /// points of a restart or a widening σ (each new point replaces the one farthest from
     /// θ; a survey's, the farthest of those older than the survey other than θ's).

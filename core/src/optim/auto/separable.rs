@@ -174,7 +174,7 @@ mod tests {
 
     #[test]
     fn splits_cover_every_pair_of_coordinates() {
-        for n in [15usize, 16, 17, 20, 32, 33, 63] {
+        for n in [15usize, 16, 17, 20, 32, 33, 63, 64, 127] {
             let bits = splits(n);
             assert!(1 << bits >= n && 1 << (bits - 1) < n, "n = {n}");
             for i in 0..n {
