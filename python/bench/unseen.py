@@ -536,8 +536,9 @@ PROBLEMS.update({"bc-" + name: bound_constrained_problem(*case)
 
 # The fifth set (2026-11-30, thirty-ninth session): Moré, Garbow and Hillstrom's scalable
 # problems at n = 48, stated as the third set is and first run as Auto stood (its model
-# and metric then diagonal above n = 40; full to n = 63 since a216dd9). The square
-# systems' zeros are found by Newton's method from the published start.
+# and metric then diagonal above n = 40; full to n = 63 since a216dd9, to 127 since
+# 27ce80f). The square systems' zeros are found by Newton's method from the published
+# start.
 LARGE = 48
 LARGE_T = np.arange(1, LARGE + 1) / (LARGE + 1)
 LARGE_LEAST_SQUARES = {

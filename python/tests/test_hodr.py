@@ -331,7 +331,7 @@ def test_the_model_option():
     """options['model'] names a model, and result.model says which one the run used. By
     default a 20-D run first tests whether fun is separable (12 evaluations, f(x0) among
     them, which the run does not evaluate again), then runs the model the test picked: the diagonal one for a sum of kinks, the full one where a
-    squared sum couples the coordinates; above n = 63 the default is the diagonal model.
+    squared sum couples the coordinates; above n = 127 the default is the diagonal model.
     The diagonal model takes the 20-D sum of kinks to 1e-6 within the budget; ask/tell
     with the option is minimize with it."""
     l1 = lambda x: float(np.abs(x - 0.3).sum())
