@@ -275,10 +275,10 @@ use model::Shape;
 /// are diagonal (2n + 1 coefficients instead of (n+1)(n+2)/2). Only a full model and
 /// metric represent a valley that runs along no parameter axis (a rotated one, the
 /// common case); a diagonal one learns per-coordinate scales from far fewer points, but
-/// no rotation: a smooth f whose parameters are coupled (neighbours through a smoothness
-/// term, or all of them through a rotation) stalls a diagonal model at any condition
-/// number. The bound is the full model's cost: O(m²n + m³) per iteration for its fit
-/// to m = [`FULL_MEMORY_PER_DIM`]·n remembered points and O(mn² + n³) for their whitening,
+/// no rotation: on a smooth f whose parameters are coupled (neighbours through a
+/// smoothness term, or all of them through a rotation) a diagonal model converges only
+/// as a Jacobi iteration on f's Hessian does. The bound is the full model's cost:
+/// O(m²n + m³) per iteration for its fit to m = [`FULL_MEMORY_PER_DIM`]·n remembered points and O(mn² + n³) for their whitening,
 /// the trust step's and the metric's eigen-decompositions, with m² + 4n² floats of
 /// buffer (about 9 MB of f64 at n = 127); it grows as n³, a fit's system of m = 8n
 /// rows, where the diagonal model's is bounded by [`MAX_MEMORY`].
