@@ -144,12 +144,16 @@ def staircase_rosenbrock(x):
     return float(np.floor(10 * rosenbrock(x)) / 10)
 
 
-ROTATION_30 = rotation(30, 5)
+def rotated_ellipsoid(n, condition, seed, centre):
+    """sum_i condition^(i/(n-1)) (q_i . (x - centre))^2 over the rows q_i of a rotation
+    fixed by the seed."""
+    q = rotation(n, seed)
+    weights = condition ** (np.arange(n) / (n - 1))
 
+    def f(x):
+        return float(np.dot(weights, (q @ (x - centre)) ** 2))
 
-def ellipsoid_30(x):
-    z = ROTATION_30 @ (x - 0.5)
-    return float(np.dot(1e6 ** (np.arange(30) / 29), z * z))
+    return f
 
 
 def different_powers(x):
@@ -396,7 +400,7 @@ PROBLEMS = {
                                   1e-6),
     "rastrigin5-rotated": Problem(rotated_rastrigin, full(5, 0.5), 2.0, (-5, 5), 10_000, 1e-6),
     "rosenbrock20": Problem(rosenbrock, full(20, 1), 0.5, None, 40_000, 1e-6),
-    "ellipsoid30": Problem(ellipsoid_30, full(30, 0.5), 1.0, None, 60_000, 1e-6),
+    "ellipsoid30": Problem(rotated_ellipsoid(30, 1e6, 5, 0.5), full(30, 0.5), 1.0, None, 60_000, 1e-6),
     "different-powers20": Problem(different_powers, full(20, 0.2), 1.0, None, 40_000, 1e-6),
     "l1-10": Problem(l1, full(10, 0.3), 1.0, None, 20_000, 1e-6),
     "linf10": Problem(linf, full(10, 0.3), 1.0, None, 20_000, 1e-6),
@@ -642,21 +646,9 @@ def smooth_fit(n, weight, seed):
     return f, np.linalg.solve(np.eye(n) + weight * laplacian, c)
 
 
-def rotated_ellipsoid(n, condition, seed):
-    """sum_i condition^(i/(n-1)) (q_i . (x - 0.3))^2 over the rows q_i of a rotation fixed
-    by the seed."""
-    q = rotation(n, seed)
-    weights = condition ** (np.arange(n) / (n - 1))
-
-    def f(x):
-        return float(np.dot(weights, (q @ (x - 0.3)) ** 2))
-
-    return f
-
-
 PROBLEMS.update({
     "smooth-fit100": Problem(*smooth_fit(100, 10.0, 10), 1.0, None, 100_000, 1e-6),
-    "ellipsoid-rotated100": Problem(rotated_ellipsoid(100, 100.0, 11), full(100, 0.3), 1.0,
+    "ellipsoid-rotated100": Problem(rotated_ellipsoid(100, 100.0, 11, 0.3), full(100, 0.3), 1.0,
                                     None, 100_000, 1e-6),
     "mgh-broyden-tridiagonal100": least_squares_problem(
         least_squares.broyden_tridiagonal, full(100, -1),
