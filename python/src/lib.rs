@@ -373,7 +373,7 @@ impl Problem {
         let n = self.dim();
         (
             self.x0.clone(),
-            vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)],
+            vec![0.0; self.model.buffer_len(n)],
         )
     }
 

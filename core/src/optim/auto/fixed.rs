@@ -9,7 +9,12 @@ use crate::real::Real;
 /// θ and the buffer of an [`Auto`] run in dimension `N`, inline: `N + LEN` floats, and
 /// usable in a `static` initialiser. `LEN` must be at least [`buffer_len`]`(N)`; a
 /// smaller one does not compile. Everything else the run keeps between iterations lives
-/// in the [`Auto`] value itself, whose size does not depend on n.
+/// in the [`Auto`] value itself, whose size does not depend on n. It holds the default
+/// model's buffer, which from n = 15 to [`FULL_MODEL_MAX_DIM`](super::FULL_MODEL_MAX_DIM)
+/// is the full model's (1 111 904 floats at n = 100, 13 times the diagonal model's); a
+/// run that wants the diagonal model there passes a buffer of
+/// [`AutoModel::Diagonal`](super::AutoModel::Diagonal)`.buffer_len(n)` floats to
+/// [`Auto::with_model`].
 ///
 /// ```
 /// use hodr_core::optim::auto::{FixedAuto, buffer_len};

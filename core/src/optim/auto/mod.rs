@@ -906,10 +906,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// A run as [`Auto::new`] makes it, with the model and metric of shape `model`
-    /// ([`AutoModel`]); a buffer of [`Auto::buffer_len`] floats holds any shape.
+    /// ([`AutoModel`]); a buffer of [`Auto::buffer_len`] floats holds any shape, and
+    /// [`AutoModel::buffer_len`]'s suffice for `model`.
     ///
     /// # Errors
-    /// Those of [`Auto::new`], and [`Error::InvalidSetting`] (`model`) for
+    /// Those of [`Auto::new`], with [`Error::WorkspaceTooSmall`] for a buffer shorter
+    /// than [`AutoModel::buffer_len`], and [`Error::InvalidSetting`] (`model`) for
     /// [`AutoModel::Full`] above n = [`FULL_MODEL_MAX_DIM`].
     pub fn with_model(
         theta: &'b mut [T],

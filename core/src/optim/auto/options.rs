@@ -47,6 +47,34 @@ pub enum AutoModel {
     Diagonal,
 }
 
+impl AutoModel {
+    /// Floats of buffer a run with this model needs in dimension n
+    /// ([`Auto::with_model`](super::Auto::with_model)). [`AutoModel::ByDimension`]'s is
+    /// [`buffer_len`](super::buffer_len)`(n)`, which holds either shape, since from
+    /// n = 15 the run may take the diagonal model after its first step;
+    /// [`AutoModel::Full`]'s is the same up to n =
+    /// [`FULL_MODEL_MAX_DIM`](super::FULL_MODEL_MAX_DIM) (above, `with_model` refuses
+    /// the full model whatever the buffer); [`AutoModel::Diagonal`]'s, whose memory holds
+    /// at most [`MAX_MEMORY`](super::MAX_MEMORY) points where the full model's holds 8n,
+    /// is a thirteenth of it at n = 100: a run without a heap at such n sizes its
+    /// storage by it.
+    ///
+    /// ```
+    /// use hodr_core::optim::auto::{AutoModel, buffer_len};
+    ///
+    /// const FLOATS: usize = AutoModel::Diagonal.buffer_len(100);
+    /// assert!(FLOATS * 10 < buffer_len(100));
+    /// assert_eq!(AutoModel::ByDimension.buffer_len(100), buffer_len(100));
+    /// ```
+    pub const fn buffer_len(self, n: usize) -> usize {
+        match self {
+            AutoModel::ByDimension => super::buffer_len(n),
+            AutoModel::Full => super::memory::buffer_len_of(super::model::Shape::Full, n),
+            AutoModel::Diagonal => super::memory::buffer_len_of(super::model::Shape::Diagonal, n),
+        }
+    }
+}
+
 /// Auto's options. Every one has a default; none is required.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
