@@ -2333,8 +2333,19 @@ fn values_of(
     x0: &[f64],
     budget: usize,
 ) -> Result<(Vec<f64>, AutoModel), Error> {
+    values_in(model.buffer_len(x0.len()), model, f, x0, budget)
+}
+
+/// [`values_of`] with a buffer of `len` floats.
+fn values_in(
+    len: usize,
+    model: AutoModel,
+    f: &mut impl FnMut(&[f64]) -> f64,
+    x0: &[f64],
+    budget: usize,
+) -> Result<(Vec<f64>, AutoModel), Error> {
     let mut theta = x0.to_vec();
-    let mut buffer = vec![0.0; model.buffer_len(x0.len())];
+    let mut buffer = vec![0.0; len];
     let rng = Xoshiro256PlusPlus::seed_from_u64(5);
     let mut auto = Auto::with_model(&mut theta, 1.0, &mut buffer, rng, model)?
         .with_options(AutoOptions::default().with_max_evaluations(budget)?);
@@ -2359,11 +2370,8 @@ fn a_model_runs_in_its_own_buffer_length() {
     let mut l1 = |x: &[f64]| x.iter().map(|v| (v - 0.3).abs()).sum::<f64>();
     for model in [AutoModel::Diagonal, AutoModel::Full, AutoModel::ByDimension] {
         let len = model.buffer_len(n);
-        let mut theta = x0.clone();
-        let mut short = vec![0.0; len - 1];
-        let rng = Xoshiro256PlusPlus::seed_from_u64(5);
         assert_eq!(
-            Auto::with_model(&mut theta, 1.0, &mut short, rng, model).unwrap_err(),
+            values_in(len - 1, model, &mut l1, &x0, 500).unwrap_err(),
             Error::WorkspaceTooSmall {
                 needed: len,
                 available: len - 1
@@ -2371,26 +2379,11 @@ fn a_model_runs_in_its_own_buffer_length() {
             "{model:?}"
         );
     }
-    let diagonal = AutoModel::Diagonal.buffer_len(n);
-    assert!(10 * diagonal < Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n));
+    let default = Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n);
+    assert!(10 * AutoModel::Diagonal.buffer_len(n) < default);
     let (own, _) = values_of(AutoModel::Diagonal, &mut l1, &x0, 500).unwrap();
-    let mut theta = x0.clone();
-    let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(n)];
-    let rng = Xoshiro256PlusPlus::seed_from_u64(5);
-    let mut auto = Auto::with_model(&mut theta, 1.0, &mut buffer, rng, AutoModel::Diagonal)
-        .unwrap()
-        .with_options(AutoOptions::default().with_max_evaluations(500).unwrap());
-    let mut values = Vec::new();
-    auto.run(
-        &mut |x: &[f64]| {
-            let v = l1(x);
-            values.push(v);
-            v
-        },
-        |_, _| {},
-    )
-    .unwrap();
-    assert_eq!(own, values);
+    let (in_default, _) = values_in(default, AutoModel::Diagonal, &mut l1, &x0, 500).unwrap();
+    assert_eq!(own, in_default);
 }
 
 /// The default model's separability test (n = 15–127) keeps the full model where it can
@@ -2430,7 +2423,8 @@ fn the_separability_test_keeps_what_it_cannot_tell() {
 /// run after them is the model the test picked, point for point but for θ, which it does
 /// not evaluate again: the diagonal one on the L1 norm
 /// Σ|xᵢ − 0.3|, the full one where a term (Σᵢ(xᵢ − 0.3))² couples the coordinates. The
-/// full model above n = 127 is a typed error, though its buffer is long enough; the default takes the 20-D L1 norm to 10⁻⁶ within 8 000 evaluations.
+/// full model above n = 127 is a typed error, though its buffer is long enough; the
+/// default takes the 20-D L1 norm to 10⁻⁶ within 8 000 evaluations.
 #[test]
 fn a_model_chosen_by_name() {
     let mut l1 = |x: &[f64]| x.iter().map(|v| (v - 0.3).abs()).sum::<f64>();
