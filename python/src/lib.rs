@@ -371,10 +371,7 @@ impl Problem {
     /// θ (x₀) and Auto's buffer.
     pub(crate) fn memory(&self) -> (Vec<f64>, Vec<f64>) {
         let n = self.dim();
-        (
-            self.x0.clone(),
-            vec![0.0; self.model.buffer_len(n)],
-        )
+        (self.x0.clone(), vec![0.0; self.model.buffer_len(n)])
     }
 
     /// Auto on this problem, in `theta` and `buffer` from [`Problem::memory`].
