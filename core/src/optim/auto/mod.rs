@@ -277,11 +277,12 @@ use model::Shape;
 /// common case); a diagonal one learns per-coordinate scales from far fewer points, but
 /// no rotation: on a smooth f whose parameters are coupled (neighbours through a
 /// smoothness term, or all of them through a rotation) a diagonal model converges only
-/// as a Jacobi iteration on f's Hessian does. The bound is the full model's cost:
-/// O(m²n + m³) per iteration for its fit to m = [`FULL_MEMORY_PER_DIM`]·n remembered points and O(mn² + n³) for their whitening,
-/// the trust step's and the metric's eigen-decompositions, with m² + 4n² floats of
-/// buffer (about 9 MB of f64 at n = 127); it grows as n³, a fit's system of m = 8n
-/// rows, where the diagonal model's is bounded by [`MAX_MEMORY`].
+/// as a Jacobi iteration on f's Hessian does. The bound is the full model's cost, per
+/// iteration O(m²n + m³) for its fit to m = [`FULL_MEMORY_PER_DIM`]·n remembered points
+/// and O(mn² + n³) for their whitening and the trust step's and the metric's
+/// eigen-decompositions, O(n³) in all; its buffer ([`buffer_len`]), dominated by the
+/// fit's m×m system, grows as n² (1 789 307 floats, about 14 MB of f64, at n = 127),
+/// where the diagonal model's memory is bounded by [`MAX_MEMORY`].
 pub const FULL_MODEL_MAX_DIM: usize = 127;
 
 /// Most points Auto remembers with a diagonal model, and with a full one up to n = 16

@@ -55,7 +55,8 @@ impl AutoModel {
     /// [`AutoModel::Full`]'s is the same up to n =
     /// [`FULL_MODEL_MAX_DIM`](super::FULL_MODEL_MAX_DIM) (above, `with_model` refuses
     /// the full model whatever the buffer); [`AutoModel::Diagonal`]'s, whose memory holds
-    /// at most [`MAX_MEMORY`](super::MAX_MEMORY) points where the full model's holds 8n,
+    /// at most [`MAX_MEMORY`](super::MAX_MEMORY) points where the full model's holds
+    /// [`FULL_MEMORY_PER_DIM`](super::FULL_MEMORY_PER_DIM)·n,
     /// is a thirteenth of it at n = 100: a run without a heap at such n sizes its
     /// storage by it.
     ///
