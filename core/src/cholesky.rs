@@ -4,6 +4,7 @@
 
 use crate::optim::vector::{axpy, dot_lanes, dot_lanes_many};
 use crate::real::Real;
+use crate::wide::avx2_twin;
 
 /// Most shifts tried before giving up; λ grows ×10 per try, so 40 tries span 40 decades.
 #[cfg(feature = "hessian")]
@@ -67,6 +68,7 @@ pub(crate) fn factor_in_place<T: Real>(a: &mut [T], n: usize, lambda: T) -> bool
     factor_rows(a, n, 0, n, lambda)
 }
 
+avx2_twin! {
 /// Rows `from..to` of [`factor_in_place`]'s factor, for a lower triangle stored by rows
 /// `stride` floats apart, whose rows before `from` already hold L's: row i of L depends
 /// only on A's rows up to i, so a factor extended by rows is the one factored whole, bit
@@ -106,12 +108,14 @@ pub(crate) fn factor_rows<T: Real>(
     }
     (start..to).all(|i| finish_row(a, stride, i, 0, lambda))
 }
+}
 
 /// Rows factored together by [`factor_rows`].
 const BLOCK: usize = 4;
 
 /// Row i of [`factor_rows`]'s L from entry `from` on (those before it done), and its
 /// pivot; false if the pivot is not positive and finite.
+#[inline(always)]
 fn finish_row<T: Real>(a: &mut [T], stride: usize, i: usize, from: usize, lambda: T) -> bool {
     let (done, rest) = a.split_at_mut(i * stride);
     let row = &mut rest[..=i];
@@ -152,6 +156,7 @@ pub(crate) fn backward<T: Real>(l: &[T], n: usize, stride: usize, x: &mut [T]) {
     }
 }
 
+avx2_twin! {
 /// Solves LX = B in place for the n×k row-major `x` (B on entry), L's rows `stride`
 /// floats apart: [`forward`] for k right-hand sides at once, each row of L read once and
 /// each update a row operation on k contiguous values. Rows of X before `from` must
@@ -176,6 +181,7 @@ pub(crate) fn forward_many<T: Real>(
             *v /= row[i];
         }
     }
+}
 }
 
 #[cfg(test)]

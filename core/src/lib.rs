@@ -44,7 +44,10 @@
 //! * [`optim`]: gradient descent, Adam, Newton, NCG and Newton-CG as step machines, σ
 //!   schedules, budgets, and the paper's method presets;
 //! * [`trace`]: a fixed-memory convergence trace;
-//! * [`Objective`], [`Workspace`], [`Error`].
+//! * [`Objective`], [`Workspace`], [`Error`];
+//! * [`set_wide_kernels`]: on x86, the dense kernels of Auto's fit (factorisations,
+//!   eigen-decompositions) run an AVX2 copy where the CPU has it (detected at run time,
+//!   no std needed), with results identical bit for bit to the baseline copy's.
 //!
 //! ## Features
 //! The minimal build (no default features) has the FR22 gradient with Adam;
@@ -68,6 +71,7 @@ pub mod optim;
 pub mod real;
 pub mod sample;
 pub mod trace;
+mod wide;
 mod workspace;
 
 pub use error::Error;
@@ -80,4 +84,5 @@ pub use estimate::{Estimator, GradientMethod, Report};
 pub use estimate::{Lowest, PairValues};
 pub use objective::{Batch, NoiseSeed, Objective, Seeded};
 pub use real::Real;
+pub use wide::set_wide_kernels;
 pub use workspace::{FixedWorkspace, MIN_ROWS, Workspace};

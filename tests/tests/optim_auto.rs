@@ -2386,6 +2386,58 @@ fn a_model_runs_in_its_own_buffer_length() {
     assert_eq!(own, in_default);
 }
 
+/// The dense kernels' AVX2 copies give the run the baseline copies give, value for value
+/// bit for bit ([`hodr_core::set_wide_kernels`]): a rotated ellipsoid at n = 40 (the full
+/// model: fits, factorisations, metric updates and their eigen-decompositions) and the
+/// L1 norm at n = 100 (the separability test, then the diagonal model). On a CPU without
+/// AVX2 both runs take the baseline copies.
+#[test]
+fn wide_kernels_change_no_bit() {
+    let n = 40;
+    // Qx for the Householder reflection Q = I − 2vvᵀ/‖v‖², v = (1, 2, …, n): f is not
+    // separable, so the separability test keeps the full model.
+    let reflect = |x: &[f64]| {
+        let vv: f64 = (1..=x.len()).map(|i| (i * i) as f64).sum();
+        let vx: f64 = x
+            .iter()
+            .enumerate()
+            .map(|(i, xi)| (i + 1) as f64 * xi)
+            .sum();
+        x.iter()
+            .enumerate()
+            .map(|(i, xi)| xi - 2.0 * vx / vv * (i + 1) as f64)
+            .collect::<Vec<f64>>()
+    };
+    let mut ellipsoid = |x: &[f64]| {
+        reflect(x)
+            .iter()
+            .enumerate()
+            .map(|(i, y)| 10f64.powf(3.0 * i as f64 / (n - 1) as f64) * y * y)
+            .sum::<f64>()
+    };
+    let mut l1 = |x: &[f64]| x.iter().map(|v| (v - 0.3).abs()).sum::<f64>();
+    same_with_and_without_wide_kernels(&mut ellipsoid, 40, 1_500);
+    same_with_and_without_wide_kernels(&mut l1, 100, 800);
+}
+
+/// Runs Auto on `f` from a fixed x₀ in dimension n for `budget` evaluations with the wide
+/// kernels and without, and asserts that the values match bit for bit.
+fn same_with_and_without_wide_kernels(
+    mut f: &mut dyn FnMut(&[f64]) -> f64,
+    n: usize,
+    budget: usize,
+) {
+    let x0: Vec<f64> = (0..n).map(|i| (i % 5) as f64 - 2.0).collect();
+    let [wide, baseline] = [true, false].map(|wide| {
+        hodr_core::set_wide_kernels(wide);
+        let (values, _) = values_of(AutoModel::ByDimension, &mut f, &x0, budget).unwrap();
+        values.iter().map(|v| v.to_bits()).collect::<Vec<u64>>()
+    });
+    hodr_core::set_wide_kernels(true);
+    assert_eq!(wide.len(), budget, "n = {n}");
+    assert!(wide == baseline, "n = {n}: the runs differ");
+}
+
 /// The default model's separability test (n = 15–127) keeps the full model where it can
 /// tell nothing — a plateau, where every value ties, and a declared-noisy objective,
 /// which it does not test — and its points count: a run that ends within the test

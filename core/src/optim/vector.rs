@@ -4,6 +4,7 @@
 #![cfg_attr(not(feature = "newton-cg"), allow(dead_code))]
 
 use crate::real::Real;
+use crate::wide::avx2_twin;
 
 /// xᵀy.
 #[inline]
@@ -15,7 +16,7 @@ pub(crate) fn dot<T: Real>(x: &[T], y: &[T]) -> T {
 /// independent sums the compiler keeps in vector registers, where [`dot`]'s single
 /// running sum is a chain of dependent additions. For the long products of O(m³)
 /// kernels (Auto's model fit); its rounding differs from [`dot`]'s.
-#[inline]
+#[inline(always)]
 pub(crate) fn dot_lanes<T: Real>(x: &[T], y: &[T]) -> T {
     let mut lanes = [T::ZERO; 4];
     let (xs, ys) = (x.chunks_exact(4), y.chunks_exact(4));
@@ -36,7 +37,7 @@ pub(crate) fn dot_lanes<T: Real>(x: &[T], y: &[T]) -> T {
 /// one pass over y. Each product is summed in the same lanes and order whatever R, so
 /// its result does not depend on the block it is computed in, while each element of y
 /// is loaded once for R products instead of R times.
-#[inline]
+#[inline(always)]
 pub(crate) fn dot_lanes_many<T: Real, const R: usize>(
     xs: [&[T]; R],
     y: &[T],
@@ -64,6 +65,7 @@ pub(crate) fn dot_lanes_many<T: Real, const R: usize>(
     out
 }
 
+avx2_twin! {
 /// out = Md for the n×n row-major M given its transpose `mt` = Mᵀ (n = `d.len()`),
 /// accumulated column by column: each entry is the sum Σⱼ Mᵢⱼdⱼ in the order j = 0, 1, …
 /// that a row-by-row product takes, while the loop runs over M's contiguous columns and
@@ -74,6 +76,7 @@ pub(crate) fn mat_vec_by_columns<T: Real>(mt: &[T], d: &[T], out: &mut [T]) {
     for (&dj, column) in d.iter().zip(mt.chunks_exact(n)) {
         axpy(dj, column, &mut out[..n]);
     }
+}
 }
 
 /// out = Mᵀ for the n×n row-major M.
@@ -95,7 +98,7 @@ pub(crate) fn norm<T: Real>(x: &[T]) -> T {
 }
 
 /// y ← y + a·x.
-#[inline]
+#[inline(always)]
 pub(crate) fn axpy<T: Real>(a: T, x: &[T], y: &mut [T]) {
     for (yi, &xi) in y.iter_mut().zip(x) {
         *yi += a * xi;

@@ -17,10 +17,12 @@
 //! sweeps).
 
 use crate::real::Real;
+use crate::wide::avx2_twin;
 
 /// QL iterations per eigenvalue before its estimate is accepted as it stands.
 const MAX_ITERATIONS: usize = 60;
 
+avx2_twin! {
 /// Eigen-decomposes the symmetric row-major n×n `a` (its whole square is read; it is
 /// overwritten): on return `a[..n]` holds the eigenvalues, unordered, and `v` (n×n,
 /// row-major) the orthonormal eigenvectors as columns, column j belonging to `a[j]`.
@@ -42,6 +44,7 @@ pub(super) fn symmetric<T: Real>(a: &mut [T], v: &mut [T], n: usize) {
     ql(v, n, d, e);
     transpose(v, n);
 }
+}
 
 /// Transposes the row-major n×n `m` in place.
 fn transpose<T: Real>(m: &mut [T], n: usize) {
@@ -55,6 +58,7 @@ fn transpose<T: Real>(m: &mut [T], n: usize) {
 /// Reduces the symmetric `q` (n ≥ 2) to tridiagonal form: on return `d` holds T's
 /// diagonal, `e[i]` (i ≥ 1) its entry `T[i][i−1]` (`e[0]` = 0), and `q` the orthogonal Q
 /// with A = Q T Qᵀ.
+#[inline(always)]
 fn tridiagonalise<T: Real>(q: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
     // Reflectors: uₖ is stored in column k below the diagonal (rows k + 1 …), unscaled;
     // β is recomputed from it. The work vector p lives in `d` (its entries k + 1 … are
@@ -163,6 +167,7 @@ fn tridiagonalise<T: Real>(q: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
 /// Diagonalises the symmetric tridiagonal T (diagonal `d`, sub-diagonal `e[1..]`) by
 /// implicit QL iterations, rotating the rows of `qt` (Qᵀ) along: on return `d` holds the
 /// eigenvalues and the rows of `qt` the eigenvectors of Q T Qᵀ.
+#[inline(always)]
 fn ql<T: Real>(qt: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
     // e[i] = T[i+1][i] from here on.
     for i in 1..n {
@@ -220,6 +225,7 @@ fn ql<T: Real>(qt: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
 }
 
 /// √(x² + y²) without overflow or underflow in the squares.
+#[inline(always)]
 fn hypot<T: Real>(x: T, y: T) -> T {
     let (x, y) = (x.abs(), y.abs());
     let big = x.max(y);

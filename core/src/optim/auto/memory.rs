@@ -544,9 +544,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.mem.ya.copy_from_slice(self.theta);
         self.mem.ytheta.copy_from_slice(self.theta);
         self.mem.yt.fill(T::ZERO);
-        for k in 0..self.st.count {
-            self.whiten_position(k);
-        }
+        metric::whiten_rows(
+            self.shape,
+            self.mem.li,
+            self.mem.xs,
+            self.st.count,
+            self.mem.ya,
+            self.mem.ys,
+        );
         self.st.positions = Some(self.st.metric_changes);
     }
 

@@ -18,8 +18,9 @@
 
 use super::eigen;
 use super::model::Shape;
-use crate::optim::vector::axpy;
+use crate::optim::vector::{axpy, transpose};
 use crate::real::Real;
+use crate::wide::avx2_twin;
 
 /// Fraction of the way C moves towards the target of one update in dimension n:
 /// 1/(2n), at most 0.3. A full C has n(n+1)/2 entries and each model's curvature is a
@@ -117,7 +118,59 @@ pub fn whiten<T: Real>(shape: Shape, li: &[T], x: &[T], y: &[T], out: &mut [T]) 
     }
 }
 
+avx2_twin! {
+/// Row k of `out` = L⁻¹(x_k − y) for the first `count` rows x_k of `xs` (n = `y.len()`
+/// floats each): [`whiten`] of each, bit for bit, with a full L⁻¹'s rows read once for
+/// [`WHITEN_BLOCK`] points.
+pub fn whiten_rows<T: Real>(shape: Shape, li: &[T], xs: &[T], count: usize, y: &[T], out: &mut [T]) {
+    let n = y.len();
+    let mut k0 = 0;
+    if shape == Shape::Full {
+        while k0 + WHITEN_BLOCK <= count {
+            let x: [&[T]; WHITEN_BLOCK] = core::array::from_fn(|b| &xs[(k0 + b) * n..(k0 + b + 1) * n]);
+            for (i, row) in li[..n * n].chunks_exact(n).enumerate() {
+                let sums = rows_times_difference(row, x, y);
+                for (b, &s) in sums.iter().enumerate() {
+                    out[(k0 + b) * n + i] = s;
+                }
+            }
+            k0 += WHITEN_BLOCK;
+        }
+    }
+    for k in k0..count {
+        whiten(shape, li, &xs[k * n..(k + 1) * n], y, &mut out[k * n..(k + 1) * n]);
+    }
+}
+}
+
+/// Points [`whiten_rows`] whitens in one pass over L⁻¹.
+const WHITEN_BLOCK: usize = 4;
+
+/// [`row_times_difference`] of `a` with each of R vectors `x`, in one pass over `a` and
+/// `y`: the same lanes and order for each, bit for bit.
+#[inline(always)]
+fn rows_times_difference<T: Real, const R: usize>(a: &[T], x: [&[T]; R], y: &[T]) -> [T; R] {
+    let n = a.len();
+    let full = n - n % 4;
+    let mut lanes = [[T::ZERO; 4]; R];
+    for c in (0..full).step_by(4) {
+        let (ac, yc) = (&a[c..c + 4], &y[c..c + 4]);
+        for (acc, xr) in lanes.iter_mut().zip(x.iter()) {
+            let xc = &xr[c..c + 4];
+            for k in 0..4 {
+                acc[k] += ac[k] * (xc[k] - yc[k]);
+            }
+        }
+    }
+    core::array::from_fn(|r| {
+        let tail = (full..n).fold(T::ZERO, |s, j| s + a[j] * (x[r][j] - y[j]));
+        let l = &lanes[r];
+        (l[0] + l[1]) + (l[2] + l[3]) + tail
+    })
+}
+
 /// Σⱼ aⱼ(xⱼ − yⱼ) in four interleaved partial sums (as [`dot_lanes`](crate::optim::vector::dot_lanes)).
+#[inline(always)]
 fn row_times_difference<T: Real>(a: &[T], x: &[T], y: &[T]) -> T {
     let mut lanes = [T::ZERO; 4];
     let (ac, xc, yc) = (a.chunks_exact(4), x.chunks_exact(4), y.chunks_exact(4));
@@ -135,6 +188,7 @@ fn row_times_difference<T: Real>(a: &[T], x: &[T], y: &[T]) -> T {
     (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
 }
 
+avx2_twin! {
 /// out = Lᵀ H L (or L⁻ᵀ H L⁻¹ with `li`): the Hessian `h` of the same shape seen
 /// through `l`, with `tmp` (n², full only) as scratch.
 pub fn congruence<T: Real>(shape: Shape, l: &[T], h: &[T], n: usize, tmp: &mut [T], out: &mut [T]) {
@@ -164,14 +218,17 @@ pub fn congruence<T: Real>(shape: Shape, l: &[T], h: &[T], n: usize, tmp: &mut [
         }
     }
 }
+}
 
-/// Scratch of [`update`]: three n×n matrices (full metrics only; empty for diagonal).
+/// Scratch of [`update`] (full metrics only; empty for diagonal): `a` and `v` n×n, `w`
+/// n floats.
 pub struct Scratch<'a, T> {
     pub a: &'a mut [T],
     pub v: &'a mut [T],
     pub w: &'a mut [T],
 }
 
+avx2_twin! {
 /// Moves C towards the shape of the curvature `h` (the model's Hessian of the same
 /// shape, in parameter units, any scale) by `weight` × [`rate`] (weight in (0, 1]: how
 /// far the caller trusts this curvature) and refreshes L and L⁻¹. Leaves everything
@@ -213,13 +270,21 @@ pub fn update<T: Real>(
     for i in 0..n {
         w[i] = T::ONE / a[i].abs().max(low) * top;
     }
+    // Row i of the target, Σₖ (vᵢₖwₖ)vⱼₖ over k in order, accumulated from Vᵀ's rows
+    // (in `a`), which are contiguous in j, in L's first row (`refresh` rewrites L).
+    transpose(v, n, a);
+    let target = &mut l[..n];
     for i in 0..n {
-        for j in 0..n {
-            let target = (0..n).fold(T::ZERO, |s, k| s + v[i * n + k] * w[k] * v[j * n + k]);
-            c[i * n + j] = (T::ONE - rate) * c[i * n + j] + rate * target / mean;
+        target.fill(T::ZERO);
+        for k in 0..n {
+            axpy(v[i * n + k] * w[k], &a[k * n..(k + 1) * n], target);
+        }
+        for (cij, &t) in c[i * n..(i + 1) * n].iter_mut().zip(target.iter()) {
+            *cij = (T::ONE - rate) * *cij + rate * t / mean;
         }
     }
     refresh(c, l, li, n, a, v);
+}
 }
 
 /// A full C ← (1 − w)C + w·ppᵀ for a direction p (n floats) and a weight w in (0, 1),
@@ -296,6 +361,7 @@ impl<T: Real> Targets<T> {
     }
 }
 
+avx2_twin! {
 /// Renormalises C to det 1 and sets L = Q diag(√e), L⁻¹ = diag(1/√e) Qᵀ from C = Q
 /// diag(e) Qᵀ.
 fn refresh<T: Real>(c: &mut [T], l: &mut [T], li: &mut [T], n: usize, a: &mut [T], v: &mut [T]) {
@@ -317,11 +383,17 @@ fn refresh<T: Real>(c: &mut [T], l: &mut [T], li: &mut [T], n: usize, a: &mut [T
             li[i * n + k] = v[k * n + i] / root;
         }
     }
+    // C = LLᵀ, row i the sum Σₖ lᵢₖlⱼₖ over k in order, accumulated from Lᵀ's rows (in
+    // `v`, no longer needed), which are contiguous in j.
+    transpose(l, n, v);
     for i in 0..n {
-        for j in 0..n {
-            c[i * n + j] = (0..n).fold(T::ZERO, |s, k| s + l[i * n + k] * l[j * n + k]);
+        let row = &mut c[i * n..(i + 1) * n];
+        row.fill(T::ZERO);
+        for k in 0..n {
+            axpy(l[i * n + k], &v[k * n..(k + 1) * n], row);
         }
     }
+}
 }
 
 /// The diagonal [`refresh`]: C's entries floored at [`floor`] of the largest and

@@ -55,6 +55,7 @@
 use crate::cholesky;
 use crate::optim::vector::{axpy, dot, dot_lanes_many, mat_vec_by_columns};
 use crate::real::Real;
+use crate::wide::avx2_twin;
 
 /// Which Hessian the model has.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -229,6 +230,7 @@ fn deviation_share(shape: Shape, n: usize) -> f64 {
 /// (s₀ + s₁) + (s₂ + s₃) plus the tail, so that the compiler can vectorise the loop;
 /// Σⱼ aⱼbⱼ is [`dot_lanes`](crate::optim::vector::dot_lanes)'s (and `dot_lanes_many`'s),
 /// bit for bit, and neither sum depends on the block it is computed in.
+#[inline(always)]
 fn products<T: Real, const R: usize>(rows: [&[T]; R], b: &[T], n: usize) -> [(T, T); R] {
     let mut quad = [[T::ZERO; 4]; R];
     let mut lin = [[T::ZERO; 4]; R];
@@ -262,6 +264,7 @@ fn products<T: Real, const R: usize>(rows: [&[T]; R], b: &[T], n: usize) -> [(T,
 
 /// ‖a‖² in four interleaved partial sums, (s₀ + s₁) + (s₂ + s₃), the tail's squares
 /// added to the first lanes.
+#[inline(always)]
 fn norm_sq<T: Real>(a: &[T]) -> T {
     let mut lanes = [T::ZERO; 4];
     let chunks = a.chunks_exact(4);
@@ -281,6 +284,7 @@ fn norm_sq<T: Real>(a: &[T]) -> T {
 /// `norms` their ‖u‖²), in one pass over uᵢ: (uᵢ·u_k)² + ‖uᵢ‖²‖u_k‖² + ωΣⱼ(uᵢⱼu_kⱼ)²
 /// for a full Hessian, ωΣⱼ(uᵢⱼu_kⱼ)² + ‖uᵢ‖²‖u_k‖² + 4uᵢ·u_k for a diagonal one
 /// (`share` = ω, [`deviation_share`]).
+#[inline(always)]
 fn kernel_block<T: Real, const R: usize>(
     shape: Shape,
     share: T,
@@ -331,6 +335,7 @@ pub(super) const fn scratch_lens(shape: Shape, m: usize, n: usize) -> [usize; 5]
     [m * m, m * p, m, p * p, p]
 }
 
+avx2_twin! {
 /// Fits the model's change from its prior. On entry `u` holds m rows of n standardised
 /// offsets, `sw` the m square-root weights √wᵢ, `r` the m weighted residuals of the prior
 /// √wᵢ(vᵢ − m₀(uᵢ)); `g` and `h` hold the prior's g₀ and H₀ (H in `shape`'s layout).
@@ -480,7 +485,14 @@ pub(super) fn fit<T: Real>(
         g[j - 1] += beta[j];
     }
     let half_lh = T::ONE / (T::TWO * lh);
-    for i in 0..m {
+    let mut first = 0;
+    if shape == Shape::Full {
+        while first + HESSIAN_BLOCK <= m {
+            update_block(&u[first * n..], &sw[first..], &alpha[first..], n, share, half_lh, h);
+            first += HESSIAN_BLOCK;
+        }
+    }
+    for i in first..m {
         let c = sw[i] * alpha[i];
         let ui = &u[i * n..(i + 1) * n];
         match shape {
@@ -504,6 +516,45 @@ pub(super) fn fit<T: Real>(
         .chain(h.iter())
         .all(|x| x.is_finite())
         .then_some(noise)
+}
+}
+
+/// Points whose terms [`update_block`] adds to a full Hessian in one pass over it.
+const HESSIAN_BLOCK: usize = 4;
+
+/// A full H's update by the [`HESSIAN_BLOCK`] points in the first rows of `u` (n floats
+/// each), with square-root weights `sw` and residuals `alpha`: for each point in turn,
+/// H += cuuᵀ/(2λ_H) and diag(H) += c(‖u‖² + ωu²)/(2λ_H), c = √w·α (`half_lh` = 1/(2λ_H),
+/// `share` = ω), the order in which [`fit`] adds them point by point, so that every entry
+/// is the same bit for bit while H is read and written once for the block.
+#[inline(always)]
+fn update_block<T: Real>(
+    u: &[T],
+    sw: &[T],
+    alpha: &[T],
+    n: usize,
+    share: T,
+    half_lh: T,
+    h: &mut [T],
+) {
+    let c: [T; HESSIAN_BLOCK] = core::array::from_fn(|b| sw[b] * alpha[b]);
+    let us: [&[T]; HESSIAN_BLOCK] = core::array::from_fn(|b| &u[b * n..(b + 1) * n]);
+    let common: [T; HESSIAN_BLOCK] =
+        core::array::from_fn(|b| c[b] * us[b].iter().fold(T::ZERO, |s, &x| s + x * x) * half_lh);
+    let [u0, u1, u2, u3] = us;
+    for (j, row) in h[..n * n].chunks_exact_mut(n).enumerate() {
+        let a: [T; HESSIAN_BLOCK] = core::array::from_fn(|b| c[b] * us[b][j] * half_lh);
+        // The diagonal entry takes each point's axis terms right after its product.
+        let mut diagonal = row[j];
+        for b in 0..HESSIAN_BLOCK {
+            diagonal += a[b] * us[b][j];
+            diagonal += common[b] + share * c[b] * us[b][j].sq() * half_lh;
+        }
+        for ((((x, &y0), &y1), &y2), &y3) in row.iter_mut().zip(u0).zip(u1).zip(u2).zip(u3) {
+            *x = (((*x + a[0] * y0) + a[1] * y1) + a[2] * y2) + a[3] * y3;
+        }
+        row[j] = diagonal;
+    }
 }
 
 /// The noise level η of a fit to the m = `sw.len()` points with square-root weights `sw`,
