@@ -122,12 +122,20 @@ avx2_twin! {
 /// Row k of `out` = L⁻¹(x_k − y) for the first `count` rows x_k of `xs` (n = `y.len()`
 /// floats each): [`whiten`] of each, bit for bit, with a full L⁻¹'s rows read once for
 /// [`WHITEN_BLOCK`] points.
-pub fn whiten_rows<T: Real>(shape: Shape, li: &[T], xs: &[T], count: usize, y: &[T], out: &mut [T]) {
+pub fn whiten_rows<T: Real>(
+    shape: Shape,
+    li: &[T],
+    xs: &[T],
+    count: usize,
+    y: &[T],
+    out: &mut [T],
+) {
     let n = y.len();
     let mut k0 = 0;
     if shape == Shape::Full {
         while k0 + WHITEN_BLOCK <= count {
-            let x: [&[T]; WHITEN_BLOCK] = core::array::from_fn(|b| &xs[(k0 + b) * n..(k0 + b + 1) * n]);
+            let x: [&[T]; WHITEN_BLOCK] =
+                core::array::from_fn(|b| &xs[(k0 + b) * n..(k0 + b + 1) * n]);
             for (i, row) in li[..n * n].chunks_exact(n).enumerate() {
                 let sums = rows_times_difference(row, x, y);
                 for (b, &s) in sums.iter().enumerate() {
@@ -146,8 +154,10 @@ pub fn whiten_rows<T: Real>(shape: Shape, li: &[T], xs: &[T], count: usize, y: &
 /// Points [`whiten_rows`] whitens in one pass over L⁻¹.
 const WHITEN_BLOCK: usize = 4;
 
-/// [`row_times_difference`] of `a` with each of R vectors `x`, in one pass over `a` and
-/// `y`: the same lanes and order for each, bit for bit.
+/// Σⱼ aⱼ(xⱼ − yⱼ) for each of R vectors `x` (n = `a.len()` floats each), in one pass over
+/// `a` and `y`: four interleaved partial sums over the whole groups of four,
+/// (s₀ + s₁) + (s₂ + s₃), plus the tail summed in order; each x's sum is the same
+/// whatever R.
 #[inline(always)]
 fn rows_times_difference<T: Real, const R: usize>(a: &[T], x: [&[T]; R], y: &[T]) -> [T; R] {
     let n = a.len();
@@ -169,23 +179,11 @@ fn rows_times_difference<T: Real, const R: usize>(a: &[T], x: [&[T]; R], y: &[T]
     })
 }
 
-/// Σⱼ aⱼ(xⱼ − yⱼ) in four interleaved partial sums (as [`dot_lanes`](crate::optim::vector::dot_lanes)).
+/// Σⱼ aⱼ(xⱼ − yⱼ) in four interleaved partial sums (as
+/// [`dot_lanes`](crate::optim::vector::dot_lanes)): [`rows_times_difference`] for one x.
 #[inline(always)]
 fn row_times_difference<T: Real>(a: &[T], x: &[T], y: &[T]) -> T {
-    let mut lanes = [T::ZERO; 4];
-    let (ac, xc, yc) = (a.chunks_exact(4), x.chunks_exact(4), y.chunks_exact(4));
-    let tail = (ac
-        .remainder()
-        .iter()
-        .zip(xc.remainder())
-        .zip(yc.remainder()))
-    .fold(T::ZERO, |s, ((&a, &x), &y)| s + a * (x - y));
-    for ((a, x), y) in ac.zip(xc).zip(yc) {
-        for k in 0..4 {
-            lanes[k] += a[k] * (x[k] - y[k]);
-        }
-    }
-    (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
+    rows_times_difference(a, [x], y)[0]
 }
 
 avx2_twin! {
