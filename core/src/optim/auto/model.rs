@@ -485,25 +485,29 @@ pub(super) fn fit<T: Real>(
         g[j - 1] += beta[j];
     }
     let half_lh = T::ONE / (T::TWO * lh);
-    let mut first = 0;
-    if shape == Shape::Full {
-        while first + HESSIAN_BLOCK <= m {
-            update_block(&u[first * n..], &sw[first..], &alpha[first..], n, share, half_lh, h);
-            first += HESSIAN_BLOCK;
-        }
-    }
-    for i in first..m {
-        let c = sw[i] * alpha[i];
-        let ui = &u[i * n..(i + 1) * n];
-        match shape {
-            Shape::Full => {
-                let common = c * ui.iter().fold(T::ZERO, |s, &x| s + x * x) * half_lh;
-                for (j, row) in h[..n * n].chunks_exact_mut(n).enumerate() {
-                    axpy(c * ui[j] * half_lh, ui, row);
-                    row[j] += common + share * c * ui[j].sq() * half_lh;
-                }
+    match shape {
+        Shape::Full => {
+            let mut first = 0;
+            while first + HESSIAN_BLOCK <= m {
+                update_block::<T, HESSIAN_BLOCK>(
+                    &u[first * n..],
+                    &sw[first..],
+                    &alpha[first..],
+                    n,
+                    share,
+                    half_lh,
+                    h,
+                );
+                first += HESSIAN_BLOCK;
             }
-            Shape::Diagonal => {
+            for i in first..m {
+                update_block::<T, 1>(&u[i * n..], &sw[i..], &alpha[i..], n, share, half_lh, h);
+            }
+        }
+        Shape::Diagonal => {
+            for i in 0..m {
+                let c = sw[i] * alpha[i];
+                let ui = &u[i * n..(i + 1) * n];
                 let common = c * ui.iter().fold(T::ZERO, |s, &x| s + x * x) * half_lh;
                 for j in 0..n {
                     h[j] += share * c * ui[j].sq() * half_lh + common;
@@ -519,16 +523,16 @@ pub(super) fn fit<T: Real>(
 }
 }
 
-/// Points whose terms [`update_block`] adds to a full Hessian in one pass over it.
+/// Points whose terms [`fit`] adds to a full Hessian in one pass over it ([`update_block`]).
 const HESSIAN_BLOCK: usize = 4;
 
-/// A full H's update by the [`HESSIAN_BLOCK`] points in the first rows of `u` (n floats
-/// each), with square-root weights `sw` and residuals `alpha`: for each point in turn,
+/// A full H's update by the R points in the first rows of `u` (n floats each), with
+/// square-root weights `sw` and residuals `alpha`: for each point in turn,
 /// H += cuuᵀ/(2λ_H) and diag(H) += c(‖u‖² + ωu²)/(2λ_H), c = √w·α (`half_lh` = 1/(2λ_H),
-/// `share` = ω), the order in which [`fit`] adds them point by point, so that every entry
-/// is the same bit for bit while H is read and written once for the block.
+/// `share` = ω), every entry summed over the points in order, so that it is the same bit
+/// for bit whatever R, while H is read and written once for the R points.
 #[inline(always)]
-fn update_block<T: Real>(
+fn update_block<T: Real, const R: usize>(
     u: &[T],
     sw: &[T],
     alpha: &[T],
@@ -537,21 +541,22 @@ fn update_block<T: Real>(
     half_lh: T,
     h: &mut [T],
 ) {
-    let c: [T; HESSIAN_BLOCK] = core::array::from_fn(|b| sw[b] * alpha[b]);
-    let us: [&[T]; HESSIAN_BLOCK] = core::array::from_fn(|b| &u[b * n..(b + 1) * n]);
-    let common: [T; HESSIAN_BLOCK] =
+    let c: [T; R] = core::array::from_fn(|b| sw[b] * alpha[b]);
+    let us: [&[T]; R] = core::array::from_fn(|b| &u[b * n..(b + 1) * n]);
+    let common: [T; R] =
         core::array::from_fn(|b| c[b] * us[b].iter().fold(T::ZERO, |s, &x| s + x * x) * half_lh);
-    let [u0, u1, u2, u3] = us;
     for (j, row) in h[..n * n].chunks_exact_mut(n).enumerate() {
-        let a: [T; HESSIAN_BLOCK] = core::array::from_fn(|b| c[b] * us[b][j] * half_lh);
+        let a: [T; R] = core::array::from_fn(|b| c[b] * us[b][j] * half_lh);
         // The diagonal entry takes each point's axis terms right after its product.
         let mut diagonal = row[j];
-        for b in 0..HESSIAN_BLOCK {
+        for b in 0..R {
             diagonal += a[b] * us[b][j];
             diagonal += common[b] + share * c[b] * us[b][j].sq() * half_lh;
         }
-        for ((((x, &y0), &y1), &y2), &y3) in row.iter_mut().zip(u0).zip(u1).zip(u2).zip(u3) {
-            *x = (((*x + a[0] * y0) + a[1] * y1) + a[2] * y2) + a[3] * y3;
+        for (k, x) in row.iter_mut().enumerate() {
+            for b in 0..R {
+                *x += a[b] * us[b][k];
+            }
         }
         row[j] = diagonal;
     }
