@@ -31,7 +31,11 @@ L-infinity norm at n = 20: l1-20, l1-30, l1-rotated20, linf20), first run on 202
 too, and an eighth, coupled problems above n = 63 (a curve fitted with a smoothness term,
 a rotated ellipsoid of condition 100 and Broyden's tridiagonal system, all at n = 100:
 smooth-fit100, ellipsoid-rotated100, mgh-broyden-tridiagonal100), first run on
-2026-12-02, with the seventh set's rotated L1 norm at n = 100 beside it (l1-rotated100).
+2026-12-02, with the seventh set's rotated L1 norm at n = 100 beside it (l1-rotated100),
+and a ninth, image losses of a small renderer a user writes (raster_losses.py: grey
+rectangles with exact area coverage at n = 10 and 30, discs sampled at pixel centres at
+n = 9, triangles sampled 4 x 4 per pixel at n = 12: grey-rectangles10, grey-rectangles30,
+discs9, triangles12), first run on 2026-12-03.
 Each problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
@@ -61,6 +65,7 @@ import numpy as np
 import bound_constrained
 import hodr
 import least_squares
+import raster_losses
 
 warnings.filterwarnings("ignore")
 
@@ -662,6 +667,15 @@ PROBLEMS.update({
 # (BENCHMARKS.md, "An eighth set").
 PROBLEMS["l1-rotated100"] = Problem(rotated_l1(100, 9), full(100, 0.3), 1.0, None, 40_000,
                                     1e-6)
+
+
+# The ninth set (2026-12-03, fifty-ninth session): image losses of a small renderer a user
+# writes (raster_losses.py): grey rectangles with exact area coverage at n = 10 and 30,
+# discs sampled at pixel centres and triangles at 4 x 4 points per pixel, each against a
+# target image of the same shapes; first run as Auto stood.
+PROBLEMS.update({name: Problem(case.f, case.x_opt, case.sigma0, case.box, case.budget,
+                               case.target, case.start)
+                 for name, case in raster_losses.PROBLEMS.items()})
 
 
 def draw_start(problem, rng):
