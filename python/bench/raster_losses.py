@@ -84,17 +84,17 @@ def triangles(x, greys):
 
 
 class Case(NamedTuple):
-    """A problem of the set: the loss, its true parameters, sigma0 (n values), the box
-    (lower, upper) and the start range (low, high), each n values, the budget and the
-    target on f - f*."""
+    """A problem of the set, its fields in the order of unseen.py's Problem: the loss,
+    its true parameters, sigma0 (n values), the box (lower, upper), the budget, the
+    target on f - f* and the start range (low, high), box and range n values each."""
 
     f: object
     x_opt: np.ndarray
     sigma0: np.ndarray
     box: tuple
-    start: tuple
     budget: int
     target: float
+    start: tuple
 
 
 def loss(render, x_opt):
@@ -119,8 +119,8 @@ def rectangle_case(truth, target):
     k = len(truth) // 5
     return Case(loss(rectangles, truth), truth, tiled([2, 2, 2, 2, 0.2], k),
                 (tiled([0, 0, 0.5, 0.5, 0], k), tiled([32, 32, 16, 16, 1], k)),
-                (tiled([4, 4, 2, 2, 0.05], k), tiled([28, 28, 8, 8, 0.95], k)),
-                2000 * len(truth), target)
+                2000 * len(truth), target,
+                (tiled([4, 4, 2, 2, 0.05], k), tiled([28, 28, 8, 8, 0.95], k)))
 
 
 # Two rectangles that overlap a little, the second on top.
@@ -141,8 +141,8 @@ def disc_case():
     0.09 / 1024: the image must match exactly."""
     truth = np.asarray(DISCS, dtype=float).ravel()
     return Case(loss(lambda x: discs(x, DISC_GREYS), truth), truth, tiled([2, 2, 2], 3),
-                (tiled([0, 0, 1], 3), tiled([32, 32, 12], 3)),
-                (tiled([4, 4, 2], 3), tiled([28, 28, 7], 3)), 2000 * 9, 1e-6)
+                (tiled([0, 0, 1], 3), tiled([32, 32, 12], 3)), 2000 * 9, 1e-6,
+                (tiled([4, 4, 2], 3), tiled([28, 28, 7], 3)))
 
 
 def triangle_case():
@@ -151,8 +151,8 @@ def triangle_case():
     every subsample must match."""
     truth = np.asarray(TRIANGLES, dtype=float).ravel()
     return Case(loss(lambda x: triangles(x, TRIANGLE_GREYS), truth), truth, np.full(12, 2.0),
-                (np.zeros(12), np.full(12, 32.0)), (np.full(12, 4.0), np.full(12, 28.0)),
-                2000 * 12, 1e-7)
+                (np.zeros(12), np.full(12, 32.0)), 2000 * 12, 1e-7,
+                (np.full(12, 4.0), np.full(12, 28.0)))
 
 
 PROBLEMS = {

@@ -673,9 +673,7 @@ PROBLEMS["l1-rotated100"] = Problem(rotated_l1(100, 9), full(100, 0.3), 1.0, Non
 # writes (raster_losses.py): grey rectangles with exact area coverage at n = 10 and 30,
 # discs sampled at pixel centres and triangles at 4 x 4 points per pixel, each against a
 # target image of the same shapes; first run as Auto stood.
-PROBLEMS.update({name: Problem(case.f, case.x_opt, case.sigma0, case.box, case.budget,
-                               case.target, case.start)
-                 for name, case in raster_losses.PROBLEMS.items()})
+PROBLEMS.update({name: Problem(*case) for name, case in raster_losses.PROBLEMS.items()})
 
 
 def draw_start(problem, rng):
