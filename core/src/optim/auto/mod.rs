@@ -157,7 +157,10 @@
 //!   objective; or σ below what T resolves at θ, or the model's promised decrease below
 //!   what T resolves of f(θ), [`UNRESOLVED_FITS`], or samples that tie with f(θ) by
 //!   rounding alone at a minimum the model confirmed), or after
-//!   [`AutoOptions::patience`] iterations without a lower f(θ), the run restarts from
+//!   [`AutoOptions::patience`] iterations without a lower f(θ), or once it creeps (two
+//!   windows of [`CREEP_WINDOWS`]·patience iterations in a row without a confirmed
+//!   model step or σ converging, each lowering f(θ) by at most [`CREEP_GAIN`] of the
+//!   descent's fall and by more than half the window before), the run restarts from
 //!   the best point with a survey of pairs, as the first iteration's, at the next scale of the cycle σ₀, 2σ₀,
 //!   …, [`PLATEAU_WIDTH`]·σ₀, σ₀, … (wider scales average over more of the basin that
 //!   held it; a gain does not send the next restart back to σ₀, since on a lattice of
@@ -239,6 +242,7 @@
 
 mod adapt_metric;
 mod centre;
+mod creep;
 mod eigen;
 mod fitting;
 mod fixed;
@@ -256,6 +260,8 @@ mod step;
 mod trust;
 
 use centre::Centring;
+use creep::Creep;
+pub use creep::{CREEP_GAIN, CREEP_SHRINK, CREEP_WINDOWS};
 pub use fixed::FixedAuto;
 pub use memory::buffer_len;
 use memory::{Memory, buffer_len_of, carve, history_len, memory_determines_model};
@@ -730,6 +736,9 @@ struct State<T> {
     centred: bool,
     /// Probes left before the next fresh start (the `probe` module).
     probes: usize,
+    /// What the descent's gains and σ have done in its latest windows (the `creep`
+    /// module).
+    creep: Creep<T>,
 }
 
 /// How a run goes on after a descent that ended on a flat piece of f is centred.
@@ -813,6 +822,7 @@ impl<T: Real> State<T> {
             centre_then: None,
             centred: false,
             probes: 0,
+            creep: Creep::new(),
         }
     }
 }
@@ -1286,7 +1296,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let lost = self.st.value.is_none()
             && self.st.record.is_none()
             && self.widened_sigma(PLATEAU_WIDTH) <= self.st.sigma;
-        let stagnated = self.st.stale >= patience || lost;
+        let creeping = self.creeping(patience);
+        let stagnated = self.st.stale >= patience || lost || creeping;
         // Before a restart or the end moves θ back to the best point: a centre that
         // continuation left above it may have just stepped below it.
         self.keep_best();
@@ -1401,6 +1412,25 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 None
             }
             AfterCentre::End(termination) => Some(termination),
+        }
+    }
+
+    /// Whether the descent creeps (the `creep` module): observed once per iteration,
+    /// while θ is the descent's best point and f(θ) is finite.
+    fn creeping(&mut self, patience: usize) -> bool {
+        match self.st.value {
+            Some(value) if self.st.best_value.is_none() => self.st.creep.observe(
+                value,
+                self.st.sigma,
+                self.st.iteration,
+                self.st.unconfirmed == 0,
+                CREEP_WINDOWS * patience,
+            ),
+            Some(_) => false,
+            None => {
+                self.st.creep.restart();
+                false
+            }
         }
     }
 

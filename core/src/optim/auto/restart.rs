@@ -285,6 +285,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.blamed = 0;
         self.st.travelled = T::ZERO;
         self.st.sigma = sigma;
+        self.st.creep.restart();
         self.st.survey = true;
         self.st.has_prior &= smooth;
         // A run that ends its descent may have been held by noise: a lucky draw of
