@@ -157,10 +157,10 @@
 //!   objective; or σ below what T resolves at θ, or the model's promised decrease below
 //!   what T resolves of f(θ), [`UNRESOLVED_FITS`], or samples that tie with f(θ) by
 //!   rounding alone at a minimum the model confirmed), or after
-//!   [`AutoOptions::patience`] iterations without a lower f(θ), or once it creeps (two
-//!   windows of [`CREEP_WINDOWS`]·patience iterations in a row without a confirmed
-//!   model step or σ converging, each lowering f(θ) by at most [`CREEP_GAIN`] of the
-//!   descent's fall and by more than half the window before), the run restarts from
+//!   [`AutoOptions::patience`] iterations without a lower f(θ), or once it creeps (a
+//!   window of [`CREEP_WINDOWS`]·patience iterations that follows another, both without
+//!   a confirmed model step or σ converging, and lowers f(θ) by at most [`CREEP_GAIN`]
+//!   of the descent's fall and by more than half the window before), the run restarts from
 //!   the best point with a survey of pairs, as the first iteration's, at the next scale of the cycle σ₀, 2σ₀,
 //!   …, [`PLATEAU_WIDTH`]·σ₀, σ₀, … (wider scales average over more of the basin that
 //!   held it; a gain does not send the next restart back to σ₀, since on a lattice of
