@@ -30,7 +30,6 @@
 
 use std::fmt;
 use std::sync::Mutex;
-use std::time::Instant;
 
 use anyhow::{Result, anyhow};
 use hodr_core::optim::preset::{Hyper, NEWTON_CG_INNER_STEPS, Preset, SIGMA_SHRINK};
@@ -86,19 +85,17 @@ impl Method {
     pub fn run(self, problem: &Problem, x0: &[f64], seed: u64) -> Trace {
         let mut counter = Counter::new(problem, problem.budget);
         let initial_error = problem.param_error(&counter.clamped().point(x0));
-        let clock = Instant::now();
         let stopped = match self {
             Method::Auto => auto(problem, x0, seed, &mut counter),
             Method::CmaEs => cma_es(problem, x0, seed, &mut counter),
             Method::Bobyqa => bobyqa(problem, x0, &mut counter),
             Method::Fr22 => fr22(problem, x0, seed, &mut counter),
         };
-        let time = clock.elapsed().as_secs_f64();
         let stopped = match stopped {
             Ok(why) => why.filter(|_| !counter.exhausted()),
             Err(e) => Some(format!("error: {e:#}")),
         };
-        counter.into_trace(initial_error, time, stopped)
+        counter.into_trace(initial_error, stopped)
     }
 }
 

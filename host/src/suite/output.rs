@@ -12,29 +12,32 @@ use super::methods::Method;
 use super::problem::{Family, Problem};
 use super::summary::{Cell, FamilyRow, Ratio, Row, Run, target_labels};
 
-/// `suite.csv`: problem, family, n, method, seed, target, evaluations (empty when not
-/// reached), then the run's wall time, best f − f* and why it stopped before its budget
-/// (empty when it used the budget; commas replaced by semicolons).
+/// `suite.csv`: problem, family, n, method, seed, target, evaluations and wall time in
+/// seconds to reach it (both empty when not reached), then the run's wall time, best
+/// f − f* and why it stopped before its budget (empty when it used the budget; commas
+/// replaced by semicolons).
 ///
 /// # Errors
 /// When the file cannot be written.
 pub fn write_csv(path: &Path, problems: &[Problem], runs: &[Run]) -> Result<()> {
     let labels = target_labels();
-    let mut csv =
-        String::from("problem,family,n,method,seed,target,evaluations,time_s,best_f,stopped\n");
+    let mut csv = String::from(
+        "problem,family,n,method,seed,target,evaluations,time_to_target_s,time_s,best_f,stopped\n",
+    );
     for r in runs {
         let p = &problems[r.problem];
         for (label, e) in labels.iter().zip(r.reached()) {
             let _ = writeln!(
                 csv,
-                "{},{},{},{},{},{},{},{},{:e},{}",
+                "{},{},{},{},{},{},{},{},{},{:e},{}",
                 p.name,
                 p.family,
                 p.n,
                 r.method,
                 r.seed,
                 label,
-                e.map_or(String::new(), |e| e.to_string()),
+                e.map_or(String::new(), |e| e.evaluation.to_string()),
+                e.map_or(String::new(), |e| e.time.to_string()),
                 r.trace.time,
                 r.trace.best(),
                 r.trace.stopped.as_deref().unwrap_or("").replace(',', ";"),
@@ -91,29 +94,36 @@ fn ratio(ratio: Ratio, problems: usize) -> String {
     }
 }
 
-/// The table of [`super::summary::pairwise`]: the first method's evaluations over each
-/// other method's, geometric mean over a group's problems (Markdown).
+/// The table of [`super::summary::pairwise`]: the first method's median evaluations over
+/// each other method's, geometric mean over a group's problems, and beside each its
+/// median wall time's (Markdown).
 pub fn pairwise_table(method: Method, pairs: &[super::summary::PairRow]) -> String {
     let Some(first) = pairs.first() else {
         return String::new();
     };
     let mut s = String::from("| group |");
     for (m, _) in &first.ratios {
-        let _ = write!(s, " {method} ÷ {m} (problems) |");
+        let _ = write!(s, " {method} ÷ {m}: evals (problems) | time |");
     }
     s.push_str("\n|---|");
     for _ in &first.ratios {
-        s.push_str("---|");
+        s.push_str("---|---|");
     }
     s.push('\n');
     for row in pairs {
         let _ = write!(s, "| {} |", row.group);
-        for (_, ratio) in &row.ratios {
+        for ((_, ratio), (_, time)) in row.ratios.iter().zip(&row.time_ratios) {
             match ratio.mean {
                 Some(x) => {
                     let _ = write!(s, " {x:.2} ({}) |", ratio.problems);
                 }
                 None => s.push_str(" — (0) |"),
+            }
+            match time.mean {
+                Some(x) => {
+                    let _ = write!(s, " {x:.2} |");
+                }
+                None => s.push_str(" — |"),
             }
         }
         s.push('\n');
@@ -124,12 +134,12 @@ pub fn pairwise_table(method: Method, pairs: &[super::summary::PairRow]) -> Stri
 /// The per-family table (Markdown), as printed to stdout and at the top of suite.md.
 pub fn family_table(families: &[FamilyRow], reference: Method) -> String {
     let mut s = format!(
-        "| family | method | problems | runs at 1e-8 | targets reached | evals ÷ {reference} (problems) | aRT ÷ {reference} (problems) | median time |\n|---|---|---|---|---|---|---|---|\n"
+        "| family | method | problems | runs at 1e-8 | targets reached | evals ÷ {reference} (problems) | time ÷ {reference} | aRT ÷ {reference} (problems) | median time |\n|---|---|---|---|---|---|---|---|---|\n"
     );
     for r in families {
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {}/{} | {:.0} % | {} | {} | {} |",
+            "| {} | {} | {} | {}/{} | {:.0} % | {} | {} | {} | {} |",
             r.family,
             r.method,
             r.problems,
@@ -137,6 +147,9 @@ pub fn family_table(families: &[FamilyRow], reference: Method) -> String {
             r.runs,
             100.0 * r.targets_reached as f64 / r.targets.max(1) as f64,
             ratio(r.ratio, r.problems),
+            r.time_ratio
+                .mean
+                .map_or_else(|| "—".into(), |x| format!("{x:.2}")),
             ratio(r.art_ratio, r.problems),
             seconds(r.median_time),
         );
@@ -197,7 +210,9 @@ pub fn write_markdown(
          (\"—\": half or more never did); (s/N) is runs reaching it. The ratio column is the \
          geometric mean over problems of a method's median evaluations over the reference's, \
          each problem at the hardest f-target both reach (so read it with the success counts); \
-         (k/m): problems with such a target. The aRT column is the same mean of aRT ratios \
+         (k/m): problems with such a target. The time column is the same mean of median \
+         wall-time ratios to the same targets: a method's own work counts there as well as \
+         the objective's, and the suite's objectives are cheap. The aRT column is the same mean of aRT ratios \
          (average running time, as COCO reports it: the evaluations of all runs, a failed \
          run's whole run, per run that reached the target), each problem at the hardest \
          f-target both reach in at least one run: it counts the runs that failed. \
@@ -213,7 +228,8 @@ pub fn write_markdown(
             "\n## {first} against each method\n\nGeometric mean over a group's problems of \
              {first}'s median evaluations over the other method's, each problem at the hardest \
              f-target both reach (below 1: {first} needs fewer); (k): problems with such a \
-             target.\n\n{}",
+             target; beside it, the same mean of median wall times to the same targets (below \
+             1: {first} is faster in this run, on these cheap objectives).\n\n{}",
             pairwise_table(first, &pairs)
         );
     }

@@ -36,7 +36,7 @@ fn ecdf(problems: &[Problem], runs: &[Run], method: Method) -> (Vec<f64>, usize)
         for e in r.reached().into_iter().take(F_TARGETS.len()) {
             total += 1;
             if let Some(e) = e {
-                hits.push(e as f64 / n);
+                hits.push(e.evaluation as f64 / n);
             }
         }
     }

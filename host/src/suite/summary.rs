@@ -7,12 +7,16 @@
 //! * Per problem, method and target: the median over seeds of the evaluations to reach
 //!   it, a run that never does counting as +∞ — so the median exists only when at least
 //!   half the runs got there (upper median for an even count: "at least half the runs
-//!   reached it by then") — and the number of runs that did.
+//!   reached it by then") — the median wall time to reach it by the same rule, and the
+//!   number of runs that did.
 //! * Per family and method: the geometric mean over problems of (median evaluations /
 //!   the reference method's), each problem taken at the hardest f-target both medians
 //!   reach (problems where they share none are left out and counted separately); the
 //!   runs reaching the final target 10⁻⁸; the fraction of (problem, seed, f-target)
 //!   triples reached; the median wall time of a run. Beside the median ratio, the same
+//!   geometric mean of median wall-time ratios at the same targets (a method's time to a
+//!   target counts its own work as well as the objective's, which the suite's functions
+//!   make cheap: a renderer's evaluations would move it towards the evaluations'), and the
 //!   geometric mean of aRT ratios, each problem at the hardest f-target both methods
 //!   reach in at least one run: a median says nothing about a problem where one method
 //!   succeeds in 2 runs of 5 and the other in 4, and its hardest common target may be one
@@ -24,7 +28,7 @@
 
 use super::methods::Method;
 use super::problem::{Family, Problem};
-use super::trace::Trace;
+use super::trace::{Event, Trace};
 use crate::metrics::median;
 
 /// The exponents k of the f-targets 10ᵏ, easiest first.
@@ -56,8 +60,8 @@ pub struct Run {
 }
 
 impl Run {
-    /// The evaluations to reach each target, in [`target_labels`] order.
-    pub fn reached(&self) -> Vec<Option<usize>> {
+    /// The new best that first reached each target, in [`target_labels`] order.
+    pub fn reached(&self) -> Vec<Option<Event>> {
         F_TARGETS
             .iter()
             .map(|&k| self.trace.reaching_f(10f64.powi(k)))
@@ -71,6 +75,8 @@ impl Run {
 pub struct Cell {
     /// Median evaluations (a miss counts as +∞); `None` when half or more missed.
     pub median: Option<f64>,
+    /// Median wall time to the target, seconds, by the same rule.
+    pub time: Option<f64>,
     /// Runs that reached the target.
     pub successes: usize,
     /// aRT: evaluations of all runs (to the target, or all of a failed run's) per
@@ -105,11 +111,15 @@ pub fn rows(problems: &[Problem], methods: &[Method], runs: &[Run]) -> Vec<Row> 
             if mine.is_empty() {
                 continue;
             }
-            let reached: Vec<Vec<Option<usize>>> = mine.iter().map(|r| r.reached()).collect();
+            let reached: Vec<Vec<Option<Event>>> = mine.iter().map(|r| r.reached()).collect();
             let cells = (0..=F_TARGETS.len())
                 .map(|t| {
-                    let v: Vec<Option<f64>> =
-                        reached.iter().map(|r| r[t].map(|e| e as f64)).collect();
+                    let v: Vec<Option<f64>> = reached
+                        .iter()
+                        .map(|r| r[t].map(|e| e.evaluation as f64))
+                        .collect();
+                    let times: Vec<Option<f64>> =
+                        reached.iter().map(|r| r[t].map(|e| e.time)).collect();
                     let successes = v.iter().filter(|x| x.is_some()).count();
                     let spent: f64 = v
                         .iter()
@@ -118,6 +128,7 @@ pub fn rows(problems: &[Problem], methods: &[Method], runs: &[Run]) -> Vec<Row> 
                         .sum();
                     Cell {
                         median: median(&v),
+                        time: median(&times),
                         successes,
                         runs: v.len(),
                         art: (successes > 0).then(|| spent / successes as f64),
@@ -149,6 +160,8 @@ pub struct FamilyRow {
     pub ratio: Ratio,
     /// aRT over the reference's, at the hardest target both reach in some run.
     pub art_ratio: Ratio,
+    /// Median wall time to the target over the reference's, at the targets of `ratio`.
+    pub time_ratio: Ratio,
     /// Runs reaching the final target 10⁻⁸.
     pub final_successes: usize,
     /// Runs.
@@ -180,11 +193,14 @@ impl Ratio {
     }
 }
 
-/// What a ratio compares: median evaluations or aRT.
+/// What a ratio compares: median evaluations, median wall time or aRT.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Statistic {
     /// [`Cell::median`].
     Median,
+    /// [`Cell::time`]: it exists exactly where [`Cell::median`] does (both count the
+    /// same runs as misses), so its ratios are taken at the same targets.
+    Time,
     /// [`Cell::art`].
     Art,
 }
@@ -193,6 +209,7 @@ impl Statistic {
     fn of(self, cell: &Cell) -> Option<f64> {
         match self {
             Statistic::Median => cell.median,
+            Statistic::Time => cell.time,
             Statistic::Art => cell.art,
         }
     }
@@ -212,7 +229,8 @@ fn log_ratios(mine: &[&Row], rows: &[Row], reference: Method, statistic: Statist
         let common = (0..F_TARGETS.len())
             .rev()
             .find_map(|t| Some((statistic.of(&r.cells[t])?, statistic.of(&base.cells[t])?)));
-        if let Some((a, b)) = common {
+        // A time below the clock's resolution has no ratio.
+        if let Some((a, b)) = common.filter(|&(a, b)| a > 0.0 && b > 0.0) {
             logs.push((a / b).ln());
         }
     }
@@ -220,14 +238,16 @@ fn log_ratios(mine: &[&Row], rows: &[Row], reference: Method, statistic: Statist
 }
 
 /// One group of problems (a family, or one BBOB function across its dimensions and
-/// instances) and the geometric-mean ratios of `method`'s evaluations to each other
-/// method's, with the number of problems that entered each.
+/// instances) and the geometric-mean ratios of `method`'s median evaluations and median
+/// wall time to each other method's, with the number of problems that entered each.
 #[derive(Clone, Debug)]
 pub struct PairRow {
     /// The group's name: a family, or `bbob-fNN`.
     pub group: String,
-    /// Each other method and the geometric-mean ratio against it.
+    /// Each other method and the geometric-mean ratio of evaluations against it.
     pub ratios: Vec<(Method, Ratio)>,
+    /// Each other method and the geometric-mean ratio of wall time against it.
+    pub time_ratios: Vec<(Method, Ratio)>,
 }
 
 /// `method` against every other method of `methods`, per family and per BBOB function.
@@ -258,12 +278,18 @@ pub fn pairwise(
         if mine.is_empty() {
             continue;
         }
-        let ratios = methods
-            .iter()
-            .filter(|&&m| m != method)
-            .map(|&m| (m, Ratio::of(&log_ratios(&mine, rows, m, Statistic::Median))))
-            .collect();
-        out.push(PairRow { group: g, ratios });
+        let against = |statistic| {
+            methods
+                .iter()
+                .filter(|&&m| m != method)
+                .map(|&m| (m, Ratio::of(&log_ratios(&mine, rows, m, statistic))))
+                .collect()
+        };
+        out.push(PairRow {
+            group: g,
+            ratios: against(Statistic::Median),
+            time_ratios: against(Statistic::Time),
+        });
     }
     out
 }
@@ -290,11 +316,12 @@ pub fn families(
             }
             let ratio = Ratio::of(&log_ratios(&mine, rows, reference, Statistic::Median));
             let art_ratio = Ratio::of(&log_ratios(&mine, rows, reference, Statistic::Art));
+            let time_ratio = Ratio::of(&log_ratios(&mine, rows, reference, Statistic::Time));
             let my_runs: Vec<&Run> = runs
                 .iter()
                 .filter(|r| r.method == m && problems[r.problem].family == family)
                 .collect();
-            let reached: Vec<Vec<Option<usize>>> = my_runs.iter().map(|r| r.reached()).collect();
+            let reached: Vec<Vec<Option<Event>>> = my_runs.iter().map(|r| r.reached()).collect();
             let times: Vec<Option<f64>> = my_runs.iter().map(|r| Some(r.trace.time)).collect();
             out.push(FamilyRow {
                 family,
@@ -302,6 +329,7 @@ pub fn families(
                 problems: mine.len(),
                 ratio,
                 art_ratio,
+                time_ratio,
                 final_successes: reached.iter().filter(|r| r[last].is_some()).count(),
                 runs: my_runs.len(),
                 targets_reached: reached
@@ -332,6 +360,7 @@ mod tests {
                     .iter()
                     .map(|&(evaluation, f)| Event {
                         evaluation,
+                        time: evaluation as f64 * 1e-3,
                         f,
                         param_error: 1.0,
                     })
@@ -342,6 +371,39 @@ mod tests {
                 stopped: None,
             },
         }
+    }
+
+    /// The time ratio compares the median times to the target the evaluations' ratio
+    /// is taken at, whatever each method's time per evaluation.
+    #[test]
+    fn time_ratios_are_taken_at_the_evaluations_targets() {
+        let problems = [bbob::problem(1, 2, 1, 10)];
+        // Auto reaches 10¹ at evaluation 4 and 10⁰ at 6 in every run, at 10 ms per
+        // evaluation; CMA-ES reaches 10¹ at evaluation 8 only, at 1 ms per evaluation.
+        let with = |method: Method, per_evaluation: f64, best: &[(usize, f64)]| {
+            let mut r = run(0, 10, best);
+            r.method = method;
+            for e in &mut r.trace.events {
+                e.time = e.evaluation as f64 * per_evaluation;
+            }
+            r
+        };
+        let runs = [
+            with(Method::Auto, 1e-2, &[(4, 5.0), (6, 0.5)]),
+            with(Method::CmaEs, 1e-3, &[(8, 5.0)]),
+        ];
+        let methods = [Method::Auto, Method::CmaEs];
+        let rows = rows(&problems, &methods, &runs);
+        let families = families(&problems, &methods, Method::CmaEs, &rows, &runs);
+        let auto = &families[0];
+        assert_eq!(auto.method, Method::Auto);
+        let close = |r: Ratio, x: f64| r.mean.is_some_and(|m| (m - x).abs() < 1e-12);
+        // At 10¹, the hardest target both reach: 4/8 evaluations, 40 ms/8 ms.
+        assert!(close(auto.ratio, 0.5), "{:?}", auto.ratio);
+        assert!(close(auto.time_ratio, 5.0), "{:?}", auto.time_ratio);
+        let pairs = pairwise(&problems, &methods, Method::Auto, &rows);
+        assert!(close(pairs[0].ratios[0].1, 0.5));
+        assert!(close(pairs[0].time_ratios[0].1, 5.0));
     }
 
     /// aRT counts a failed run's whole run; the median counts it as +∞.
@@ -358,10 +420,14 @@ mod tests {
         let cell = rows[0].cells[0];
         assert_eq!((cell.successes, cell.runs), (2, 3));
         assert_eq!(cell.median, Some(7.0));
+        // The median time to it by the same rule: run 2's (its events carry 1 ms per
+        // evaluation here).
+        assert_eq!(cell.time, Some(7e-3));
         assert_eq!(cell.art, Some((5.0 + 12.0 + 7.0) / 2.0));
         // Target 10⁰: run 2 alone; the median does not exist, aRT does.
         let cell = rows[0].cells[1];
         assert_eq!(cell.median, None);
+        assert_eq!(cell.time, None);
         assert_eq!(cell.art, Some(10.0 + 12.0 + 7.0));
         // Target 10⁻¹: no run; neither exists.
         assert_eq!(rows[0].cells[2].art, None);

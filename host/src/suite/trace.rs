@@ -6,11 +6,13 @@
 //! f and the parameter error are those of the clamped point. The method sees the value
 //! [`Problem::observe`] gives (f itself unless the problem is noisy); the trace judges
 //! the noiseless f. Whenever f − f* falls below the best so far, the trace records
-//! (evaluation number, f − f*, parameter error). Evaluations after the budget still return f (so a method can finish its
-//! iteration) but are not recorded or counted.
+//! (evaluation number, wall time since the run began, f − f*, parameter error).
+//! Evaluations after the budget still return f (so a method can finish its iteration)
+//! but are not recorded or counted.
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, PoisonError};
+use std::time::Instant;
 
 use hodr_core::{Batch, NoiseSeed, Objective};
 use rayon::prelude::*;
@@ -23,6 +25,9 @@ use super::problem::Problem;
 pub struct Event {
     /// 1-based number of the evaluation that found it.
     pub evaluation: usize,
+    /// Wall time from the run's start to that evaluation's count, seconds (a batch's
+    /// rows are counted once the whole batch has returned).
+    pub time: f64,
     /// f − f* there.
     pub f: f64,
     /// Its parameter error.
@@ -46,22 +51,16 @@ pub struct Trace {
 }
 
 impl Trace {
-    /// The first evaluation at which f − f* ≤ `target`, if any.
-    pub fn reaching_f(&self, target: f64) -> Option<usize> {
-        self.events
-            .iter()
-            .find(|e| e.f <= target)
-            .map(|e| e.evaluation)
+    /// The first new best with f − f* ≤ `target`, if any.
+    pub fn reaching_f(&self, target: f64) -> Option<Event> {
+        self.events.iter().find(|e| e.f <= target).copied()
     }
 
-    /// The first evaluation whose new best has parameter error at most
-    /// (1 − `reduction`) × the start's (e.g. 0.99: a 99 % reduction), if any.
-    pub fn reaching_param(&self, reduction: f64) -> Option<usize> {
+    /// The first new best with parameter error at most (1 − `reduction`) × the start's
+    /// (e.g. 0.99: a 99 % reduction), if any.
+    pub fn reaching_param(&self, reduction: f64) -> Option<Event> {
         let goal = (1.0 - reduction) * self.initial_error;
-        self.events
-            .iter()
-            .find(|e| e.param_error <= goal)
-            .map(|e| e.evaluation)
+        self.events.iter().find(|e| e.param_error <= goal).copied()
     }
 
     /// The best f − f* of the run (+∞ when nothing was evaluated).
@@ -131,10 +130,11 @@ pub struct Counter<'p> {
     count: usize,
     best: f64,
     events: Vec<Event>,
+    start: Instant,
 }
 
 impl<'p> Counter<'p> {
-    /// A fresh counter for a run of `budget` evaluations.
+    /// A fresh counter for a run of `budget` evaluations; the run's clock starts here.
     pub fn new(problem: &'p Problem, budget: usize) -> Self {
         Counter {
             problem,
@@ -143,6 +143,7 @@ impl<'p> Counter<'p> {
             count: 0,
             best: f64::INFINITY,
             events: Vec::new(),
+            start: Instant::now(),
         }
     }
 
@@ -173,6 +174,7 @@ impl<'p> Counter<'p> {
             self.best = gap;
             self.events.push(Event {
                 evaluation: self.count,
+                time: self.elapsed(),
                 f: gap,
                 param_error: self.problem.param_error(&y),
             });
@@ -198,19 +200,24 @@ impl<'p> Counter<'p> {
         self.count
     }
 
+    /// Wall time since the counter was made (the run's start), seconds.
+    pub fn elapsed(&self) -> f64 {
+        self.start.elapsed().as_secs_f64()
+    }
+
     /// True once the budget is used.
     pub fn exhausted(&self) -> bool {
         self.count >= self.budget
     }
 
-    /// The trace of the run so far, with the start's parameter error, wall time and
-    /// stopping reason supplied by the runner.
-    pub fn into_trace(self, initial_error: f64, time: f64, stopped: Option<String>) -> Trace {
+    /// The trace of the run so far, its wall time the counter's clock, with the start's
+    /// parameter error and stopping reason supplied by the runner.
+    pub fn into_trace(self, initial_error: f64, stopped: Option<String>) -> Trace {
         Trace {
+            time: self.elapsed(),
             events: self.events,
             evaluations: self.count,
             initial_error,
-            time,
             stopped,
         }
     }
