@@ -40,8 +40,11 @@ Each problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
 succeeds when an evaluated point comes within the target of f* (COCO's rule); the table
-gives the successes and the median evaluations of the successful runs, and hodr's median
-over pycma's where both solve at least half of the runs.
+gives the successes, and the median evaluations and median wall time to the target of the
+successful runs (the lower of the two middle runs), and hodr's medians over pycma's and
+over BOBYQA's where both solve at least half of the runs. A run's time counts the
+solver's own work as well as the objective's: these objectives are cheap, so the time
+ratios say more of the solvers' overhead than a renderer's would.
 
 Solvers: `hodr.minimize` with the budget; `cma.fmin2` with its IPOP restarts (9, doubling
 the population: pycma's documented way for multi-modal functions); nlopt's `LN_BOBYQA`,
@@ -77,12 +80,15 @@ class Spent(Exception):
 
 class Counted:
     """f with COCO's bookkeeping: evaluations, the first that reached the target (the
-    run ends there; the evaluations after it count for nothing)."""
+    run ends there; the evaluations after it count for nothing), and the wall time from
+    the object's making (the run's start) to that evaluation's return, in seconds."""
 
     def __init__(self, f, f_opt, target, budget):
         self.f, self.f_opt, self.target, self.budget = f, f_opt, target, budget
         self.evaluations = 0
         self.hit = None
+        self.hit_time = None
+        self.start = time.perf_counter()
 
     def __call__(self, x):
         if self.evaluations >= self.budget or self.hit is not None:
@@ -91,6 +97,7 @@ class Counted:
         value = self.f(np.asarray(x, dtype=float))
         if self.hit is None and np.isfinite(value) and value - self.f_opt <= self.target:
             self.hit = self.evaluations
+            self.hit_time = time.perf_counter() - self.start
         return value
 
 
@@ -727,6 +734,17 @@ def run_bobyqa(f, x0, problem, seed):
 SOLVERS = {"hodr": run_hodr, "pycma": run_cma, "BOBYQA": run_bobyqa}
 
 
+def seconds(t):
+    """A time in seconds with three significant digits in a fitting unit ("—" for none)."""
+    if t is None:
+        return "—"
+    if t < 1e-3:
+        return f"{t * 1e6:.0f} µs"
+    if t < 1.0:
+        return f"{t * 1e3:.1f} ms"
+    return f"{t:.2f} s"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=10)
@@ -750,9 +768,11 @@ def main():
     for solver in solvers:
         if solver not in SOLVERS:
             parser.error(f"unknown solver {solver!r} (choose from {', '.join(SOLVERS)})")
+    others = [s for s in ("pycma", "BOBYQA") if s in solvers and "hodr" in solvers]
     print("| problem | n | budget | target | " + " | ".join(
-        f"{s} solved / median evaluations" for s in solvers) + " | hodr ÷ pycma |")
-    print("|---|---|---|---|" + "---|" * (len(solvers) + 1))
+        f"{s} solved / median evaluations / time" for s in solvers) + "".join(
+        f" | hodr ÷ {s}: evaluations / time" for s in others) + " |")
+    print("|---|---|---|---|" + "---|" * (len(solvers) + len(others)))
     start = time.perf_counter()
     for name in names:
         problem = PROBLEMS[name]
@@ -767,16 +787,20 @@ def main():
                     run(counted, x0, problem, seed)
                 except Spent:
                     pass
-                hits.append(counted.hit)
-            solved = sorted(h for h in hits if h is not None)
+                hits.append((counted.hit, counted.hit_time))
+            solved = sorted(h for h, _ in hits if h is not None)
+            times = sorted(t for _, t in hits if t is not None)
             median = solved[(len(solved) - 1) // 2] if solved else None
+            median_time = times[(len(times) - 1) // 2] if times else None
             if 2 * len(solved) >= args.seeds:
-                medians[solver] = median
-            cells.append(f"{len(solved)}/{args.seeds} / {median if median else '—'}")
-        ratio = (f"{medians['hodr'] / medians['pycma']:.2f}"
-                 if "hodr" in medians and "pycma" in medians else "—")
-        print(f"| {name} | {problem.n} | {problem.budget} | {problem.target:g} | " + " | ".join(cells) + f" | {ratio} |",
-              flush=True)
+                medians[solver] = (median, median_time)
+            cells.append(f"{len(solved)}/{args.seeds} / {median if median else '—'}"
+                         f" / {seconds(median_time)}")
+        ratios = [f"{medians['hodr'][0] / medians[s][0]:.2f} / "
+                  f"{medians['hodr'][1] / medians[s][1]:.2f}"
+                  if "hodr" in medians and s in medians else "—" for s in others]
+        print(f"| {name} | {problem.n} | {problem.budget} | {problem.target:g} | "
+              + " | ".join(cells + ratios) + " |", flush=True)
     print(f"\n{time.perf_counter() - start:.0f} s")
 
 
