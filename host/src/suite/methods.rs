@@ -6,8 +6,9 @@
 //! * **Auto**: hodr-core's default optimiser ([`hodr_core::optim::Auto`]) with its
 //!   defaults, σ₀ and the bounds; it stops at the budget or at its own termination.
 //! * **CMA-ES** (the `cmaes` crate): initial mean x₀, step size σ₀, the default
-//!   population 4 + ⌊3 ln n⌋, no restarts; each generation's population is evaluated in
-//!   parallel (`next_parallel`, rayon). Bounds are respected by evaluating each sample
+//!   population 4 + ⌊3 ln n⌋, no restarts; a generation's population is evaluated in
+//!   parallel (`next_parallel`, rayon) when its expected work pays for the threads
+//!   ([`Counter::parallel_pays`], as for the batches of Auto and FR22). Bounds are respected by evaluating each sample
 //!   reflected into the box ([`super::problem::Bounds::reflect`]); the distribution is
 //!   not told about them. Not by clamping: f at a clamped point is constant along every
 //!   clamped coordinate outside the box, so there the ranking cannot pull the mean back;
@@ -26,10 +27,11 @@
 //!   annealed linearly over the budget) with σ_start = σ₀, σ_end = σ₀/100, Adam learning
 //!   rate 0.1·σ₀ and 6 antithetic pairs: the baseline's only task-independent setting,
 //!   expressed in the problem's own scale. Points are clamped into the bounds inside the
-//!   objective; batches are evaluated in parallel.
+//!   objective; batches are evaluated in parallel when that pays.
 
 use std::fmt;
 use std::sync::Mutex;
+use std::time::{Duration, Instant};
 
 use anyhow::{Result, anyhow};
 use hodr_core::optim::preset::{Hyper, NEWTON_CG_INNER_STEPS, Preset, SIGMA_SHRINK};
@@ -133,19 +135,23 @@ fn auto(problem: &Problem, x0: &[f64], seed: u64, counter: &mut Counter<'_>) -> 
     Ok(Some("iteration cap".into()))
 }
 
-/// CMA-ES through the `cmaes` crate, generations evaluated in parallel.
+/// CMA-ES through the `cmaes` crate, a generation evaluated in parallel when that pays
+/// ([`Counter::parallel_pays`]).
 fn cma_es(problem: &Problem, x0: &[f64], seed: u64, counter: &mut Counter<'_>) -> Stop {
-    // Evaluations of the current generation, gathered from rayon's threads.
-    let pending: Mutex<Vec<(Vec<f64>, f64)>> = Mutex::new(Vec::new());
+    // Evaluations of the current generation with the time each took, gathered from
+    // rayon's threads.
+    let pending: Mutex<Vec<(Vec<f64>, f64, Duration)>> = Mutex::new(Vec::new());
     let f = counter.clamped();
     let evaluate = |x: &cmaes::DVector<f64>| {
+        let clock = Instant::now();
         let mut x = x.as_slice().to_vec();
         if let Some(b) = &problem.bounds {
             b.reflect(&mut x);
         }
         let f = f.value(&x);
+        let took = clock.elapsed();
         if let Ok(mut p) = pending.lock() {
-            p.push((x, f));
+            p.push((x, f, took));
         }
         f
     };
@@ -154,19 +160,25 @@ fn cma_es(problem: &Problem, x0: &[f64], seed: u64, counter: &mut Counter<'_>) -
         .max_function_evals(problem.budget)
         .build(&evaluate)
         .map_err(|e| anyhow!("CMA-ES options: {e:?}"))?;
+    let lambda = cma.parameters().lambda();
     let mut generation = Vec::new();
     let mut ended = None;
     while ended.is_none() && !counter.exhausted() {
-        ended = cma.next_parallel();
+        ended = if counter.parallel_pays(lambda) {
+            cma.next_parallel()
+        } else {
+            cma.next()
+        };
         std::mem::swap(
             &mut generation,
             &mut *pending.lock().map_err(|_| anyhow!("poisoned"))?,
         );
+        counter.note_cost(generation.iter().map(|g| g.2).sum(), generation.len());
         generation.sort_by(|a, b| {
             let key = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
             key(&a.0).cmp(&key(&b.0))
         });
-        for (x, f) in generation.drain(..) {
+        for (x, f, _) in generation.drain(..) {
             counter.record(&x, f);
         }
     }

@@ -9,16 +9,26 @@
 //! (evaluation number, wall time since the run began, f − f*, parameter error).
 //! Evaluations after the budget still return f (so a method can finish its iteration)
 //! but are not recorded or counted.
+//!
+//! A batch (or a CMA-ES generation) is spread over threads only when its expected work,
+//! rows × the last measured time of one evaluation, is at least [`PARALLEL_WORK`]; below
+//! that, handing it to rayon's pool costs more than it saves, and how much more depends
+//! on whether the run itself is on a pool thread (`--jobs` above 1) or not. Values and
+//! counts never depend on the choice, only the times do.
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, PoisonError};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use hodr_core::{Batch, NoiseSeed, Objective};
 use rayon::prelude::*;
 use serde::Serialize;
 
 use super::problem::Problem;
+
+/// The least expected work of a batch, seconds, for it to be evaluated in parallel: a
+/// few times what it takes to wake rayon's pool from outside it and collect the results.
+pub const PARALLEL_WORK: f64 = 2e-4;
 
 /// A new best point of a run.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -131,6 +141,9 @@ pub struct Counter<'p> {
     best: f64,
     events: Vec<Event>,
     start: Instant,
+    /// The wall time of one evaluation, seconds, as last measured on one thread (None
+    /// before the first).
+    cost: Option<f64>,
 }
 
 impl<'p> Counter<'p> {
@@ -144,6 +157,23 @@ impl<'p> Counter<'p> {
             best: f64::INFINITY,
             events: Vec::new(),
             start: Instant::now(),
+            cost: None,
+        }
+    }
+
+    /// Whether a batch of `rows` evaluations is worth spreading over threads: its
+    /// expected work, `rows` × the last measured cost of one evaluation, is at least
+    /// [`PARALLEL_WORK`]. False until a cost has been measured, so the first batch runs
+    /// on the caller's thread and measures it.
+    pub fn parallel_pays(&self, rows: usize) -> bool {
+        rows >= 2 && self.cost.is_some_and(|c| c * rows as f64 >= PARALLEL_WORK)
+    }
+
+    /// Notes the measured wall times of `rows` evaluations, each timed on its own
+    /// thread, as the cost of one evaluation (their mean); nothing when `rows` is 0.
+    pub fn note_cost(&mut self, total: Duration, rows: usize) {
+        if rows > 0 {
+            self.cost = Some(total.as_secs_f64() / rows as f64);
         }
     }
 
@@ -183,14 +213,18 @@ impl<'p> Counter<'p> {
 
     /// Evaluates and counts x.
     pub fn evaluate(&mut self, x: &[f64]) -> f64 {
+        let clock = Instant::now();
         let f = self.clamped().value(x);
+        self.note_cost(clock.elapsed(), 1);
         self.record(x, f);
         f
     }
 
     /// Evaluates and counts x on noise seed `seed` ([`Clamped::value_on`]).
     pub fn evaluate_on(&mut self, x: &[f64], seed: NoiseSeed) -> f64 {
+        let clock = Instant::now();
         let f = self.clamped().value_on(x, seed);
+        self.note_cost(clock.elapsed(), 1);
         self.record(x, f);
         f
     }
@@ -223,8 +257,9 @@ impl<'p> Counter<'p> {
     }
 }
 
-/// hodr-core's objective interface: single points and batches, each batch evaluated in
-/// parallel (rayon) and counted in batch order. A rendered problem
+/// hodr-core's objective interface: single points and batches, a batch evaluated in
+/// parallel (rayon) when that pays ([`Counter::parallel_pays`]) and counted in batch
+/// order either way. A rendered problem
 /// ([`Observation::Seeded`](super::problem::Observation::Seeded)) renders each point on
 /// the seed it comes with and says it is not deterministic; every other problem is a
 /// function of θ alone (an unseeded noisy one draws its noise from θ and the repeat).
@@ -245,9 +280,25 @@ impl Objective<f64> for Counter<'_> {
             })
             .collect();
         let problem = self.problem;
-        out.par_iter_mut()
-            .zip(&points)
-            .for_each(|(v, (y, repeat, seed))| *v = problem.observe_on(y, *seed, *repeat));
+        let evaluate = |(v, (y, repeat, seed)): (&mut f64, &(Vec<f64>, u64, NoiseSeed))| {
+            *v = problem.observe_on(y, *seed, *repeat);
+        };
+        let work = if self.parallel_pays(out.len()) {
+            // Each row timed on its thread: the sum is the work, not the wall time.
+            out.par_iter_mut()
+                .zip(&points)
+                .map(|row| {
+                    let clock = Instant::now();
+                    evaluate(row);
+                    clock.elapsed()
+                })
+                .sum()
+        } else {
+            let clock = Instant::now();
+            out.iter_mut().zip(&points).for_each(evaluate);
+            clock.elapsed()
+        };
+        self.note_cost(work, out.len());
         for (k, &v) in out.iter().enumerate() {
             self.record(batch.point(k), v);
         }
@@ -263,6 +314,27 @@ mod tests {
     use super::*;
     use crate::suite::noisy;
 
+    /// A batch is spread over threads only once a measured cost says its work pays
+    /// for it, and the cost follows the latest measurement.
+    #[test]
+    fn a_batch_runs_in_parallel_only_when_its_measured_work_pays() {
+        let problem = noisy::problem(101, 2, 1, 10);
+        let mut counter = Counter::new(&problem, 100);
+        assert!(!counter.parallel_pays(1000), "no cost measured yet");
+        let per_row = PARALLEL_WORK / 10.0;
+        counter.note_cost(std::time::Duration::from_secs_f64(3.0 * per_row), 3);
+        assert!(!counter.parallel_pays(9));
+        assert!(counter.parallel_pays(11));
+        assert!(!counter.parallel_pays(1), "one row never pays");
+        counter.note_cost(std::time::Duration::ZERO, 0);
+        assert!(counter.parallel_pays(11), "no rows: the cost stands");
+        counter.evaluate(&[0.5, -0.5]);
+        assert!(
+            !counter.parallel_pays(11),
+            "a microsecond function: sequential"
+        );
+    }
+
     /// A batch that evaluates one point of a noisy problem many times draws the same
     /// noise for each row on one thread or two: its repeats are numbered in its order.
     #[test]
@@ -275,6 +347,9 @@ mod tests {
         let batch = Batch::new(&points, &seeds, 2).unwrap();
         let run = |threads: usize| {
             let mut counter = Counter::new(&problem, 100);
+            // A measured cost that makes the batch worth spreading over the threads.
+            counter.note_cost(std::time::Duration::from_secs(1), 1);
+            assert!(counter.parallel_pays(rows));
             let mut out = vec![0.0; rows];
             rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
