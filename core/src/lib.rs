@@ -45,8 +45,8 @@
 //!   schedules, budgets, and the paper's method presets;
 //! * [`trace`]: a fixed-memory convergence trace;
 //! * [`Objective`], [`Workspace`], [`Error`];
-//! * [`set_wide_kernels`]: on x86, the dense kernels of Auto's fit (factorisations,
-//!   eigen-decompositions) run an AVX2 copy where the CPU has it (detected at run time,
+//! * [`set_wide_kernels`]: on x86, the dense kernels of Auto's fit (Gram matrix,
+//!   factorisations, metric products) run an AVX2 copy where the CPU has it (detected at run time,
 //!   no std needed), with results identical bit for bit to the baseline copy's.
 //!
 //! ## Features

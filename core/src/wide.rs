@@ -1,5 +1,6 @@
 //! The CPU's vector width for the hot loops of the dense linear algebra (Auto's fit,
-//! factorisations and eigen-decompositions).
+//! factorisations and metric products; not its eigen-decompositions, whose AVX2 copy
+//! ran slower).
 //!
 //! A portable x86-64 build may use only SSE2: two f64 per instruction and sixteen
 //! registers, too few for the blocked kernels' partial sums, which then spill to the
@@ -22,7 +23,7 @@ cpufeatures::new!(cpuid_avx2, "avx2");
 /// Whether kernels may take their AVX2 copies ([`set_wide_kernels`]).
 static WIDE: AtomicBool = AtomicBool::new(true);
 
-/// Lets the dense kernels (Auto's fit, factorisations, eigen-decompositions) use AVX2
+/// Lets the dense kernels (Auto's fit, factorisations, metric products) use AVX2
 /// where the CPU has it (`true`, the default) or keeps them to the build's own
 /// instructions (`false`), for every thread from the next kernel call on. The results
 /// are the same bit for bit either way; only the time changes. For timing comparisons,

@@ -17,16 +17,19 @@
 //! sweeps).
 
 use crate::real::Real;
-use crate::wide::avx2_twin;
 
 /// QL iterations per eigenvalue before its estimate is accepted as it stands.
 const MAX_ITERATIONS: usize = 60;
 
-avx2_twin! {
 /// Eigen-decomposes the symmetric row-major n×n `a` (its whole square is read; it is
 /// overwritten): on return `a[..n]` holds the eigenvalues, unordered, and `v` (n×n,
 /// row-major) the orthonormal eigenvectors as columns, column j belonging to `a[j]`.
 /// Non-finite entries give non-finite results.
+///
+/// Compiled for the build's target only, and never inlined, so that the AVX2 copies of
+/// the kernels that call it ([`crate::wide`]) do not take it in: its AVX2 copy ran
+/// several times slower (BENCHMARKS.md, "Auto's own cost in Rust").
+#[inline(never)]
 pub(super) fn symmetric<T: Real>(a: &mut [T], v: &mut [T], n: usize) {
     if n == 1 {
         v[0] = T::ONE;
@@ -43,7 +46,6 @@ pub(super) fn symmetric<T: Real>(a: &mut [T], v: &mut [T], n: usize) {
     transpose(v, n);
     ql(v, n, d, e);
     transpose(v, n);
-}
 }
 
 /// Transposes the row-major n×n `m` in place.
