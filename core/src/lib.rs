@@ -46,8 +46,9 @@
 //! * [`trace`]: a fixed-memory convergence trace;
 //! * [`Objective`], [`Workspace`], [`Error`];
 //! * [`set_wide_kernels`]: on x86, the dense kernels of Auto's fit (Gram matrix,
-//!   factorisations, metric products) run an AVX2 copy where the CPU has it (detected at run time,
-//!   no std needed), with results identical bit for bit to the baseline copy's.
+//!   factorisations, metric products) run an AVX2 copy where the CPU has it (detected
+//!   at run time, no std needed), with results identical bit for bit to the baseline
+//!   copy's.
 //!
 //! ## Features
 //! The minimal build (no default features) has the FR22 gradient with Adam;

@@ -8,8 +8,8 @@
 //! * **CMA-ES** (the `cmaes` crate): initial mean x₀, step size σ₀, the default
 //!   population 4 + ⌊3 ln n⌋, no restarts; a generation's population is evaluated in
 //!   parallel (`next_parallel`, rayon) when its expected work pays for the threads
-//!   ([`Counter::parallel_pays`], as for the batches of Auto and FR22). Bounds are respected by evaluating each sample
-//!   reflected into the box ([`super::problem::Bounds::reflect`]); the distribution is
+//!   ([`Counter::parallel_pays`], as for the batches of Auto and FR22). Bounds are
+//!   respected by evaluating each sample reflected into the box ([`super::problem::Bounds::reflect`]); the distribution is
 //!   not told about them. Not by clamping: f at a clamped point is constant along every
 //!   clamped coordinate outside the box, so there the ranking cannot pull the mean back;
 //!   it drifts, σ collapses, and the run ends at the crate's tolerances far from the

@@ -169,8 +169,8 @@ impl<'p> Counter<'p> {
         rows >= 2 && self.cost.is_some_and(|c| c * rows as f64 >= PARALLEL_WORK)
     }
 
-    /// Notes the measured wall times of `rows` evaluations, each timed on its own
-    /// thread, as the cost of one evaluation (their mean); nothing when `rows` is 0.
+    /// Notes `total`, the time `rows` evaluations took summed over the threads that ran
+    /// them, as the cost of one evaluation (the mean); nothing when `rows` is 0.
     pub fn note_cost(&mut self, total: Duration, rows: usize) {
         if rows > 0 {
             self.cost = Some(total.as_secs_f64() / rows as f64);
