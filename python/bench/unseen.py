@@ -35,7 +35,11 @@ smooth-fit100, ellipsoid-rotated100, mgh-broyden-tridiagonal100), first run on
 and a ninth, image losses of a small renderer a user writes (raster_losses.py: grey
 rectangles with exact area coverage at n = 10 and 30, discs sampled at pixel centres at
 n = 9, triangles sampled 4 x 4 per pixel at n = 12: grey-rectangles10, grey-rectangles30,
-discs9, triangles12), first run on 2026-12-03.
+discs9, triangles12), first run on 2026-12-03, and a tenth, objectives users from other
+fields bring (other_fields.py: a Lennard-Jones cluster, a teacher-student network, a
+planar arm, a camera's pose, logistic regression, Gaussian peaks: lennard-jones6,
+teacher-network21, arm10, camera-pose6, logistic30, gaussian-peaks9), first run on
+2026-12-04.
 Each problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
@@ -68,6 +72,7 @@ import numpy as np
 import bound_constrained
 import hodr
 import least_squares
+import other_fields
 import raster_losses
 
 warnings.filterwarnings("ignore")
@@ -681,6 +686,13 @@ PROBLEMS["l1-rotated100"] = Problem(rotated_l1(100, 9), full(100, 0.3), 1.0, Non
 # discs sampled at pixel centres and triangles at 4 x 4 points per pixel, each against a
 # target image of the same shapes; first run as Auto stood.
 PROBLEMS.update({name: Problem(*case) for name, case in raster_losses.PROBLEMS.items()})
+
+
+# The tenth set (2026-12-04, sixty-fifth session): objectives users from other fields bring
+# (other_fields.py): a Lennard-Jones cluster of six atoms (n = 18), a teacher-student
+# network (n = 21), a planar arm of ten links (n = 10), a camera's pose (n = 6), logistic
+# regression (n = 30) and three Gaussian peaks (n = 9); first run as Auto stood.
+PROBLEMS.update({name: Problem(*case) for name, case in other_fields.PROBLEMS.items()})
 
 
 def draw_start(problem, rng):
