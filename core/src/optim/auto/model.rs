@@ -335,7 +335,12 @@ pub(super) const fn scratch_lens(shape: Shape, m: usize, n: usize) -> [usize; 5]
     [m * m, m * p, m, p * p, p]
 }
 
-avx2_twin! {
+/// Dimensions from which [`fit`] runs its AVX2 copy (where the CPU has it): below, the
+/// kernel's inner products over n coordinates are too short for the wider lanes to repay
+/// their set-up, and the baseline copy is the faster one. Both copies give the same fit,
+/// bit for bit, so the choice changes no result.
+const FIT_WIDE_MIN_DIM: usize = 13;
+
 /// Fits the model's change from its prior. On entry `u` holds m rows of n standardised
 /// offsets, `sw` the m square-root weights √wᵢ, `r` the m weighted residuals of the prior
 /// √wᵢ(vᵢ − m₀(uᵢ)); `g` and `h` hold the prior's g₀ and H₀ (H in `shape`'s layout).
@@ -369,8 +374,56 @@ avx2_twin! {
 /// G groups), 0 when m ≤ p (the points are interpolated, their roughness unseen) — or
 /// `None`, leaving `g` and `h` at the prior, when the system cannot be factored
 /// (non-finite inputs).
+///
+/// From [`FIT_WIDE_MIN_DIM`] dimensions on, the AVX2 copy runs.
 #[allow(clippy::too_many_arguments)]
+#[inline(never)]
 pub(super) fn fit<T: Real>(
+    shape: Shape,
+    n: usize,
+    m: usize,
+    u: &[T],
+    sw: &[T],
+    groups: Option<&[T]>,
+    r: &mut [T],
+    scratch: Scratch<'_, T>,
+    g: &mut [T],
+    h: &mut [T],
+    ridge: Ridge,
+    reuse: usize,
+) -> Option<T> {
+    if n >= FIT_WIDE_MIN_DIM {
+        fit_wide(shape, n, m, u, sw, groups, r, scratch, g, h, ridge, reuse)
+    } else {
+        fit_body(shape, n, m, u, sw, groups, r, scratch, g, h, ridge, reuse)
+    }
+}
+
+avx2_twin! {
+/// [`fit`], compiled twice (for the build's target and with AVX2).
+#[allow(clippy::too_many_arguments)]
+fn fit_wide<T: Real>(
+    shape: Shape,
+    n: usize,
+    m: usize,
+    u: &[T],
+    sw: &[T],
+    groups: Option<&[T]>,
+    r: &mut [T],
+    scratch: Scratch<'_, T>,
+    g: &mut [T],
+    h: &mut [T],
+    ridge: Ridge,
+    reuse: usize,
+) -> Option<T> {
+    fit_body(shape, n, m, u, sw, groups, r, scratch, g, h, ridge, reuse)
+}
+}
+
+/// [`fit`]'s work, inlined into each of its copies.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn fit_body<T: Real>(
     shape: Shape,
     n: usize,
     m: usize,
@@ -520,7 +573,6 @@ pub(super) fn fit<T: Real>(
         .chain(h.iter())
         .all(|x| x.is_finite())
         .then_some(noise)
-}
 }
 
 /// Points whose terms [`fit`] adds to a full Hessian in one pass over it ([`update_block`]).
