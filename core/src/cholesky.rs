@@ -74,38 +74,14 @@ pub(crate) fn factor_in_place<T: Real>(a: &mut [T], n: usize, lambda: T) -> bool
 /// factor, bit for bit, so the choice changes no result.
 const WIDE_MIN_ROWS: usize = 192;
 
+avx2_twin! {
+wide_when(to >= WIDE_MIN_ROWS);
 /// Rows `from..to` of [`factor_in_place`]'s factor, for a lower triangle stored by rows
 /// `stride` floats apart, whose rows before `from` already hold L's: row i of L depends
 /// only on A's rows up to i, so a factor extended by rows is the one factored whole, bit
 /// for bit. False if a pivot is not positive and finite (then rows `from..to` hold no
-/// meaningful values). From [`WIDE_MIN_ROWS`] rows on, the AVX2 copy runs. Never
-/// inlined, so that below that its work is compiled for the build's target even where
-/// the caller is an AVX2 copy itself (`model::fit`'s).
-#[inline(never)]
+/// meaningful values). Its AVX2 copy runs from [`WIDE_MIN_ROWS`] rows on.
 pub(crate) fn factor_rows<T: Real>(
-    a: &mut [T],
-    stride: usize,
-    from: usize,
-    to: usize,
-    lambda: T,
-) -> bool {
-    if to >= WIDE_MIN_ROWS {
-        factor_rows_wide(a, stride, from, to, lambda)
-    } else {
-        factor_rows_body(a, stride, from, to, lambda)
-    }
-}
-
-avx2_twin! {
-/// [`factor_rows`], compiled twice (for the build's target and with AVX2).
-fn factor_rows_wide<T: Real>(a: &mut [T], stride: usize, from: usize, to: usize, lambda: T) -> bool {
-    factor_rows_body(a, stride, from, to, lambda)
-}
-}
-
-/// [`factor_rows`]' work, inlined into each of its copies.
-#[inline(always)]
-fn factor_rows_body<T: Real>(
     a: &mut [T],
     stride: usize,
     from: usize,
@@ -138,6 +114,7 @@ fn factor_rows_body<T: Real>(
         start += BLOCK;
     }
     (start..to).all(|i| finish_row(a, stride, i, 0, lambda))
+}
 }
 
 /// Rows factored together by [`factor_rows`].

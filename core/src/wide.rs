@@ -44,13 +44,43 @@ pub(crate) fn has_avx2() -> bool {
 /// and runs the AVX2 copy where [`has_avx2`] holds (see the module's header). The
 /// function is written as usual, with type parameters `<T: Bound, …>` (no lifetimes, no
 /// `where` clause) and parameters that are plain names.
+///
+/// Written `avx2_twin! { wide_when(cond); fn … }`, the AVX2 copy runs only where `cond`
+/// (an expression of the parameters) holds as well: where a kernel's vectors are short,
+/// the baseline copy can be the faster one. Such a function is never inlined, so that
+/// its baseline copy stays one where the caller is itself an AVX2 copy.
 macro_rules! avx2_twin {
+    (
+        wide_when($cond:expr);
+        $(#[$attr:meta])*
+        $vis:vis fn $name:ident <$($g:ident : $bound:path),*> ($($arg:ident : $ty:ty),* $(,)?)
+        $(-> $ret:ty)? $body:block
+    ) => {
+        $crate::wide::avx2_twin! {
+            @twin [$cond] [#[inline(never)]]
+            $(#[$attr])*
+            $vis fn $name<$($g: $bound),*>($($arg: $ty),*) $(-> $ret)? $body
+        }
+    };
     (
         $(#[$attr:meta])*
         $vis:vis fn $name:ident <$($g:ident : $bound:path),*> ($($arg:ident : $ty:ty),* $(,)?)
         $(-> $ret:ty)? $body:block
     ) => {
+        $crate::wide::avx2_twin! {
+            @twin [true] []
+            $(#[$attr])*
+            $vis fn $name<$($g: $bound),*>($($arg: $ty),*) $(-> $ret)? $body
+        }
+    };
+    (
+        @twin [$cond:expr] [$(#[$extra:meta])*]
+        $(#[$attr:meta])*
+        $vis:vis fn $name:ident <$($g:ident : $bound:path),*> ($($arg:ident : $ty:ty),* $(,)?)
+        $(-> $ret:ty)? $body:block
+    ) => {
         $(#[$attr])*
+        $(#[$extra])*
         #[allow(unsafe_code)]
         $vis fn $name<$($g: $bound),*>($($arg: $ty),*) $(-> $ret)? {
             #[inline(always)]
@@ -63,7 +93,7 @@ macro_rules! avx2_twin {
                 fn avx2<$($g: $bound),*>($($arg: $ty),*) $(-> $ret)? {
                     body($($arg),*)
                 }
-                if $crate::wide::has_avx2() {
+                if $cond && $crate::wide::has_avx2() {
                     // SAFETY: the CPU supports AVX2 (`has_avx2`), the only feature the
                     // copy is compiled with beyond the build's own.
                     return unsafe { avx2($($arg),*) };

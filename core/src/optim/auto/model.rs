@@ -341,6 +341,8 @@ pub(super) const fn scratch_lens(shape: Shape, m: usize, n: usize) -> [usize; 5]
 /// bit for bit, so the choice changes no result.
 const FIT_WIDE_MIN_DIM: usize = 13;
 
+avx2_twin! {
+wide_when(n >= FIT_WIDE_MIN_DIM);
 /// Fits the model's change from its prior. On entry `u` holds m rows of n standardised
 /// offsets, `sw` the m square-root weights √wᵢ, `r` the m weighted residuals of the prior
 /// √wᵢ(vᵢ − m₀(uᵢ)); `g` and `h` hold the prior's g₀ and H₀ (H in `shape`'s layout).
@@ -375,55 +377,9 @@ const FIT_WIDE_MIN_DIM: usize = 13;
 /// `None`, leaving `g` and `h` at the prior, when the system cannot be factored
 /// (non-finite inputs).
 ///
-/// From [`FIT_WIDE_MIN_DIM`] dimensions on, the AVX2 copy runs.
+/// Its AVX2 copy runs from [`FIT_WIDE_MIN_DIM`] dimensions on.
 #[allow(clippy::too_many_arguments)]
-#[inline(never)]
 pub(super) fn fit<T: Real>(
-    shape: Shape,
-    n: usize,
-    m: usize,
-    u: &[T],
-    sw: &[T],
-    groups: Option<&[T]>,
-    r: &mut [T],
-    scratch: Scratch<'_, T>,
-    g: &mut [T],
-    h: &mut [T],
-    ridge: Ridge,
-    reuse: usize,
-) -> Option<T> {
-    if n >= FIT_WIDE_MIN_DIM {
-        fit_wide(shape, n, m, u, sw, groups, r, scratch, g, h, ridge, reuse)
-    } else {
-        fit_body(shape, n, m, u, sw, groups, r, scratch, g, h, ridge, reuse)
-    }
-}
-
-avx2_twin! {
-/// [`fit`], compiled twice (for the build's target and with AVX2).
-#[allow(clippy::too_many_arguments)]
-fn fit_wide<T: Real>(
-    shape: Shape,
-    n: usize,
-    m: usize,
-    u: &[T],
-    sw: &[T],
-    groups: Option<&[T]>,
-    r: &mut [T],
-    scratch: Scratch<'_, T>,
-    g: &mut [T],
-    h: &mut [T],
-    ridge: Ridge,
-    reuse: usize,
-) -> Option<T> {
-    fit_body(shape, n, m, u, sw, groups, r, scratch, g, h, ridge, reuse)
-}
-}
-
-/// [`fit`]'s work, inlined into each of its copies.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn fit_body<T: Real>(
     shape: Shape,
     n: usize,
     m: usize,
@@ -573,6 +529,7 @@ fn fit_body<T: Real>(
         .chain(h.iter())
         .all(|x| x.is_finite())
         .then_some(noise)
+}
 }
 
 /// Points whose terms [`fit`] adds to a full Hessian in one pass over it ([`update_block`]).
