@@ -47,8 +47,9 @@ pub(crate) fn has_avx2() -> bool {
 ///
 /// Written `avx2_twin! { wide_when(cond); fn … }`, the AVX2 copy runs only where `cond`
 /// (an expression of the parameters) holds as well: where a kernel's vectors are short,
-/// the baseline copy can be the faster one. Such a function is never inlined, so that
-/// its baseline copy stays one where the caller is itself an AVX2 copy.
+/// the baseline copy can be the faster one. Such a function is marked `#[inline]`, so
+/// that every crate compiles its own instance at its own optimisation level (a shared
+/// generic instance could be an unoptimised build's).
 macro_rules! avx2_twin {
     (
         wide_when($cond:expr);
@@ -57,7 +58,7 @@ macro_rules! avx2_twin {
         $(-> $ret:ty)? $body:block
     ) => {
         $crate::wide::avx2_twin! {
-            @twin [$cond] [#[inline(never)]]
+            @twin [$cond] [#[inline]]
             $(#[$attr])*
             $vis fn $name<$($g: $bound),*>($($arg: $ty),*) $(-> $ret)? $body
         }
