@@ -6,7 +6,8 @@
 //! registers, too few for the blocked kernels' partial sums, which then spill to the
 //! stack. A kernel defined with [`avx2_twin!`] is compiled twice, once as the build
 //! targets and once with AVX2 (four f64 per instruction), and each call takes the AVX2
-//! copy where the CPU has it (CPUID, checked once; [`cpufeatures`]).
+//! copy where the CPU has it (CPUID, checked once; [`cpufeatures`]) and, for a kernel
+//! with a size rule (`wide_when`), where its vectors are long enough to gain from it.
 //!
 //! Both copies perform the same operations in the same order: Rust never contracts a
 //! multiply and an add into a fused multiply-add (which would round once where the

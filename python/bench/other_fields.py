@@ -22,21 +22,9 @@ here from their textbook definitions. None of hodr's tasks, tests or suites has 
   and width of each, n = 9, on 100 samples, within a box that keeps the widths positive.
 """
 
-from typing import NamedTuple
-
 import numpy as np
 
-
-class Case(NamedTuple):
-    """unseen.Problem's fields: f, x*, sigma0, box, budget, target, start range."""
-
-    f: object
-    x_opt: np.ndarray
-    sigma0: object
-    box: object
-    budget: int
-    target: float
-    start: tuple
+from raster_losses import Case
 
 
 # Lennard-Jones.

@@ -84,14 +84,14 @@ def triangles(x, greys):
 
 
 class Case(NamedTuple):
-    """A problem of the set, its fields in the order of unseen.py's Problem: the loss,
-    its true parameters, sigma0 (n values), the box (lower, upper), the budget, the
-    target on f - f* and the start range (low, high), box and range n values each."""
+    """A problem of a set, its fields in the order of unseen.py's Problem: the loss,
+    its true parameters, sigma0, the box (lower, upper) or None, the budget, the target
+    on f - f* and the start range (low, high) (also other_fields.py's)."""
 
     f: object
     x_opt: np.ndarray
-    sigma0: np.ndarray
-    box: tuple
+    sigma0: object
+    box: object
     budget: int
     target: float
     start: tuple
