@@ -59,6 +59,12 @@ class OptimizeResult(dict):
         handed to it before).
     nit : int
         Iterations.
+    ndescents : int
+        Descents the run began: 1, and one more for each fresh start from a point
+        jumped away from the best so far (made once a descent has ended, with a
+        ``budget``, on an objective that is not ``noisy``; ``options["fresh_starts"]``)
+        and for each probe that found a point below it. Restarts within a descent do
+        not count.
     success : bool
         True when the run converged (the samples' spread fell below its tolerance)
         or stagnated (no lower value within its patience); False when the budget ran
@@ -75,8 +81,9 @@ class OptimizeResult(dict):
     message : str
         Why the run ended.
     history : dict of ndarray
-        Per iteration: ``nfev`` (evaluations so far), ``fun`` (f at the best point) and
-        ``sigma`` (the smoothing width and trust radius).
+        Per iteration: ``nfev`` (evaluations so far), ``fun`` (f at the best point),
+        ``sigma`` (the smoothing width and trust radius) and ``descent`` (the descent
+        the run is in once the iteration has ended, from 1).
     seed : int
         The seed the run used: the one given, or the one drawn for ``seed=None``.
         Passing it again repeats the run.
@@ -95,7 +102,8 @@ class OptimizeResult(dict):
     __delattr__ = dict.__delitem__
 
     def __repr__(self) -> str:
-        keys = ("message", "success", "status", "fun", "x", "nit", "nfev", "model", "seed")
+        keys = ("message", "success", "status", "fun", "x", "nit", "nfev", "ndescents", "model",
+                "seed")
         width = max(map(len, keys))
         return "\n".join(f"{k.rjust(width)}: {self[k]!r}" for k in keys if k in self)
 
@@ -527,7 +535,7 @@ def _with_args(fun: Callable[..., Any], args: tuple, *point: Any) -> Any:
 def _result(raw: dict, seed: int) -> OptimizeResult:
     """An OptimizeResult from the extension's fields, the history grouped, with the run's
     ``seed``."""
-    history = {k: raw.pop(f"history_{k}") for k in ("nfev", "fun", "sigma")}
+    history = {k: raw.pop(f"history_{k}") for k in ("nfev", "fun", "sigma", "descent")}
     result = OptimizeResult(raw)
     result.history = history
     result.seed = seed

@@ -24,7 +24,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::values::Seen;
-use crate::{End, Problem, Settings, core_error, result_dict};
+use crate::{End, Problem, Settings, core_error, descents, result_dict};
 
 /// How long `ask` and `stop` wait for the optimiser between looks for a Ctrl-C.
 const SIGNAL_CHECK: Duration = Duration::from_millis(50);
@@ -34,11 +34,13 @@ enum FromAuto {
     /// Points to evaluate, row-major, and their noise seeds.
     Batch(Vec<f64>, Vec<NoiseSeed>),
     /// An iteration ended: evaluations so far, f at the best point (where Auto has seen
-    /// a finite one), σ, the best point, the model the run uses.
+    /// a finite one), σ, the descent the run is in, the best point, the model the run
+    /// uses.
     Iteration {
         evaluations: usize,
         value: Option<f64>,
         sigma: f64,
+        descent: usize,
         theta: Vec<f64>,
         model: AutoModel,
     },
@@ -130,7 +132,8 @@ pub struct AskTell {
     told: usize,
     /// `options['non_finite'] = 'error'`: a non-finite value ends the run.
     non_finite_error: bool,
-    history: (Vec<u64>, Vec<f64>, Vec<f64>),
+    /// Per iteration: evaluations so far, f at the best point, σ, the descent.
+    history: (Vec<u64>, Vec<f64>, Vec<f64>, Vec<u64>),
     /// The model the run uses, as of its last iteration ([`Problem::starting_model`]
     /// before the first).
     model: AutoModel,
@@ -160,6 +163,7 @@ impl AskTell {
                     evaluations,
                     value,
                     sigma,
+                    descent,
                     theta,
                     model,
                 }) => {
@@ -168,6 +172,7 @@ impl AskTell {
                     self.history.0.push(evaluations as u64);
                     self.history.1.push(self.seen.best(value, &theta).1);
                     self.history.2.push(sigma);
+                    self.history.3.push(descent as u64);
                     self.best = (theta, value);
                 }
                 Ok(FromAuto::Done {
@@ -244,6 +249,7 @@ impl AskTell {
                                     evaluations: report.evaluations,
                                     value: report.value,
                                     sigma: report.sigma,
+                                    descent: report.descent,
                                     theta: auto.theta().to_vec(),
                                     model: auto.model(),
                                 };
@@ -286,7 +292,7 @@ impl AskTell {
             seen: Seen::default(),
             told: 0,
             non_finite_error,
-            history: (Vec::new(), Vec::new(), Vec::new()),
+            history: (Vec::new(), Vec::new(), Vec::new(), Vec::new()),
             model,
             done: None,
             error: None,
@@ -405,6 +411,7 @@ impl AskTell {
             fun,
             self.told,
             iterations,
+            descents(&self.history.3),
             self.seen.any_finite(),
             self.model,
         )?;
@@ -415,6 +422,7 @@ impl AskTell {
         result.set_item("history_nfev", self.history.0.clone().into_pyarray(py))?;
         result.set_item("history_fun", self.history.1.clone().into_pyarray(py))?;
         result.set_item("history_sigma", self.history.2.clone().into_pyarray(py))?;
+        result.set_item("history_descent", self.history.3.clone().into_pyarray(py))?;
         Ok(result)
     }
 }

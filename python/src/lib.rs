@@ -414,7 +414,8 @@ fn minimize_auto<'py>(
     let (mut theta, mut buffer) = problem.memory();
     let mut auto = problem.auto(&mut theta, &mut buffer).map_err(core_error)?;
     let callback = callback.map(Bound::unbind);
-    let (mut nfev, mut best, mut sigma) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut nfev, mut best, mut sigma, mut descent) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let mut failure = None;
     // The run holds no GIL; the objective and the callback attach for their calls.
     let end = py.detach(|| -> PyResult<End> {
@@ -426,6 +427,7 @@ fn minimize_auto<'py>(
                     nfev.push(report.evaluations as u64);
                     best.push(value);
                     sigma.push(report.sigma);
+                    descent.push(report.descent as u64);
                     if let Some(cb) = &callback {
                         let stop = Python::attach(|py| {
                             let x = PyArray1::from_slice(py, x);
@@ -464,12 +466,14 @@ fn minimize_auto<'py>(
         value,
         objective.calls,
         auto.iteration(),
+        descents(&descent),
         objective.seen.any_finite(),
         auto.model(),
     )?;
     result.set_item("history_nfev", nfev.into_pyarray(py))?;
     result.set_item("history_fun", best.into_pyarray(py))?;
     result.set_item("history_sigma", sigma.into_pyarray(py))?;
+    result.set_item("history_descent", descent.into_pyarray(py))?;
     match end {
         Ok(_) => Ok(result),
         Err(error) => {
@@ -496,10 +500,17 @@ pub(crate) enum End {
     Failed(Error),
 }
 
+/// The descents a run has begun, from its history's last entry: 1 before any iteration
+/// ([`Auto::descents`]).
+pub(crate) fn descents(history: &[u64]) -> usize {
+    history.last().map_or(1, |&d| d as usize)
+}
+
 /// The `OptimizeResult` fields of a run, history aside: `x` and `fun` the best point and
-/// its value, `nfev` the evaluations, `nit` the iterations, `model` the model the run
-/// uses (`"full"` or `"diagonal"`, [`Auto::model`]). A run in which `fun` never returned a
-/// finite value (`finite` false) has not succeeded, whatever ended it.
+/// its value, `nfev` the evaluations, `nit` the iterations, `ndescents` the descents
+/// ([`Auto::descents`]), `model` the model the run uses (`"full"` or `"diagonal"`,
+/// [`Auto::model`]). A run in which `fun` never returned a finite value (`finite` false)
+/// has not succeeded, whatever ended it.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn result_dict<'py>(
     py: Python<'py>,
@@ -508,6 +519,7 @@ pub(crate) fn result_dict<'py>(
     fun: f64,
     nfev: usize,
     nit: usize,
+    ndescents: usize,
     finite: bool,
     model: AutoModel,
 ) -> PyResult<Bound<'py, PyDict>> {
@@ -535,6 +547,7 @@ pub(crate) fn result_dict<'py>(
     result.set_item("fun", fun)?;
     result.set_item("nfev", nfev)?;
     result.set_item("nit", nit)?;
+    result.set_item("ndescents", ndescents)?;
     result.set_item("success", success && finite)?;
     result.set_item("status", status)?;
     result.set_item("message", message)?;

@@ -84,6 +84,20 @@ def test_minimize_solves_a_rotated_quadratic_to_its_optimum():
     assert abs(res.fun - quadratic(res.x)) < 1e-12
 
 
+def test_the_result_counts_the_descents():
+    """``ndescents`` is the history's last ``descent``, which starts at 1 and rises by at
+    most one per iteration; a budget far above what a 2-D quadratic needs is spent on
+    fresh descents, unless ``options["fresh_starts"]`` is off."""
+    res = hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, budget=3000, seed=2)
+    descent = res.history["descent"]
+    assert len(descent) == res.nit and descent[0] == 1
+    assert set(np.diff(descent)) <= {0, 1}
+    assert res.ndescents == descent[-1] > 1
+    single = hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, budget=3000, seed=2,
+                           options={"fresh_starts": False})
+    assert single.ndescents == 1 and set(single.history["descent"]) == {1}
+
+
 def test_args_follow_the_point_as_in_scipy():
     """``args`` reach ``fun`` after the point (after the seed with ``noisy``), in every
     calling convention; the run is the one without them."""
@@ -512,6 +526,8 @@ def test_ask_tell_asks_the_points_minimize_evaluates():
     assert res.nfev == reference.nfev and res.nit == reference.nit
     assert res.message == reference.message
     assert np.array_equal(res.history["sigma"], reference.history["sigma"])
+    assert np.array_equal(res.history["descent"], reference.history["descent"])
+    assert res.ndescents == reference.ndescents
     assert opt.ask().shape == (0, 3)
 
 

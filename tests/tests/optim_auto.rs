@@ -565,6 +565,53 @@ fn the_observer_sees_the_best_point_with_its_value() {
     assert!(checked > 100);
 }
 
+/// The reports count the run's descents: 1 first, one more at each iteration that begins
+/// a descent, the last report's count `Auto::descents`; a run with fresh starts off, or
+/// on a noisy objective (whose values on different seeds no record can compare), makes
+/// one descent whatever its budget. A 2-D sphere is solved in far fewer than 2 000
+/// evaluations, so a run with fresh starts makes more than one.
+#[test]
+fn reports_count_the_descents() {
+    let count = |fresh: bool, noisy: bool| {
+        let mut theta = [1.5, -0.5];
+        let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(2)];
+        let options = AutoOptions::default()
+            .with_max_evaluations(2000)
+            .unwrap()
+            .with_fresh_starts(fresh);
+        let mut auto = Auto::new(
+            &mut theta,
+            1.0,
+            &mut buffer,
+            Xoshiro256PlusPlus::seed_from_u64(5),
+        )
+        .unwrap()
+        .with_options(options);
+        let mut descent = 1;
+        let mut observe = |report: &AutoReport<f64>, _: &[f64]| {
+            assert!(
+                report.descent == descent || report.descent == descent + 1,
+                "iteration {}: descent {} after {descent}",
+                report.iteration,
+                report.descent
+            );
+            descent = report.descent;
+        };
+        if noisy {
+            let mut f = hodr_core::Seeded(|x: &[f64], _| x[0] * x[0] + x[1] * x[1]);
+            auto.run(&mut f, &mut observe).unwrap();
+        } else {
+            let mut f = |x: &[f64]| x[0] * x[0] + x[1] * x[1];
+            auto.run(&mut f, &mut observe).unwrap();
+        }
+        assert_eq!(auto.descents(), descent);
+        descent
+    };
+    assert!(count(true, false) > 1);
+    assert_eq!(count(false, false), 1);
+    assert_eq!(count(true, true), 1);
+}
+
 /// Settings and inputs out of range are errors, not panics.
 #[test]
 fn bad_input_is_a_typed_error() {

@@ -686,6 +686,8 @@ struct State<T> {
     record: Option<T>,
     /// Fresh starts so far.
     fresh: u32,
+    /// The descent the run is in, from 1 ([`Auto::descents`]).
+    descent: usize,
     /// Model steps in a row, in a descent after the first, whose close, confirmed fit
     /// puts its minimum within reach and above [`State::record`] by more than half θ's
     /// gap to it ([`HOPELESS_FITS`]).
@@ -816,6 +818,7 @@ impl<T: Real> State<T> {
             prior_misfit: None,
             rounded: false,
             fresh: 0,
+            descent: 1,
             fresh_narrow: false,
             fresh_wide: false,
             wide_end: None,
@@ -1167,6 +1170,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.iteration
     }
 
+    /// Descents begun: 1 for the run's first, and one more for each fresh start and
+    /// each probe that found a point below the record, which begin the next (with a
+    /// budget, on a deterministic objective: [`AutoOptions::fresh_starts`],
+    /// [`AutoOptions::probes`]). Restarts within a descent (σ widened again about its
+    /// best point) do not count.
+    pub fn descents(&self) -> usize {
+        self.st.descent
+    }
+
     /// Why the run ended, once it has.
     pub fn termination(&self) -> Option<AutoTermination> {
         self.st.finished
@@ -1370,6 +1382,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             sigma,
             next_sigma: self.st.sigma,
             value: self.value(),
+            descent: self.st.descent,
             step_length,
             ratio,
             kind,

@@ -329,6 +329,10 @@ pub struct AutoReport<T> {
     /// iteration, when known and finite (the search centre may lie above it: after a
     /// continuation move, during probes, in a later descent).
     pub value: Option<T>,
+    /// The descent the run is in once the iteration has ended, from 1
+    /// ([`Auto::descents`](super::Auto::descents)): the iteration that begins a descent
+    /// reports it.
+    pub descent: usize,
     /// Distance θ moved (including a move to a lower sample).
     pub step_length: T,
     /// Actual over predicted decrease of the trial step, when one was evaluated.

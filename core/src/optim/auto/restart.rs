@@ -234,8 +234,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Begins a new descent from θ as it stands: the memory, the model, the metric and σ
-    /// start over as in [`Auto::new`], and what the run as a whole has learnt (the
-    /// record, the noise's kind, the fresh starts' count) is kept.
+    /// start over as in [`Auto::new`], what the run as a whole has learnt (the
+    /// record, the noise's kind, the fresh starts' count) is kept, and the descents'
+    /// count ([`Auto::descents`]) goes up by one.
     pub(super) fn new_descent(&mut self) {
         let n = self.theta.len();
         let run = self.st;
@@ -253,6 +254,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             metric_changes: run.metric_changes.wrapping_add(1),
             record: run.record,
             fresh: run.fresh,
+            descent: run.descent.saturating_add(1),
             fresh_narrow: run.fresh_narrow,
             fresh_wide: run.fresh_wide,
             wide_end: run.wide_end,
