@@ -528,7 +528,9 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             println!("truth θ* = {}", brief(&t.optimum()));
             let line = |k: usize, p: &report::Point| {
                 let sigma = p.sigma.map_or(String::new(), |s| format!("  σ = {s:.3e}"));
-                let step = p.step.map_or(String::new(), |s| format!("  {s:?}"));
+                let step = p.step.map_or(String::new(), |(kind, descent)| {
+                    format!("  {kind:?}, descent {descent}")
+                });
                 format!(
                     "iter {k:>4}  t = {:>9.4} s  evals = {:>7}  param error = {:.4e}  image error = {:.4e}{sigma}{step}",
                     p.time, p.evaluations, p.param_error, p.image_error

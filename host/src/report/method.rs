@@ -112,10 +112,12 @@ pub struct Point {
     /// The smoothing width σ of the iteration (CMA-ES: its overall step size); none at
     /// the start.
     pub sigma: Option<f64>,
-    /// What Auto's iteration did (accepted a step, probed, …); none for other methods
-    /// and at the start. Printed by `hodr optimize`, not written to files.
+    /// What Auto's iteration did (accepted a step, probed, …) and the descent the run
+    /// is in after it ([`AutoReport::descent`](hodr_core::optim::AutoReport::descent));
+    /// none for other methods and at the start. Printed by `hodr optimize`, not written
+    /// to files.
     #[serde(skip)]
-    pub step: Option<AutoStep>,
+    pub step: Option<(AutoStep, usize)>,
 }
 
 /// One run: task × method × seed.
@@ -210,7 +212,7 @@ pub fn run_observed(
     let mut record = |elapsed: Duration,
                       evaluations: usize,
                       sigma: f64,
-                      step: Option<AutoStep>,
+                      step: Option<(AutoStep, usize)>,
                       theta: &[f64],
                       points: &mut Vec<Point>| {
         let p = Point {
@@ -338,7 +340,7 @@ pub fn run_observed(
                         elapsed,
                         report.evaluations,
                         report.sigma,
-                        Some(report.kind),
+                        Some((report.kind, report.descent)),
                         auto.theta(),
                         &mut points,
                     ),
