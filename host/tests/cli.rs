@@ -787,7 +787,7 @@ fn signals_write_what_finished_and_exit_non_zero() {
 }
 
 /// `optimize` without `--method` runs Auto, which solves QUAD to machine precision; each
-/// iteration's line says what the iteration did.
+/// iteration's line says what the iteration did and which descent it belongs to.
 #[test]
 fn optimize_defaults_to_auto() {
     let out = hodr(&["optimize", "--task", "QUAD", "--budget", "200"]);
@@ -818,12 +818,19 @@ fn optimize_defaults_to_auto() {
         "Centred",
         "Probed",
     ];
-    assert!(
-        text.lines()
-            .filter(|l| l.starts_with("iter") && !l.starts_with("iter    0"))
-            .all(|l| kinds.iter().any(|k| l.ends_with(k))),
-        "{text}"
-    );
+    // Each Auto iteration ends with what it did and its descent: 1 first, then rising
+    // by at most one per iteration.
+    let mut descent = 1;
+    for line in text
+        .lines()
+        .filter(|l| l.starts_with("iter") && !l.starts_with("iter    0"))
+    {
+        let (head, number) = line.rsplit_once(", descent ").expect(line);
+        assert!(kinds.iter().any(|k| head.ends_with(k)), "{line}");
+        let d: usize = number.parse().expect(line);
+        assert!(d == descent || d == descent + 1, "{line}");
+        descent = d;
+    }
 }
 
 /// Ctrl-C during an iteration of millions of evaluations stops it within a batch, not
