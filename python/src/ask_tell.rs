@@ -23,8 +23,9 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::history::History;
 use crate::values::Seen;
-use crate::{End, Problem, Settings, core_error, descents, result_dict};
+use crate::{End, Problem, Settings, core_error, result_dict};
 
 /// How long `ask` and `stop` wait for the optimiser between looks for a Ctrl-C.
 const SIGNAL_CHECK: Duration = Duration::from_millis(50);
@@ -132,8 +133,7 @@ pub struct AskTell {
     told: usize,
     /// `options['non_finite'] = 'error'`: a non-finite value ends the run.
     non_finite_error: bool,
-    /// Per iteration: evaluations so far, f at the best point, σ, the descent.
-    history: (Vec<u64>, Vec<f64>, Vec<f64>, Vec<u64>),
+    history: History,
     /// The model the run uses, as of its last iteration ([`Problem::starting_model`]
     /// before the first).
     model: AutoModel,
@@ -169,10 +169,8 @@ impl AskTell {
                 }) => {
                     self.model = model;
                     self.seen.settle();
-                    self.history.0.push(evaluations as u64);
-                    self.history.1.push(self.seen.best(value, &theta).1);
-                    self.history.2.push(sigma);
-                    self.history.3.push(descent as u64);
+                    let fun = self.seen.best(value, &theta).1;
+                    self.history.push(evaluations, fun, sigma, descent);
                     self.best = (theta, value);
                 }
                 Ok(FromAuto::Done {
@@ -292,7 +290,7 @@ impl AskTell {
             seen: Seen::default(),
             told: 0,
             non_finite_error,
-            history: (Vec::new(), Vec::new(), Vec::new(), Vec::new()),
+            history: History::default(),
             model,
             done: None,
             error: None,
@@ -397,7 +395,7 @@ impl AskTell {
     fn result<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let (termination, iterations) = match self.done {
             Some((termination, _, iterations)) => (termination, iterations),
-            None => (None, self.history.0.len()),
+            None => (None, self.history.iterations()),
         };
         let end = match &self.error {
             Some(Failure::Core(e)) => End::Failed(*e),
@@ -411,7 +409,7 @@ impl AskTell {
             fun,
             self.told,
             iterations,
-            descents(&self.history.3),
+            self.history.descents(),
             self.seen.any_finite(),
             self.model,
         )?;
@@ -419,10 +417,7 @@ impl AskTell {
             result.set_item("success", false)?;
             result.set_item("message", "running")?;
         }
-        result.set_item("history_nfev", self.history.0.clone().into_pyarray(py))?;
-        result.set_item("history_fun", self.history.1.clone().into_pyarray(py))?;
-        result.set_item("history_sigma", self.history.2.clone().into_pyarray(py))?;
-        result.set_item("history_descent", self.history.3.clone().into_pyarray(py))?;
+        self.history.write(&result)?;
         Ok(result)
     }
 }

@@ -28,9 +28,11 @@ use pyo3::types::PyDict;
 use rand_xoshiro::Xoshiro256PlusPlus;
 use rand_xoshiro::rand_core::SeedableRng;
 
+use history::History;
 use values::{Seen, fmt_float};
 
 mod ask_tell;
+mod history;
 mod values;
 
 /// Points per batch handed to the objective (with `batch`, rows per call).
@@ -414,8 +416,7 @@ fn minimize_auto<'py>(
     let (mut theta, mut buffer) = problem.memory();
     let mut auto = problem.auto(&mut theta, &mut buffer).map_err(core_error)?;
     let callback = callback.map(Bound::unbind);
-    let (mut nfev, mut best, mut sigma, mut descent) =
-        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let mut history = History::default();
     let mut failure = None;
     // The run holds no GIL; the objective and the callback attach for their calls.
     let end = py.detach(|| -> PyResult<End> {
@@ -424,10 +425,7 @@ fn minimize_auto<'py>(
                 Ok(Some(report)) => {
                     objective.seen.settle();
                     let (x, value) = objective.seen.best(report.value, auto.theta());
-                    nfev.push(report.evaluations as u64);
-                    best.push(value);
-                    sigma.push(report.sigma);
-                    descent.push(report.descent as u64);
+                    history.push(report.evaluations, value, report.sigma, report.descent);
                     if let Some(cb) = &callback {
                         let stop = Python::attach(|py| {
                             let x = PyArray1::from_slice(py, x);
@@ -466,14 +464,11 @@ fn minimize_auto<'py>(
         value,
         objective.calls,
         auto.iteration(),
-        descents(&descent),
+        history.descents(),
         objective.seen.any_finite(),
         auto.model(),
     )?;
-    result.set_item("history_nfev", nfev.into_pyarray(py))?;
-    result.set_item("history_fun", best.into_pyarray(py))?;
-    result.set_item("history_sigma", sigma.into_pyarray(py))?;
-    result.set_item("history_descent", descent.into_pyarray(py))?;
+    history.write(&result)?;
     match end {
         Ok(_) => Ok(result),
         Err(error) => {
@@ -498,12 +493,6 @@ pub(crate) enum End {
     Interrupted,
     /// Auto refused to go on: a non-finite value under `options['non_finite'] = 'error'`.
     Failed(Error),
-}
-
-/// The descents a run has begun, from its history's last entry: 1 before any iteration
-/// ([`Auto::descents`]).
-pub(crate) fn descents(history: &[u64]) -> usize {
-    history.last().map_or(1, |&d| d as usize)
 }
 
 /// The `OptimizeResult` fields of a run, history aside: `x` and `fun` the best point and
