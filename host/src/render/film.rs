@@ -8,12 +8,22 @@ use std::path::Path;
 
 use super::error::RenderError;
 
-/// A `width` × `height` linear RGB image.
-#[derive(Clone, Debug, PartialEq)]
+/// A `width` × `height` linear RGB image. Two films are equal when their sizes and
+/// pixels are.
+#[derive(Clone, Debug)]
 pub struct Film {
     width: u32,
     height: u32,
     data: Vec<f32>,
+    /// The integrator's scratch (the light pass's partial images), sized on first use
+    /// and kept, so that rendering into the same film again allocates nothing.
+    scratch: Vec<f32>,
+}
+
+impl PartialEq for Film {
+    fn eq(&self, other: &Film) -> bool {
+        self.width == other.width && self.height == other.height && self.data == other.data
+    }
 }
 
 impl Film {
@@ -31,7 +41,17 @@ impl Film {
             width,
             height,
             data: vec![0.0; 3 * pixels as usize],
+            scratch: Vec::new(),
         })
+    }
+
+    /// The raw data and `len` floats of scratch, grown (allocating) only when the film
+    /// has had less.
+    pub(super) fn data_and_scratch(&mut self, len: usize) -> (&mut [f32], &mut [f32]) {
+        if self.scratch.len() < len {
+            self.scratch.resize(len, 0.0);
+        }
+        (&mut self.data, &mut self.scratch[..len])
     }
 
     /// Width in pixels.

@@ -12,6 +12,11 @@
 //! Mitsuba 3 (see [`super::Depth`]). From depth `roulette` on, a path survives with
 //! probability q = min(max channel of β, 0.95) and β is divided by q.
 //!
+//! With the plan's `light_paths`, a path whose first vertex is diffuse and which then
+//! meets only specular vertices before an emitter adds nothing: the light pass
+//! ([`super::light_tracer`]) traces those caustic paths from the lights and adds them
+//! after the camera pass.
+//!
 //! **Determinism.** Sample n of pixel p in a frame with seed s uses the numbers
 //! [`PixelSampler::new`]`(s, p, spp).sample(n)`; dimensions 0–1 jitter the pixel (box
 //! filter) and each vertex k ≥ 1 owns dimensions b … b + 5, b = 2 + 6(k − 1): the light
@@ -37,6 +42,7 @@ use rayon::prelude::*;
 use super::error::RenderError;
 use super::film::Film;
 use super::light::{Light, power_heuristic, sample_area};
+use super::light_tracer::{CHUNKS, add_caustics};
 use super::material::{Albedo, Material, reflect, sample_cosine, sample_dielectric};
 use super::math::{Ray, Rgb, Vec3};
 use super::plan::Plan;
@@ -94,6 +100,16 @@ pub fn render_with_plan(
         (false, true, false) => run::<false, true, false>(scene, plan, film, spp, seed),
         (false, false, _) => film.data_mut().fill(0.0),
     }
+    if plan.light_paths {
+        let (width, height) = (film.width(), film.height());
+        let paths = u64::from(spp) * u64::from(width) * u64::from(height);
+        let len = 3 * width as usize * height as usize;
+        let (image, scratch) = film.data_and_scratch(CHUNKS * len);
+        add_caustics(scene, plan, image, scratch, (width, height), paths, seed);
+        for v in image.iter_mut() {
+            *v = v.clamp(-f32::MAX, f32::MAX);
+        }
+    }
     Ok(())
 }
 
@@ -136,7 +152,7 @@ fn run<const NEE: bool, const EMIT: bool, const DIRECT_LAST: bool>(
 
 /// Offset for spawning rays: 1e-4 of the larger of 1 and the point's largest coordinate.
 #[inline]
-fn spawn(p: Vec3, n: Vec3) -> Vec3 {
+pub(super) fn spawn(p: Vec3, n: Vec3) -> Vec3 {
     p + n * (1e-4 * (1.0 + p.max_abs_component()))
 }
 
@@ -156,6 +172,9 @@ fn trace<const NEE: bool, const EMIT: bool, const DIRECT_LAST: bool>(
     let mut specular = true;
     let mut bsdf_pdf = 0.0f32;
     let mut depth = 1u32;
+    // The path left the first vertex, diffuse, and met only specular vertices since: an
+    // emitter it reaches closes a caustic path, the light pass's when the plan has one.
+    let mut caustic = false;
     // The object the current ray leaves, when it cannot hit it again.
     let mut skip = NO_OBJECT;
     while let Some(hit) = scene.intersect(&ray, f32::INFINITY, skip, plan.bvh) {
@@ -165,7 +184,10 @@ fn trace<const NEE: bool, const EMIT: bool, const DIRECT_LAST: bool>(
         let surface = object.shape.surface(&ray, &hit, want_uv);
         let wo = -ray.dir;
 
-        if EMIT && let Some(emitter) = &object.emitter {
+        if EMIT
+            && let Some(emitter) = &object.emitter
+            && !(specular && caustic)
+        {
             let le = emitter.radiance_towards(surface.ng, wo);
             if !le.is_black() {
                 let weight = if specular || !NEE {
@@ -225,6 +247,7 @@ fn trace<const NEE: bool, const EMIT: bool, const DIRECT_LAST: bool>(
                 }
                 beta *= rho;
                 specular = false;
+                caustic = plan.light_paths && depth == 1;
                 bsdf_pdf = pdf;
                 ray = Ray::new(spawn(surface.p, ng), wi);
             }
@@ -282,7 +305,7 @@ struct Vertex {
 /// The unit direction from `origin` to `target`, the distance and its square; `None`
 /// when the points coincide.
 #[inline(always)]
-fn towards(origin: Vec3, target: Vec3) -> Option<(Vec3, f32, f32)> {
+pub(super) fn towards(origin: Vec3, target: Vec3) -> Option<(Vec3, f32, f32)> {
     let d = target - origin;
     let dist2 = d.length_squared();
     if dist2 <= 0.0 {

@@ -14,7 +14,8 @@
 //! * [`camera`]: the pinhole camera; [`film`]: linear RGB images, PNG output;
 //! * [`sampler`]: counter-based uniform numbers ([`sobol`]: scrambled Sobol pairs);
 //!   [`scene`]: the scene and ray queries;
-//!   [`plan`]: scene specialisation; [`integrator`]: the path tracer.
+//!   [`plan`]: scene specialisation; [`integrator`]: the path tracer;
+//!   [`light_tracer`]: caustics traced from the lights.
 //!
 //! Units: lengths are scene units, angles radians unless a name says degrees, radiance
 //! in arbitrary linear units per RGB channel. Coordinates are right-handed; the tasks
@@ -54,6 +55,7 @@ pub mod error;
 pub mod film;
 pub mod integrator;
 pub mod light;
+pub mod light_tracer;
 pub mod material;
 pub mod math;
 pub mod mesh;

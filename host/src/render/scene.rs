@@ -12,7 +12,7 @@ use super::camera::Camera;
 use super::error::RenderError;
 use super::light::{Emitter, Light, PointLight};
 use super::material::{Albedo, Material};
-use super::math::{Aabb, Ray};
+use super::math::{Aabb, Ray, Vec3};
 use super::plan::Plan;
 use super::sampler::Sequence;
 use super::shape::{Hit, Quad, Shape, Sphere};
@@ -89,6 +89,8 @@ pub struct Scene {
     lights: Vec<Light>,
     areas: Vec<f32>,
     boxes: Vec<Aabb>,
+    /// The sphere about the box of every specular object, if any (`commit`).
+    specular: Option<(Vec3, f32)>,
     top: Bvh,
     /// List mode: the quads, the spheres, and the other objects, each with its object
     /// index, so that the common analytic shapes are tested in tight, inlined loops.
@@ -113,6 +115,7 @@ impl Scene {
             lights: Vec::new(),
             areas: Vec::new(),
             boxes: Vec::new(),
+            specular: None,
             top: Bvh::new(),
             quads: Vec::new(),
             spheres: Vec::new(),
@@ -234,6 +237,13 @@ impl Scene {
         self.areas[index as usize]
     }
 
+    /// The sphere (centre, radius) about the bounding box of every object with a
+    /// specular material (mirror or dielectric), as of the last commit; `None` when
+    /// there is none. Every caustic path's first specular vertex lies within it.
+    pub fn specular_bound(&self) -> Option<(Vec3, f32)> {
+        self.specular
+    }
+
     /// Validates the scene and derives lights, the object hierarchy and the plan.
     ///
     /// # Errors
@@ -253,6 +263,7 @@ impl Scene {
         self.quads.clear();
         self.spheres.clear();
         self.others.clear();
+        let mut specular = Aabb::EMPTY;
         for (index, object) in self.objects.iter().enumerate() {
             object.shape.validate()?;
             if object.material as usize >= self.materials.len() {
@@ -283,7 +294,11 @@ impl Scene {
                 }
             }
             self.areas.push(area);
-            self.boxes.push(object.shape.bounds());
+            let bounds = object.shape.bounds();
+            if self.materials[object.material as usize].is_specular() {
+                specular = specular.union(bounds);
+            }
+            self.boxes.push(bounds);
             match &object.shape {
                 Shape::Quad(q) => self.quads.push((*q, index as u32)),
                 Shape::Sphere(s) => self.spheres.push((*s, index as u32)),
@@ -309,6 +324,10 @@ impl Scene {
         if let Some(0) = self.depth.max {
             return Err(RenderError::InvalidGeometry("maximum depth must be ≥ 1"));
         }
+        self.specular = (specular.min.x <= specular.max.x).then(|| {
+            let centre = specular.centroid();
+            (centre, (specular.max - centre).length())
+        });
         self.top.build(&self.boxes);
         self.plan = Plan::inspect(self);
         self.committed = true;
