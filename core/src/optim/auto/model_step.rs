@@ -5,7 +5,7 @@
 
 use rand_core::Rng;
 
-use super::memory::{blaming, memory_determines_model, validating};
+use super::memory::{blaming, memory_determines_model, nearby_needed, validating};
 use super::model::Shape;
 use super::options::AutoStep;
 use super::{
@@ -236,10 +236,18 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // alike at every scale, and each smaller σ fails as the last did. The diagonal
         // model may be blamed once validated. A declared-noisy objective keeps the rule it
         // was measured with: a fit determined by its points, or a validated one (holding
-        // σ lost SHADOW runs).
+        // σ lost SHADOW runs); with the diagonal model (n > FULL_MODEL_MAX_DIM there),
+        // already once as many points lie within reach as a model needs to step
+        // (`nearby_needed`, half the memory). Validation asks for all but two of the
+        // remembered points, which a noisy run, whose accepted steps move θ by about the
+        // radius, seldom has within reach: σ stayed at σ₀/4 while steps the noise
+        // accepted walked θ uphill (CAUSTIC, n = 256).
         let blames_scale = poor
             && if self.st.noisy {
-                determined || validated
+                determined
+                    || validated
+                    || self.shape == Shape::Diagonal
+                        && self.count_around(T::from_f64(REACH)) > nearby_needed(self.shape, n)
             } else if memory_determines_model(self.shape, n) {
                 self.count_around(T::from_f64(REACH)) > self.shape.coefficients(n)
             } else if self.shape == Shape::Full {
