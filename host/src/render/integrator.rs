@@ -56,8 +56,8 @@ const DIM_LIGHT_POINT: usize = 0;
 const DIM_BSDF: usize = 2;
 const DIM_LIGHT_CHOICE: usize = 4;
 const DIM_ROULETTE: usize = 5;
-/// Survival probability cap for Russian roulette.
-const MAX_SURVIVAL: f32 = 0.95;
+/// Survival probability cap for Russian roulette (camera and light paths).
+pub(super) const MAX_SURVIVAL: f32 = 0.95;
 
 /// Renders `scene` into `film` with `spp` samples per pixel and frame seed `seed`, using
 /// the scene's own [`Plan`].

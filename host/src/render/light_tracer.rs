@@ -48,7 +48,7 @@ use std::f32::consts::{FRAC_1_PI, PI};
 
 use rayon::prelude::*;
 
-use super::integrator::{spawn, towards};
+use super::integrator::{MAX_SURVIVAL, spawn, towards};
 use super::light::{Light, sample_area};
 use super::material::{Albedo, Material, reflect, sample_dielectric};
 use super::math::{Frame, Ray, Rgb, Vec3};
@@ -61,9 +61,6 @@ pub const CHUNKS: usize = 16;
 
 /// Mixed into the frame seed so that the light pass's numbers are not the camera pass's.
 const SEED_SALT: u64 = 0x4C49_4748_5450_4153;
-
-/// Survival probability cap for Russian roulette.
-const MAX_SURVIVAL: f32 = 0.95;
 
 const DIM_LIGHT_POINT: usize = 0;
 const DIM_DIRECTION: usize = 2;
