@@ -217,10 +217,7 @@ fn trace<const NEE: bool, const EMIT: bool, const DIRECT_LAST: bool>(
         match material {
             Material::Black => break,
             Material::Diffuse(albedo) => {
-                let rho = match albedo {
-                    Albedo::Constant(c) => c,
-                    Albedo::Texture(k) => scene.textures()[k].lookup(surface.uv.0, surface.uv.1),
-                };
+                let rho = scene.albedo(albedo, surface.uv);
                 let last = DIRECT_LAST && depth + 1 >= max_depth;
                 if NEE {
                     // Shadow rays leave on the `ng` side.

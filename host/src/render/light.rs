@@ -75,16 +75,23 @@ pub fn sample_area(shape: &Shape, u1: f32, u2: f32) -> (Vec3, Vec3) {
     match shape {
         Shape::Quad(q) => (q.point(u1, u2), q.normal()),
         Shape::Sphere(s) => {
-            let z = 1.0 - 2.0 * u1;
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            let (sin, cos) = (2.0 * PI * u2).sin_cos();
-            let n = Vec3::new(r * cos, r * sin, z);
+            let n = uniform_sphere(u1, u2);
             (s.center + n * s.radius, n)
         }
         // Unreachable for committed scenes; a harmless point with no normal gives zero
         // contribution (cos θ_y = 0).
         Shape::Cuboid(_) | Shape::Mesh(_) => (Vec3::ZERO, Vec3::ZERO),
     }
+}
+
+/// A unit direction uniform over the sphere from (u₁, u₂) ∈ [0, 1)²: z = 1 − 2u₁,
+/// azimuth 2πu₂ (density 1/(4π)).
+#[inline]
+pub fn uniform_sphere(u1: f32, u2: f32) -> Vec3 {
+    let z = 1.0 - 2.0 * u1;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let (sin, cos) = (2.0 * PI * u2).sin_cos();
+    Vec3::new(r * cos, r * sin, z)
 }
 
 /// Power-heuristic (Veach, exponent 2) weight of the technique with density `a` against

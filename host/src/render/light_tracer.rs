@@ -49,7 +49,7 @@ use std::f32::consts::{FRAC_1_PI, PI};
 use rayon::prelude::*;
 
 use super::integrator::{MAX_SURVIVAL, spawn, towards};
-use super::light::{Light, sample_area};
+use super::light::{Light, sample_area, uniform_sphere};
 use super::material::{Albedo, Material, reflect, sample_dielectric};
 use super::math::{Frame, Ray, Rgb, Vec3};
 use super::plan::Plan;
@@ -179,12 +179,7 @@ fn trace(
                 2.0 * PI * (1.0 - cos_max),
             )
         }
-        _ => {
-            let z = 1.0 - 2.0 * u1;
-            let r = (1.0 - z * z).max(0.0).sqrt();
-            let (s, c) = (2.0 * PI * u2).sin_cos();
-            (Vec3::new(r * c, r * s, z), 4.0 * PI)
-        }
+        _ => (uniform_sphere(u1, u2), 4.0 * PI),
     };
     let le = emitter.radiance_towards(ny, dir);
     let cos_y = ny.dot(dir).abs();
@@ -219,10 +214,7 @@ fn trace(
                 if specular == 0 || segments + 1 > max_depth {
                     return None;
                 }
-                let rho = match albedo {
-                    Albedo::Constant(c) => c,
-                    Albedo::Texture(k) => scene.textures()[k].lookup(surface.uv.0, surface.uv.1),
-                };
+                let rho = scene.albedo(albedo, surface.uv);
                 return join_camera(
                     scene,
                     plan,

@@ -12,7 +12,7 @@ use super::camera::Camera;
 use super::error::RenderError;
 use super::light::{Emitter, Light, PointLight};
 use super::material::{Albedo, Material};
-use super::math::{Aabb, Ray, Vec3};
+use super::math::{Aabb, Ray, Rgb, Vec3};
 use super::plan::Plan;
 use super::sampler::Sequence;
 use super::shape::{Hit, Quad, Shape, Sphere};
@@ -229,6 +229,15 @@ impl Scene {
     /// True when the scene has not changed since the last successful commit.
     pub fn is_committed(&self) -> bool {
         self.committed
+    }
+
+    /// The reflectance ρ of `albedo` at texture coordinates `uv`.
+    #[inline]
+    pub fn albedo(&self, albedo: Albedo, uv: (f32, f32)) -> Rgb {
+        match albedo {
+            Albedo::Constant(c) => c,
+            Albedo::Texture(k) => self.textures[k].lookup(uv.0, uv.1),
+        }
     }
 
     /// The area of object `index` if it is an area emitter (else 0).
