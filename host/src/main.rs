@@ -12,6 +12,42 @@ use hodr_core::optim::preset::Preset;
 use hodr_host::report::{self, Config, Method, Overrides, Settings, task};
 use signal_hook::consts::{SIGINT, SIGTERM};
 
+/// Set once a write to stdout has failed because its reader has gone (`hodr optimize … |
+/// head`): the work then stops as an interrupt stops it, what it finished is written, and
+/// the exit is quiet and successful.
+static STDOUT_CLOSED: AtomicBool = AtomicBool::new(false);
+
+/// `println!` that records a closed stdout ([`STDOUT_CLOSED`]) instead of panicking.
+macro_rules! say {
+    ($($arg:tt)*) => {
+        say(format_args!($($arg)*), true)
+    };
+}
+
+/// `print!` that records a closed stdout ([`STDOUT_CLOSED`]) instead of panicking.
+macro_rules! say_raw {
+    ($($arg:tt)*) => {
+        say(format_args!($($arg)*), false)
+    };
+}
+
+/// Writes `args` (and a newline where `newline`) to stdout; a failed write sets
+/// [`STDOUT_CLOSED`].
+fn say(args: std::fmt::Arguments<'_>, newline: bool) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    let written = out.write_fmt(args).and_then(|()| {
+        if newline {
+            out.write_all(b"\n")
+        } else {
+            Ok(())
+        }
+    });
+    if written.is_err() {
+        STDOUT_CLOSED.store(true, Ordering::SeqCst);
+    }
+}
+
 /// hodr: second-order optimisation of discontinuous, black-box renderers.
 #[derive(Parser, Debug)]
 #[command(
@@ -230,7 +266,9 @@ fn main() -> ExitCode {
     if let Err(e) = &result {
         eprintln!("hodr: {}", causes(e));
     }
-    if interrupt.load(Ordering::SeqCst) {
+    if STDOUT_CLOSED.load(Ordering::SeqCst) && result.is_ok() {
+        ExitCode::SUCCESS
+    } else if interrupt.load(Ordering::SeqCst) {
         ExitCode::from(if terminated.load(Ordering::SeqCst) {
             EXIT_SIGTERM
         } else {
@@ -440,11 +478,11 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             if interrupt.load(Ordering::Relaxed) {
                 eprintln!("interrupted: wrote the finished runs");
             }
-            println!("report written to {}", path.display());
+            say!("report written to {}", path.display());
         }
         Command::Tasks => {
             for t in task::all(false)? {
-                println!("{:<10} n = {:<5} {}", t.name(), t.dim(), t.description());
+                say!("{:<10} n = {:<5} {}", t.name(), t.dim(), t.description());
             }
         }
         Command::Render {
@@ -482,7 +520,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             img.save(&out)
                 .with_context(|| format!("writing {}", out.display()))?;
             let at = spp.map_or(String::new(), |s| format!(" at {s} spp"));
-            println!(
+            say!(
                 "wrote {} ({}×{}{at})",
                 out.display(),
                 img.width(),
@@ -517,15 +555,15 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
                 overrides: overrides(&set)?,
             };
             settings.check_for(&[m])?;
-            println!(
+            say!(
                 "optimize {} (n = {}) with {}, seed {seed}, budget {} evaluations",
                 t.name(),
                 t.dim(),
                 m.name(),
                 settings.budget.unwrap_or_else(|| t.budget(false))
             );
-            println!("start θ₀ = {}", brief(&t.start(seed)));
-            println!("truth θ* = {}", brief(&t.optimum()));
+            say!("start θ₀ = {}", brief(&t.start(seed)));
+            say!("truth θ* = {}", brief(&t.optimum()));
             let line = |k: usize, p: &report::Point| {
                 let sigma = p.sigma.map_or(String::new(), |s| format!("  σ = {s:.3e}"));
                 let step = p.step.map_or(String::new(), |(kind, descent)| {
@@ -540,8 +578,12 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             let mut shown = None;
             let r = report::run_observed(t.as_ref(), m, seed, &settings, interrupt, &mut |p| {
                 if !quiet && (k as u64).is_multiple_of(every) {
-                    println!("{}", line(k, p));
+                    say!("{}", line(k, p));
                     shown = Some(k);
+                    if STDOUT_CLOSED.load(Ordering::SeqCst) {
+                        // Nobody reads the lines: stop as an interrupt would.
+                        interrupt.store(true, Ordering::SeqCst);
+                    }
                 }
                 k += 1;
             })?;
@@ -555,26 +597,29 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             }
             let last = r.points.len() - 1;
             if !quiet && shown != Some(last) {
-                println!("{}", line(last, &r.points[last]));
+                say!("{}", line(last, &r.points[last]));
             }
             // An interrupt has its own exit code; any other early stop is a failure,
             // reported (and the exit code set) once what was found is written.
             let failure = r.stopped.as_deref().filter(|&why| why != "interrupted");
-            if failure.is_none() && r.stopped.is_some() {
+            if failure.is_none() && r.stopped.is_some() && !STDOUT_CLOSED.load(Ordering::SeqCst) {
                 eprintln!("stopped early: interrupted");
             }
             let b = &r.points[r.best];
-            println!(
+            say!(
                 "best: iteration {} of {last}, {} evaluations, param error {:.4e}, image error {:.4e}",
-                r.best, b.evaluations, b.param_error, b.image_error
+                r.best,
+                b.evaluations,
+                b.param_error,
+                b.image_error
             );
-            println!("θ = {}", brief(&r.best_theta));
+            say!("θ = {}", brief(&r.best_theta));
             if let Some(path) = &out
                 && let Some(img) = t.image(&r.best_theta)?
             {
                 img.save(path)
                     .with_context(|| format!("writing {}", path.display()))?;
-                println!("result image written to {}", path.display());
+                say!("result image written to {}", path.display());
             }
             if let Some(why) = failure {
                 bail!("{} on {} stopped early: {why}", m.name(), t.name());
@@ -633,7 +678,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             };
             let mut options = hodr_raster::fit::FitOptions::new(shapes, kind);
             options.seed = seed;
-            println!(
+            say!(
                 "fit2d: {shapes} {kind_name} shapes to {} ({}×{}), seed {seed}{}",
                 target.display(),
                 target_image.width(),
@@ -695,9 +740,9 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
                 } else {
                     "no further shape lowers the error"
                 };
-                println!("{why} after {placed} of {shapes} shapes");
+                say!("{why} after {placed} of {shapes} shapes");
             }
-            println!(
+            say!(
                 "{placed} shapes, RMSE {:.5}, {:.1} s; wrote {}",
                 fit.rmse(),
                 clock.elapsed().as_secs_f64(),
@@ -705,7 +750,7 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             );
         }
         Command::Variance { repeats } => {
-            print!("{}", hodr_host::variance::study(repeats as usize));
+            say_raw!("{}", hodr_host::variance::study(repeats as usize));
         }
         Command::Suite {
             families,
@@ -734,12 +779,12 @@ fn run(cli: Cli, interrupt: &AtomicBool) -> Result<()> {
             if outcome.interrupted {
                 eprintln!("interrupted: wrote the finished runs");
             }
-            print!("{}", outcome.table());
-            println!("suite written to {}", config.out.join("suite.md").display());
+            say_raw!("{}", outcome.table());
+            say!("suite written to {}", config.out.join("suite.md").display());
         }
         Command::Runtime { seeds, crn } => {
             use hodr_host::runtime::{table, tasks};
-            print!("{}", table(&tasks(), &Preset::ALL, seeds, crn)?);
+            say_raw!("{}", table(&tasks(), &Preset::ALL, seeds, crn)?);
         }
     }
     Ok(())

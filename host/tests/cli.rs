@@ -1088,3 +1088,30 @@ fn a_params_file_is_read_up_to_a_cap() {
         "{err}"
     );
 }
+
+#[test]
+fn a_closed_stdout_ends_the_run_quietly() {
+    // `hodr optimize … | head -n 3`: the reader goes after three lines. The run must stop
+    // without a panic or an error message, and exit successfully.
+    use std::io::{BufRead, BufReader};
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_hodr"))
+        .args(["optimize", "--task", "quad", "--budget", "100000"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("hodr runs");
+    let mut stdout = BufReader::new(child.stdout.take().expect("piped"));
+    let mut line = String::new();
+    for _ in 0..3 {
+        line.clear();
+        stdout.read_line(&mut line).expect("a line");
+        assert!(!line.is_empty());
+    }
+    drop(stdout);
+    let out = child.wait_with_output().expect("hodr ends");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{:?}: {stderr}", out.status);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(stderr.is_empty(), "{stderr}");
+}
