@@ -198,7 +198,9 @@
 //!   object wrong and the rest right — a shape hidden under another or stranded off its
 //!   target, one coordinate in the wrong cell of a lattice — is left by moving that
 //!   object's parameters alone, and its value says so at once; a fresh start moves them
-//!   all and loses what was right.
+//!   all and loses what was right. Where the run's probes have found lower points more
+//!   often than its fresh descents, each later phase is longer, up to [`SHARE_RANGE`]
+//!   times the default (the `explore` module).
 //! * **Centre.** A descent that ends on a flat piece of f (a remembered point other than
 //!   θ has exactly f(θ)'s value, f(θ) below every earlier descent's) spends one
 //!   more iteration ([`AutoStep::Centred`]) moving θ to the piece's centre along the
@@ -244,6 +246,7 @@ mod adapt_metric;
 mod centre;
 mod creep;
 mod eigen;
+mod explore;
 mod fitting;
 mod fixed;
 mod memory;
@@ -262,6 +265,8 @@ mod trust;
 use centre::Centring;
 use creep::Creep;
 pub use creep::{CREEP_GAIN, CREEP_SHRINK, CREEP_WINDOWS};
+use explore::Exploration;
+pub use explore::SHARE_RANGE;
 pub use fixed::FixedAuto;
 pub use memory::buffer_len;
 use memory::{Memory, buffer_len_of, carve, history_len, memory_determines_model};
@@ -738,6 +743,9 @@ struct State<T> {
     centred: bool,
     /// Probes left before the next fresh start (the `probe` module).
     probes: usize,
+    /// The run's wins and evaluations of probes and fresh starts, which size each probe
+    /// phase (the `explore` module).
+    explore: Exploration,
     /// What the descent's gains and σ have done in its latest windows (the `creep`
     /// module).
     creep: Creep<T>,
@@ -826,6 +834,7 @@ impl<T: Real> State<T> {
             centred: false,
             probes: 0,
             creep: Creep::new(),
+            explore: Exploration::default(),
         }
     }
 }

@@ -145,7 +145,10 @@ pub struct AutoOptions<T> {
     /// on. Default: `true`.
     pub centre: bool,
     /// Probes per coordinate before each fresh start ([`AutoOptions::fresh_starts`]):
-    /// up to `probes`·n points, n per iteration ([`AutoStep::Probed`]), each the best
+    /// up to `probes`·n points, n per iteration ([`AutoStep::Probed`]), and more in a
+    /// later phase where the run's probes have found lower points more often than its
+    /// fresh descents (at most [`SHARE_RANGE`](super::SHARE_RANGE) times as many). Each
+    /// probe is the best
     /// point so far with one contiguous block of 1, 2, 4, … ≤ n/2 of its coordinates
     /// (its length and then its place, aligned to the length, drawn uniformly) moved: a
     /// coordinate boxed on both sides drawn uniformly over its box within 32 start

@@ -19,7 +19,8 @@
 //! and ξᵢ ~ N(0, 1), mirrored into a bound it has.
 //!
 //! Once a descent has ended, `Auto::begin_probes` keeps the best point as the record
-//! and allots [`AutoOptions::probes`](super::AutoOptions::probes) probes per coordinate;
+//! and allots the probes: [`AutoOptions::probes`](super::AutoOptions::probes) per
+//! coordinate, more where the run's probes have paid (the `explore` module);
 //! `Auto::probe_step` evaluates them n at a time (one iteration each, at least two
 //! probes), and the first batch with a value below the record's moves θ to its lowest
 //! point and starts the next descent there, without a jump (its first iteration
@@ -29,6 +30,7 @@
 
 use rand_core::Rng;
 
+use super::explore::clearly_below;
 use super::options::{AutoStep, AutoTermination};
 use super::{Auto, AutoReport, RESTART_SCALES};
 use crate::error::Error;
@@ -40,8 +42,18 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// Ends a descent before a fresh start: keeps its best point as the record and
     /// allots the probes, or starts fresh at once where [`AutoOptions::probes`](super::AutoOptions::probes) is 0.
     pub(super) fn begin_probes(&mut self) {
+        let before = self.st.record;
         self.keep_record();
-        let allotted = self.options.probes.saturating_mul(self.theta.len());
+        let won = match (before, self.st.record) {
+            (Some(b), Some(a)) => clearly_below(a, b),
+            (None, record) => record.is_some(),
+            (Some(_), None) => false,
+        };
+        self.st.explore.descent_ended(self.st.evaluations, won);
+        let allotted = self
+            .st
+            .explore
+            .allotment(self.theta.len(), self.options.probes);
         if allotted == 0 || self.st.record.is_none() {
             self.fresh_start();
         } else {
@@ -79,6 +91,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 lowest = Some((row, f));
             }
         }
+        let won = lowest.is_some_and(|(_, f)| clearly_below(f, record));
+        self.st.explore.probed(spent, won);
         let mut step_length = T::ZERO;
         if let Some((row, _)) = lowest {
             self.st.probes = 0;

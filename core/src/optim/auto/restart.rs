@@ -201,6 +201,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.theta[i] = self.jumped(i, self.theta[i], widen, least);
         }
         self.new_descent();
+        self.st.explore.fresh_started(self.st.evaluations);
         self.st.fresh_wide = k > 0 && !self.st.fresh_narrow;
         if self.st.fresh_wide {
             self.st.cycle = k;
@@ -259,6 +260,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             fresh_wide: run.fresh_wide,
             wide_end: run.wide_end,
             varied: run.varied,
+            explore: run.explore,
             ..State::start(run.sigma0, n)
         };
         self.shape_scales();
