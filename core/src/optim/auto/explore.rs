@@ -94,9 +94,7 @@ impl Exploration {
         let fresh_rate = (self.fresh_wins as f64 + 0.5) / (self.fresh_evaluations as f64 + descent);
         let range = SHARE_RANGE as f64;
         let gain = (probe_rate * phase / (fresh_rate * descent)).clamp(1.0, range);
-        // A NaN gain (none arises from finite counts) keeps the default.
-        let gain = if gain.is_nan() { 1.0 } else { gain };
-        (libm::round(phase * gain) as usize).max(2)
+        (libm::round(phase * gain) as usize).max(default)
     }
 }
 
