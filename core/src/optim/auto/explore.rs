@@ -57,13 +57,24 @@ pub(super) struct Exploration {
 }
 
 impl Exploration {
-    /// A descent ends after `evaluations` of the run; `won`: it ended below the best
-    /// point it began from.
-    pub(super) fn descent_ended(&mut self, evaluations: usize, won: bool) {
+    /// A descent ends after `evaluations` of the run, the run's best value `before` it
+    /// and `after` it (`None`: none finite); a fresh descent won where `after` is
+    /// [`clearly_below`] `before`, or finite where `before` was not.
+    pub(super) fn descent_ended<T: Real>(
+        &mut self,
+        evaluations: usize,
+        before: Option<T>,
+        after: Option<T>,
+    ) {
         if self.first == 0 {
             self.first = evaluations.max(1);
         }
         if let Some(began) = self.fresh_began.take() {
+            let won = match (before, after) {
+                (Some(b), Some(a)) => clearly_below(a, b),
+                (None, after) => after.is_some(),
+                (Some(_), None) => false,
+            };
             self.fresh_wins += usize::from(won);
             self.fresh_evaluations += evaluations.saturating_sub(began);
         }
@@ -75,11 +86,10 @@ impl Exploration {
     }
 
     /// A batch of `spent` probes has been evaluated; `won`: one of them lies below the
-    /// best point (the descent it begins counts for neither way).
+    /// best point (the descent it begins is no fresh one, so it counts for neither way).
     pub(super) fn probed(&mut self, spent: usize, won: bool) {
         self.probe_evaluations += spent;
         self.probe_wins += usize::from(won);
-        self.fresh_began = None;
     }
 
     /// The probes of the next phase in dimension n with `per_coordinate` probes per
@@ -105,7 +115,7 @@ mod tests {
     #[test]
     fn before_any_evidence_the_default() {
         let mut e = Exploration::default();
-        e.descent_ended(1_234, false);
+        e.descent_ended(1_234, None, Some(1.0));
         assert_eq!(e.allotment(10, 20), 200);
         assert_eq!(e.allotment(1, 20), 20);
     }
@@ -113,21 +123,21 @@ mod tests {
     #[test]
     fn probes_that_win_grow_and_probes_that_fail_keep_the_default() {
         let mut wins = Exploration::default();
-        wins.descent_ended(1_000, false);
+        wins.descent_ended(1_000, None, Some(1.0));
         for _ in 0..4 {
             wins.probed(50, true);
-            wins.descent_ended(2_000, true);
+            wins.descent_ended(2_000, Some(1.0), Some(0.5));
         }
         wins.fresh_started(3_000);
-        wins.descent_ended(4_000, false);
+        wins.descent_ended(4_000, Some(0.5), Some(0.5));
         assert_eq!(wins.allotment(10, 20), 200 * SHARE_RANGE);
 
         let mut fails = Exploration::default();
-        fails.descent_ended(1_000, false);
+        fails.descent_ended(1_000, None, Some(1.0));
         for k in 0..8 {
             fails.probed(200, false);
             fails.fresh_started(1_000 * k);
-            fails.descent_ended(1_000 * k + 1_000, true);
+            fails.descent_ended(1_000 * k + 1_000, Some(1.0), Some(0.5));
         }
         assert_eq!(fails.allotment(10, 20), 200);
     }
@@ -135,7 +145,7 @@ mod tests {
     #[test]
     fn zero_probes_stay_zero() {
         let mut e = Exploration::default();
-        e.descent_ended(10, false);
+        e.descent_ended(10, None, Some(1.0));
         assert_eq!(e.allotment(5, 0), 0);
     }
 }

@@ -44,12 +44,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     pub(super) fn begin_probes(&mut self) {
         let before = self.st.record;
         self.keep_record();
-        let won = match (before, self.st.record) {
-            (Some(b), Some(a)) => clearly_below(a, b),
-            (None, record) => record.is_some(),
-            (Some(_), None) => false,
-        };
-        self.st.explore.descent_ended(self.st.evaluations, won);
+        let evaluations = self.st.evaluations;
+        self.st
+            .explore
+            .descent_ended(evaluations, before, self.st.record);
         let allotted = self
             .st
             .explore
