@@ -1,6 +1,7 @@
 //! Smoke tests of the `hodr` command line with tiny budgets.
 
-use std::path::PathBuf;
+use std::ops::Deref;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn hodr(args: &[&str]) -> std::process::Output {
@@ -10,11 +11,37 @@ fn hodr(args: &[&str]) -> std::process::Output {
         .expect("hodr runs")
 }
 
-fn scratch(name: &str) -> PathBuf {
+/// A test's own empty directory under the system's temporary one, removed when the test
+/// passes and kept, for a look at what the run wrote, when it fails.
+struct Scratch(PathBuf);
+
+impl Deref for Scratch {
+    type Target = Path;
+
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for Scratch {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        if !std::thread::panicking() {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+}
+
+fn scratch(name: &str) -> Scratch {
     let dir = std::env::temp_dir().join(format!("hodr-cli-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    dir
+    Scratch(dir)
 }
 
 #[test]
