@@ -230,15 +230,7 @@ mod tests {
             gamma: &mut gamma,
             lambda: &mut lambda,
         };
-        assert!(solve(
-            shape,
-            Curvature::AsFitted,
-            g,
-            h,
-            radius,
-            scratch,
-            &mut s
-        ));
+        assert!(solve(shape, curvature, g, h, radius, scratch, &mut s));
         s
     }
 
