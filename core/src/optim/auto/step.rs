@@ -4,12 +4,25 @@
 
 use rand_core::Rng;
 
+use super::memory::memory_determines_model;
 use super::model::Shape;
 use super::{Auto, metric, trust};
 use crate::optim::vector::{axpy, dot, norm, orthogonalise};
 use crate::real::Real;
 
 impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
+    /// How the step reads the model's negative curvature: a full model its memory cannot
+    /// determine (n from 15) reflects the faint negative eigenvalues
+    /// ([`trust::Curvature::Reflect`]); a determined one, whose negative curvature the
+    /// points show, and the diagonal model take H as fitted.
+    fn curvature(&self) -> trust::Curvature {
+        if self.shape == Shape::Full && !memory_determines_model(self.shape, self.theta.len()) {
+            trust::Curvature::Reflect
+        } else {
+            trust::Curvature::AsFitted
+        }
+    }
+
     /// Writes to `s` the model's minimiser within ‖s‖ ≤ `radius` over the steps that
     /// stay in the box along the coordinates whose bounds they would cross: the
     /// unconstrained minimiser first; while it would carry a coordinate out of the box,
@@ -23,9 +36,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     pub(super) fn trust_step(&mut self, radius: T) -> bool {
         let n = self.theta.len();
         let sigma = self.st.sigma;
+        let curvature = self.curvature();
         let m = &mut self.mem;
         if !trust::solve(
             self.shape,
+            curvature,
             m.g,
             m.h,
             radius,
@@ -85,6 +100,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     pub(super) fn held_step(&mut self, radius: T) -> bool {
         let n = self.theta.len();
         let shape = self.shape;
+        let curvature = self.curvature();
         let m = &mut self.mem;
         let (moves, held) = m.stage[..2 * n].split_at(n);
         let is_held = |i: usize| held[i] != T::ZERO;
@@ -178,6 +194,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let ok = free == 0
             || trust::solve(
                 shape,
+                curvature,
                 &m.rg[..free],
                 &m.rh[..shape.hessian_len(free)],
                 inner,

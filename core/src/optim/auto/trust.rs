@@ -29,10 +29,30 @@ pub(super) struct Scratch<'a, T> {
     pub lambda: &'a mut [T],
 }
 
-/// Writes the minimiser of gᵀs + ½sᵀHs over ‖s‖ ≤ `radius` to `s`. Returns false (s = 0)
-/// when g or H is not finite.
+/// The share of H's largest |eigenvalue| below which [`solve`] reflects a negative
+/// eigenvalue (λ → |λ|) when asked to ([`Curvature::Reflect`]).
+pub(super) const FAINT_NEGATIVE: f64 = 0.1;
+
+/// How [`solve`] reads H's negative eigenvalues.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Curvature {
+    /// As they are: the step goes to the boundary along the descending curvature.
+    AsFitted,
+    /// Those of magnitude below [`FAINT_NEGATIVE`] times the largest |λ| become |λ|, so
+    /// that the step along such a direction is at most |γᵢ/λᵢ|, as along a positive one
+    /// of the same magnitude. For a fit with fewer points than coefficients, whose faint
+    /// negative curvature is mostly what the least change left along directions no point
+    /// has tested: where f is flat along them (a low-rank f), steps to the boundary along
+    /// them learn nothing and damp (through μ ≥ −λ_min) the step along the directions
+    /// that matter.
+    Reflect,
+}
+
+/// Writes the minimiser of gᵀs + ½sᵀHs over ‖s‖ ≤ `radius` to `s`, H's negative
+/// eigenvalues read as `curvature` says. Returns false (s = 0) when g or H is not finite.
 pub(super) fn solve<T: Real>(
     shape: Shape,
+    curvature: Curvature,
     g: &[T],
     h: &[T],
     radius: T,
@@ -66,6 +86,16 @@ pub(super) fn solve<T: Real>(
         Shape::Diagonal => {
             lambda[..n].copy_from_slice(&h[..n]);
             gamma[..n].copy_from_slice(g);
+        }
+    }
+    if curvature == Curvature::Reflect {
+        let faint =
+            T::from_f64(FAINT_NEGATIVE) * lambda[..n].iter().fold(T::ZERO, |m, &l| m.max(l.abs()));
+        for l in lambda[..n]
+            .iter_mut()
+            .filter(|l| **l < T::ZERO && -**l < faint)
+        {
+            *l = -*l;
         }
     }
     let (gamma, lambda) = (&gamma[..n], &lambda[..n]);
@@ -181,6 +211,17 @@ mod tests {
 
     /// The step for an N-dimensional model, N ≤ 6 (fixed arrays: no heap here).
     fn run<const N: usize>(shape: Shape, g: &[f64; N], h: &[f64], radius: f64) -> [f64; N] {
+        run_reading(shape, Curvature::AsFitted, g, h, radius)
+    }
+
+    /// As [`run`], H's negative eigenvalues read as `curvature` says.
+    fn run_reading<const N: usize>(
+        shape: Shape,
+        curvature: Curvature,
+        g: &[f64; N],
+        h: &[f64],
+        radius: f64,
+    ) -> [f64; N] {
         let (mut a, mut v, mut gamma, mut lambda) = ([0.0; 36], [0.0; 36], [0.0; 6], [0.0; 6]);
         let mut s = [0.0; N];
         let scratch = Scratch {
@@ -189,7 +230,7 @@ mod tests {
             gamma: &mut gamma,
             lambda: &mut lambda,
         };
-        assert!(solve(shape, g, h, radius, scratch, &mut s));
+        assert!(solve(shape, curvature, g, h, radius, scratch, &mut s));
         s
     }
 
@@ -259,5 +300,35 @@ mod tests {
             (s[0] + 0.6).abs() < 1e-9 && (s[1] + 0.8).abs() < 1e-9,
             "{s:?}"
         );
+    }
+
+    /// Reflected, a faint negative eigenvalue (a hundredth of the largest) bounds the
+    /// step along its direction by |γᵢ/λᵢ| and the step is the interior one of |H|; as
+    /// fitted, it sends the step to the boundary. A strong one (half the largest) is
+    /// read as fitted either way.
+    #[test]
+    fn reflects_faint_negative_curvature_only() {
+        let (g, radius) = ([1.0, 1e-3, 0.5], 10.0);
+        let faint = [1.0, 0.0, 0.0, 0.0, -0.01, 0.0, 0.0, 0.0, 2.0];
+        let s = run_reading(Shape::Full, Curvature::Reflect, &g, &faint, radius);
+        let expected = [-1.0, -0.1, -0.25];
+        for i in 0..3 {
+            assert!((s[i] - expected[i]).abs() < 1e-12, "{s:?}");
+        }
+        let s = run_reading(Shape::Full, Curvature::AsFitted, &g, &faint, radius);
+        assert!((norm(&s) - radius).abs() < 1e-9, "{s:?}");
+        let strong = [1.0, 0.0, 0.0, 0.0, -0.5, 0.0, 0.0, 0.0, 2.0];
+        let s = run_reading(Shape::Full, Curvature::Reflect, &g, &strong, radius);
+        assert!((norm(&s) - radius).abs() < 1e-9, "{s:?}");
+        let s = run_reading(
+            Shape::Diagonal,
+            Curvature::Reflect,
+            &g,
+            &[1.0, -0.01, 2.0],
+            radius,
+        );
+        for i in 0..3 {
+            assert!((s[i] - expected[i]).abs() < 1e-12, "{s:?}");
+        }
     }
 }
