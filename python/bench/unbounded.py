@@ -1,6 +1,7 @@
 """Objectives without a minimum, for BENCHMARKS.md: how soon hodr.minimize (Auto, no
 budget) and pycma (CMA-ES, defaults) notice and stop, and how each run ends. A loss with
-a sign error or a missing regulariser looks like this; a run that never returns is the
+a sign error or a missing regulariser looks like this (unbounded below, or bounded below
+with its infimum at infinity, as a saturating unit's); a run that never returns is the
 failure to avoid. 10 seeds each, from x0 = 0 with sigma0 = 1; pycma gets two
 coordinates where the problem has one (it needs n >= 2) and a cap of 10^5 evaluations.
 Prints, per problem and solver, the ways runs ended and the median evaluations.
@@ -24,6 +25,9 @@ PROBLEMS = {
     "slope, n = 10 (f = sum of x)": (lambda x: float(np.sum(x)), 10),
     "-exp(x0) + sum of the other squares, n = 5": (lambda x: float(-np.exp(x[0]) + x[1:] @ x[1:]), 5),
     "-log(1 + x^2), n = 1": (lambda x: float(-np.log1p(x[0] ** 2)), 1),
+    # Bounded below, the infimum 0 approached as x0 grows: no minimum to converge to.
+    "exp(-x0) + sum of the other squares, n = 5": (lambda x: float(np.exp(-x[0]) + x[1:] @ x[1:]), 5),
+    "1 - tanh(x0) + sum of the other squares, n = 5": (lambda x: float(1 - np.tanh(x[0]) + x[1:] @ x[1:]), 5),
 }
 
 

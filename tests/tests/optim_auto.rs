@@ -894,6 +894,44 @@ fn an_objective_unbounded_below_diverges() {
     }
 }
 
+/// Objectives bounded below whose infimum lies at infinity along one coordinate, while
+/// the others have a minimum (e^(−x₀) + Σ xᵢ², 1/(1 + x₀²) + Σ xᵢ²): each step gains, by
+/// amounts that shrink too slowly for the patience, and the metric stretches along x₀ so
+/// that its spread never converges. The run's values settle (the `creep` module) and,
+/// without a fresh start to follow, it ends by itself, converged or stagnated, before
+/// the cap that keeps this test from hanging if it did not (every seed).
+#[test]
+fn an_infimum_at_infinity_ends_the_run() {
+    fn exponential(x: &[f64]) -> f64 {
+        (-x[0]).exp() + x[1..].iter().map(|v| v * v).sum::<f64>()
+    }
+    fn reciprocal(x: &[f64]) -> f64 {
+        1.0 / (1.0 + x[0] * x[0]) + x[1..].iter().map(|v| v * v).sum::<f64>()
+    }
+    for (f, floor) in [
+        (exponential as fn(&[f64]) -> f64, 1e-30),
+        (reciprocal, 1e-12),
+    ] {
+        for seed in 0..5 {
+            for n in [2, 5] {
+                let mut x0 = vec![1.0; n];
+                x0[0] = 0.0;
+                let mut f = f;
+                let (theta, value, end) = descend(&mut f, &x0, 1.0, 5_000_000, seed);
+                assert!(
+                    matches!(end, AutoTermination::Converged | AutoTermination::Stagnated),
+                    "n {n}, seed {seed}: {end:?}"
+                );
+                assert!(theta.iter().all(|v| v.is_finite()));
+                assert!(
+                    value.is_some_and(|v| v.is_finite() && v < floor),
+                    "n {n}, seed {seed}: {value:?}"
+                );
+            }
+        }
+    }
+}
+
 /// A descent that ends on a flat piece of f returns the piece's centre
 /// ([`AutoOptions::centre`]): f(x) = Σᵢ (i + 1)·round(4(xᵢ − cᵢ))², whose least piece is
 /// the open box |xᵢ − cᵢ| < 1/8. Each edge is bracketed to 1/16 of its distance and

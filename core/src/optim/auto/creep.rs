@@ -18,6 +18,17 @@
 //!   geometrically are a convergence (an attractive sector's or a ridge's), not a creep.
 //!
 //! Where either of the first two fails, a new chain of windows begins.
+//!
+//! Settled values: a descent along an asymptote — f bounded below with its infimum at
+//! infinity in some direction (1 − tanh x, e⁻ˣ beside a quadratic in the other
+//! coordinates) — confirms its model at every step and gains at every step, by amounts
+//! that shrink too slowly for the chain above, while the metric stretches along the
+//! flat direction so that no coordinate's spread converges. Its values have settled
+//! once a window of [`CREEP_WINDOWS`]·patience iterations (counted from the descent's
+//! start or its last restart, whatever its model or σ did) lowers f(θ) by at most
+//! ε·(f₀ − f(θ)), ε the machine epsilon of T and f₀ the descent's first finite f(θ):
+//! a fall below what T resolves of the values the descent began from
+//! ([`Creep::negligible`]). The descent then counts as converged.
 
 use crate::real::Real;
 
@@ -45,6 +56,9 @@ pub(super) struct Creep<T> {
     value: Option<T>,
     /// The last window's fall of f(θ); `None` in the chain's first window.
     gain: Option<T>,
+    /// The iteration and f(θ) at which the current settling window began (see the
+    /// module's header); `None` until the first observation after a restart.
+    settling: Option<(usize, T)>,
 }
 
 impl<T: Real> Creep<T> {
@@ -56,12 +70,39 @@ impl<T: Real> Creep<T> {
             iteration: 0,
             value: None,
             gain: None,
+            settling: None,
         }
     }
 
-    /// Starts the chain again at the next observation (a restart: σ is set anew).
+    /// Starts the chain and the settling window again at the next observation (a
+    /// restart: σ is set anew).
     pub fn restart(&mut self) {
         self.value = None;
+        self.settling = None;
+    }
+
+    /// Whether a fall of f(θ) by `gain` is negligible for a descent now at `value`: at
+    /// most ε·(f₀ − `value`), f₀ its first finite f(θ) (see the module's header); false
+    /// before anything has been observed.
+    pub fn negligible(&self, gain: T, value: T) -> bool {
+        self.first
+            .is_some_and(|first| gain <= T::EPSILON * (first - value))
+    }
+
+    /// Observes the end of `iteration`, with f(θ) `value`, for the settling test (the
+    /// module's header), in windows of `window` iterations; returns whether the window
+    /// that ends here lowered f(θ) negligibly (and then begins the next one). Called
+    /// after [`Creep::observe`], which records the descent's first value.
+    pub fn settled(&mut self, value: T, iteration: usize, window: usize) -> bool {
+        let Some((begun, start)) = self.settling else {
+            self.settling = Some((iteration, value));
+            return false;
+        };
+        if iteration.saturating_sub(begun) < window {
+            return false;
+        }
+        self.settling = Some((iteration, value));
+        self.negligible(start - value, value)
     }
 
     /// Observes the end of `iteration`, with f(θ) `value`, σ `sigma`, whether the last
@@ -145,6 +186,30 @@ mod tests {
         let halving = |k: usize| 1e-6 * 0.5f64.powf(k as f64 / 30.0);
         assert_eq!(first_creep(halving, |_| 1e-3, |_| false), None);
         assert_eq!(first_creep(|_| 1e-4, |_| 1e-3, |_| false), None);
+    }
+
+    /// f(θ) falls from 1 to 10⁻¹⁰ at the first iteration and then by 10⁻²⁰ per
+    /// iteration, with a confirmed model step at every iteration and σ falling to a
+    /// quarter every 150 (an asymptote's descent, which the chain of creep windows never
+    /// holds): the first window holds the large fall, the second's (10⁻¹⁸) is below ε
+    /// (2.2·10⁻¹⁶) of the descent's fall, and the values settle at its end. Falls of
+    /// 10⁻¹⁷ per iteration (a window's 10⁻¹⁵, above that) never do.
+    #[test]
+    fn negligible_falls_settle_whatever_the_model_and_sigma() {
+        let settles = |fall: f64| {
+            let mut creep = Creep::<f64>::new();
+            for k in 0..1_000 {
+                let value = if k == 0 { 1.0 } else { 1e-10 - fall * k as f64 };
+                let sigma = 0.25f64.powi((k / 150) as i32);
+                creep.observe(value, sigma, k, true, 100);
+                if creep.settled(value, k, 100) {
+                    return Some(k);
+                }
+            }
+            None
+        };
+        assert_eq!(settles(1e-20), Some(200));
+        assert_eq!(settles(1e-17), None);
     }
 
     /// The steady tiny gains of `steady_tiny_gains_creep` with a confirmed model step

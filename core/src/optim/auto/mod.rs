@@ -156,7 +156,9 @@
 //!   below [`AutoOptions::tolerance`] of its start (σ below it times σ₀ on a noisy
 //!   objective; or σ below what T resolves at θ, or the model's promised decrease below
 //!   what T resolves of f(θ), [`UNRESOLVED_FITS`], or samples that tie with f(θ) by
-//!   rounding alone at a minimum the model confirmed), or after
+//!   rounding alone at a minimum the model confirmed, or values that settle: a window
+//!   of [`CREEP_WINDOWS`]·patience iterations that lowers f(θ) by at most ε of the
+//!   descent's fall, as along an asymptote to an infimum at infinity), or after
 //!   [`AutoOptions::patience`] iterations without a lower f(θ), or once it creeps (a
 //!   window of [`CREEP_WINDOWS`]·patience iterations that follows another, both without
 //!   a confirmed model step or σ converging, and lowers f(θ) by at most [`CREEP_GAIN`]
@@ -168,8 +170,10 @@
 //!   restarts in a row without a gain its descent ends, converged or stagnated. Where
 //!   no fresh start follows (below), a restart's gains count only once they have moved
 //!   the best point, summed over the gains, by the tolerance in some coordinate (in
-//!   units of its start scale): a restart that lowers f by moving θ less than the
-//!   caller asked to resolve has found the descent's own minimum again.
+//!   units of its start scale) and lowered it by more than ε of the descent's fall: a
+//!   restart that lowers f by moving θ less than the caller asked to resolve has found
+//!   the descent's own minimum again, and one that lowers it by less than the values
+//!   register has only gone farther along an asymptote.
 //! * **Fresh starts.** A run with a budget on a deterministic objective then starts a
 //!   new descent about its best point (about x₀ while no value has been finite), as
 //!   basin hopping does ([`AutoOptions::fresh_starts`]): each coordinate moves by its
@@ -715,6 +719,9 @@ struct State<T> {
     /// [`AutoOptions::tolerance`] measures it); at least how far the restart has taken
     /// the best point in those units.
     travelled: T,
+    /// Σ over the same gains of how far each lowered f at the best point: at least how
+    /// far the restart has lowered it.
+    fallen: T,
     /// Points remembered since the last model fit.
     unfitted: usize,
     /// The last fit's prior (the model before it, moved to θ and σ): its weighted RMS
@@ -822,6 +829,7 @@ impl<T: Real> State<T> {
             settled: 0,
             blamed: 0,
             travelled: T::ZERO,
+            fallen: T::ZERO,
             unfitted: 0,
             prior_misfit: None,
             rounded: false,
@@ -1246,6 +1254,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.shared = None;
         self.st.gained = false;
         self.st.rounded = false;
+        // f at the best point as the iteration begins (θ's, unless a continuation move
+        // left θ above it).
+        let best_before = self.st.best_value.or(self.st.value);
         self.mem.tmp.copy_from_slice(self.theta);
         if self.st.evaluations == 0 {
             // x₀ is the run's record and origin until a descent ends (`Auto::keep_record`).
@@ -1285,14 +1296,23 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if self.st.gained {
             self.st.stale = 0;
             // Without a fresh start to follow, a restart whose gains have moved the best
-            // point by less than the tolerance has found only what the descent before it
-            // had: it earns no further restart. (With one, any gain does: the restarts'
-            // cycle through the wider scales is what finds a multi-modal f's better
-            // basins, and the budget bounds it.)
+            // point by less than the tolerance, or lowered it negligibly (the `creep`
+            // module's settled values: an asymptote's restarts move it far for nothing),
+            // has found only what the descent before it had: it earns no further
+            // restart. (With one, any gain does: the restarts' cycle through the wider
+            // scales is what finds a multi-modal f's better basins, and the budget
+            // bounds it.)
             if self.below_best() {
                 self.st.travelled += self.best_moved();
+                if let (Some(before), Some(value)) = (best_before, self.st.value) {
+                    self.st.fallen += before - value;
+                }
+                let fallen = self
+                    .st
+                    .value
+                    .is_some_and(|value| !self.st.creep.negligible(self.st.fallen, value));
                 self.st.may_restart |=
-                    self.may_start_fresh() || self.st.travelled >= self.tolerance();
+                    self.may_start_fresh() || (self.st.travelled >= self.tolerance() && fallen);
             }
         } else {
             self.st.stale += 1;
@@ -1308,8 +1328,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // which f varies (σ₀ = 10¹² for a minimum a unit away), and σ shrinks until it
         // finds that scale or θ's resolution.
         let tolerated = self.st.improved || self.st.noisy;
+        let creeping = self.creeping(patience);
+        let settled = self.values_settled(patience);
         let converged = tolerated
-            && (self.sigma_converged() || self.st.unresolved >= UNRESOLVED_FITS || self.st.rounded)
+            && (self.sigma_converged()
+                || self.st.unresolved >= UNRESOLVED_FITS
+                || self.st.rounded
+                || settled)
             || self.st.sigma <= resolution(scale)
             || self.st.hopeless >= HOPELESS_FITS;
         // A descent that has found no finite value has nothing to wait for once σ has
@@ -1317,7 +1342,6 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let lost = self.st.value.is_none()
             && self.st.record.is_none()
             && self.widened_sigma(PLATEAU_WIDTH) <= self.st.sigma;
-        let creeping = self.creeping(patience);
         let stagnated = self.st.stale >= patience || lost || creeping;
         // Before a restart or the end moves θ back to the best point: a centre that
         // continuation left above it may have just stepped below it.
@@ -1453,6 +1477,21 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 self.st.creep.restart();
                 false
             }
+        }
+    }
+
+    /// Whether the descent's values have settled (the `creep` module): observed after
+    /// [`Auto::creeping`], on a deterministic objective while θ is the descent's best
+    /// point and f(θ) is finite.
+    fn values_settled(&mut self, patience: usize) -> bool {
+        let exact = !self.st.noisy && !self.st.unseeded;
+        match self.st.value {
+            Some(value) if exact && self.st.best_value.is_none() => {
+                self.st
+                    .creep
+                    .settled(value, self.st.iteration, CREEP_WINDOWS * patience)
+            }
+            _ => false,
         }
     }
 

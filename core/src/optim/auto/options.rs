@@ -261,9 +261,11 @@ pub enum AutoTermination {
     /// The samples' spread fell below [`AutoOptions::tolerance`] of its start, or σ below
     /// what T resolves at θ, or the model's promise below what T resolves of f(θ)
     /// ([`UNRESOLVED_FITS`](super::UNRESOLVED_FITS)), or the samples tie with f(θ) by
-    /// f's rounding alone right after the model confirmed θ as its minimum, or the box
-    /// leaves a single point (every lower bound equal to its upper bound), which has
-    /// been evaluated.
+    /// f's rounding alone right after the model confirmed θ as its minimum, or the
+    /// descent's values settled (a window of iterations lowered f(θ) by at most ε of
+    /// the descent's fall: an infimum approached along an asymptote), or the box leaves
+    /// a single point (every lower bound equal to its upper bound), which has been
+    /// evaluated.
     Converged,
     /// [`AutoOptions::patience`] iterations passed without a lower f(θ).
     Stagnated,
@@ -280,7 +282,7 @@ pub enum AutoTermination {
 impl fmt::Display for AutoTermination {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
-            AutoTermination::Converged => "converged (spread below tolerance)",
+            AutoTermination::Converged => "converged (spread below tolerance, or f settled)",
             AutoTermination::Stagnated => "stagnated (no lower value within the patience)",
             AutoTermination::MaxEvaluations => "evaluation budget used",
             AutoTermination::Diverged => {

@@ -288,6 +288,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.settled = 0;
         self.st.blamed = 0;
         self.st.travelled = T::ZERO;
+        self.st.fallen = T::ZERO;
         self.st.sigma = sigma;
         self.st.creep.restart();
         self.st.survey = true;
