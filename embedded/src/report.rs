@@ -57,6 +57,7 @@ pub fn write_run<O: Output + ?Sized>(
             hodr_core::optim::AutoTermination::Stagnated => b"stagnated",
             hodr_core::optim::AutoTermination::MaxEvaluations => b"max-evaluations",
             hodr_core::optim::AutoTermination::Diverged => b"diverged",
+            hodr_core::optim::AutoTermination::EvaluationCap => b"evaluation-cap",
             _ => b"other",
         }),
         End::Failed { iteration, error } => {

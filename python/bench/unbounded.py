@@ -28,6 +28,8 @@ PROBLEMS = {
     # Bounded below, the infimum 0 approached as x0 grows: no minimum to converge to.
     "exp(-x0) + sum of the other squares, n = 5": (lambda x: float(np.exp(-x[0]) + x[1:] @ x[1:]), 5),
     "1 - tanh(x0) + sum of the other squares, n = 5": (lambda x: float(1 - np.tanh(x[0]) + x[1:] @ x[1:]), 5),
+    # An asymptote as slow as 1/|x0|: its gains never settle; hodr ends by its cap.
+    "1/(1 + |x0|) + sum of the other squares, n = 5": (lambda x: float(1 / (1 + abs(x[0])) + x[1:] @ x[1:]), 5),
 }
 
 

@@ -68,8 +68,9 @@ class OptimizeResult(dict):
     success : bool
         True when the run converged (the samples' spread fell below its tolerance)
         or stagnated (no lower value within its patience); False when the budget ran
-        out first, the callback stopped it, the run diverged, or ``fun`` never
-        returned a finite value.
+        out first, the callback stopped it, the run diverged or reached the
+        evaluation cap of a run without a budget, or ``fun`` never returned a finite
+        value.
     status : int
         0 converged, 1 budget used, 2 stagnated, 3 stopped by the callback, 4
         interrupted (the ``result`` of the KeyboardInterrupt), 5 failed (the
@@ -77,7 +78,10 @@ class OptimizeResult(dict):
         ``options={"non_finite": "error"}``), 6 diverged (the samples' spread grew
         2**64-fold in some coordinate, or ``fun`` fell below -2**-64 of the largest
         float, whatever the budget: ``fun`` looks unbounded below, or ``sigma0``
-        understates the problem's scale about as much).
+        understates the problem's scale about as much), 7 evaluation cap (no
+        ``budget`` was given and the run used 1000·(n + 3)**2 evaluations without
+        converging: ``fun`` may approach its infimum only at infinity, or be too noisy
+        to converge; a ``budget`` runs longer).
     message : str
         Why the run ended.
     history : dict of ndarray
@@ -373,7 +377,7 @@ def minimize(
         stagnates, another starts about the best point (about x0 while no value has
         been finite; basin hopping; ``options["fresh_starts"]``), and the best point of
         all descents is returned, with status 1. Default: until the first descent
-        converges.
+        converges, or at most 1000·(n + 3)**2 evaluations (status 7).
     method : str
         ``"auto"`` (the only one).
     seed : int or None

@@ -526,6 +526,7 @@ pub(crate) fn result_dict<'py>(
         }
         End::Auto(Some(t @ AutoTermination::Converged)) => (true, 0, t.to_string()),
         End::Auto(Some(t @ AutoTermination::Diverged)) => (false, 6, t.to_string()),
+        End::Auto(Some(t @ AutoTermination::EvaluationCap)) => (false, 7, t.to_string()),
         End::Auto(Some(t)) => (true, 2, t.to_string()),
     };
     if !finite && nfev > 0 {

@@ -341,6 +341,20 @@ def test_an_objective_unbounded_below_diverges():
         assert np.all(np.isfinite(res.x)) and np.isfinite(res.fun) and res.fun < -1e18
 
 
+def test_a_run_without_a_budget_ends_by_its_cap():
+    # An infimum approached as slowly as 1/|x0| keeps every window's gains far above the
+    # settled-values rule's: without a budget the run ends by the evaluation cap,
+    # 1000 (n + 3)**2 (status 7, no success), within an iteration past it, at a point far
+    # out along x0; with a budget that cap does not apply.
+    f = lambda x: 1.0 / (1.0 + abs(x[0])) + (x[1] - 1.0) ** 2
+    res = hodr.minimize(f, [0.0, 0.0], 1.0)
+    assert res.status == 7 and not res.success, res.message
+    assert "evaluation cap" in res.message and 25_000 <= res.nfev < 26_000
+    assert np.all(np.isfinite(res.x)) and res.fun < 1e-6
+    longer = hodr.minimize(f, [0.0, 0.0], 1.0, budget=30_000, options={"fresh_starts": False})
+    assert longer.status == 1 and longer.nfev == 30_000
+
+
 def test_the_model_option():
     """options['model'] names a model, and result.model says which one the run used. By
     default a 20-D run first tests whether fun is separable (12 evaluations, f(x0) among

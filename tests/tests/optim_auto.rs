@@ -3,7 +3,7 @@
 //! and convergence rates asserted as binomial lower bounds.
 
 use hodr_core::optim::{
-    Auto, AutoModel, AutoOptions, AutoReport, AutoStep, AutoTermination, NonFinite,
+    Auto, AutoModel, AutoOptions, AutoReport, AutoStep, AutoTermination, NonFinite, unbudgeted_cap,
 };
 use hodr_core::{Error, Objective, Real};
 use rand_xoshiro::Xoshiro256PlusPlus;
@@ -929,6 +929,48 @@ fn an_infimum_at_infinity_ends_the_run() {
                 );
             }
         }
+    }
+}
+
+/// A run without a budget ends by the evaluation cap ([`unbudgeted_cap`]) where nothing
+/// else ends it: an infimum approached too slowly for the settled values (1/(1 + |x₀|) +
+/// (x₁ − 1)², whose metric cannot stretch along x₀ past its condition cap, so that θ
+/// walks there at a pace that shrinks while the gains stay far above ε of the fall) and
+/// a noisy quadratic whose noise is drawn afresh at every call (q + 0.1·N, whose lucky
+/// draws keep counting as gains for the patience: 10⁷ evaluations and more before the
+/// cap). Each ends within one
+/// iteration past the cap (every seed), the first below 10⁻⁶ and the second within half
+/// the start's distance of its minimum (seeds 0–11 ended within 0.4).
+#[test]
+fn a_run_without_a_budget_ends_by_its_cap() {
+    let cap = unbudgeted_cap(2);
+    for seed in 0..5 {
+        let mut count = 0usize;
+        let mut f = |x: &[f64]| {
+            count += 1;
+            1.0 / (1.0 + x[0].abs()) + (x[1] - 1.0).powi(2)
+        };
+        let options = AutoOptions::default();
+        let (theta, value, end) = minimise_with(&mut f, &[0.0, 0.0], 1.0, None, options, seed);
+        assert_eq!(end, AutoTermination::EvaluationCap, "seed {seed}");
+        assert!((cap..cap + 1000).contains(&count), "seed {seed}: {count}");
+        assert!(theta.iter().all(|v| v.is_finite()));
+        assert!(value.is_some_and(|v| v < 1e-6), "seed {seed}: {value:?}");
+        let mut unit = uniforms(7_000_000 + seed);
+        let mut count = 0usize;
+        let mut f = |x: &[f64]| {
+            count += 1;
+            let q: f64 = x.iter().map(|v| (v - 1.0).powi(2)).sum();
+            q + 0.1 * standard_normal(unit(), unit())
+        };
+        let (theta, _, end) = minimise_with(&mut f, &[0.0, 0.0], 1.0, None, options, seed);
+        assert_eq!(end, AutoTermination::EvaluationCap, "noisy, seed {seed}");
+        assert!(
+            (cap..cap + 1000).contains(&count),
+            "noisy, seed {seed}: {count}"
+        );
+        let error = theta.iter().map(|v| (v - 1.0).powi(2)).sum::<f64>().sqrt();
+        assert!(error < 0.7, "noisy, seed {seed}: {theta:?}");
     }
 }
 

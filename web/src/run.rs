@@ -356,6 +356,7 @@ impl Run {
                 hodr_core::optim::AutoTermination::Converged => "converged",
                 hodr_core::optim::AutoTermination::Stagnated => "stagnated",
                 hodr_core::optim::AutoTermination::Diverged => "diverged",
+                hodr_core::optim::AutoTermination::EvaluationCap => "evaluation cap",
                 _ => "budget used",
             };
         }

@@ -54,6 +54,7 @@ use rand_core::Rng;
 #[cfg(feature = "auto")]
 pub use auto::{
     Auto, AutoModel, AutoOptions, AutoReport, AutoStep, AutoTermination, FixedAuto, NonFinite,
+    unbudgeted_cap,
 };
 pub use first_order::Adam;
 #[cfg(feature = "gradient-descent")]

@@ -193,6 +193,12 @@
 //!   model puts its basin's bottom above the best point of the earlier ones ends there,
 //!   unpolished ([`HOPELESS_FITS`]). [`Auto::theta`] is the best point of all descents.
 //!   Without a budget, or on a noisy objective, the run ends with its first descent.
+//!   Without a budget it also ends once it has used [`unbudgeted_cap`]`(n)`
+//!   evaluations ([`AutoTermination::EvaluationCap`]), as pycma's default `maxiter`
+//!   ends its runs: an infimum approached ever more slowly at infinity
+//!   (1/(1 + |x₀|) + …), or noise the objective does not declare, whose lucky draws
+//!   keep counting as gains for the patience, would otherwise hold a call for minutes
+//!   or forever.
 //! * **Probes.** Before each fresh start, up to [`AutoOptions::probes`] points per
 //!   coordinate ([`AutoStep::Probed`], n per iteration), each the best point with one
 //!   contiguous block of 1, 2, 4, … ≤ n/2 coordinates moved: uniformly over the box
@@ -390,6 +396,20 @@ pub const UNVARIED_WIDTH: f64 = 1_099_511_627_776.0;
 /// region grows that far only while every step gains: an objective without a minimum
 /// (f = x) or a σ₀ that understates the problem's scale by as much.
 pub const DIVERGENCE_WIDTH: f64 = 18_446_744_073_709_551_616.0;
+
+/// Evaluations per (n + 3)² after which a run without a budget ends
+/// ([`unbudgeted_cap`]).
+pub const UNBUDGETED_EVALUATIONS: usize = 1000;
+
+/// Evaluations after which a run in dimension n without a budget
+/// ([`AutoOptions::max_evaluations`] `None`) ends, [`AutoTermination::EvaluationCap`]:
+/// [`UNBUDGETED_EVALUATIONS`]·(n + 3)² (25 000 at n = 2, 529 000 at n = 20), at the end
+/// of the iteration that reaches it. pycma's default `maxiter`, 100 + 150(n + 3)²/√λ
+/// iterations of λ evaluations, grows with n alike. A run that should go on longer
+/// states a budget, with [`AutoOptions::fresh_starts`] off for one descent.
+pub const fn unbudgeted_cap(n: usize) -> usize {
+    UNBUDGETED_EVALUATIONS.saturating_mul((n + 3).saturating_mul(n + 3))
+}
 
 /// Every coordinate's spread relative to its start, σ√Cᵢᵢ/sᵢ, at which a run on a
 /// deterministic objective converges by default.
@@ -1354,6 +1374,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             Some(AutoTermination::Converged)
         } else if self.diverged() {
             Some(AutoTermination::Diverged)
+        } else if self.options.max_evaluations.is_none() && self.st.evaluations >= unbudgeted_cap(n)
+        {
+            Some(AutoTermination::EvaluationCap)
         } else if (converged || stagnated)
             && (self.st.may_restart || (self.st.widenings as usize) < self.restarts())
         {

@@ -105,7 +105,9 @@ pub struct AutoOptions<T> {
     /// follows the descent (see [`AutoOptions::fresh_starts`]) and [`RESTARTS`](super::RESTARTS) where
     /// the descent is the run.
     pub restarts: Option<usize>,
-    /// Objective evaluations after which the run stops; never exceeded. Default: none.
+    /// Objective evaluations after which the run stops; never exceeded. Default: none
+    /// (the run still ends after [`unbudgeted_cap`](super::unbudgeted_cap)`(n)`
+    /// evaluations, [`AutoTermination::EvaluationCap`]).
     pub max_evaluations: Option<usize>,
     /// Whether a run with a budget ([`AutoOptions::max_evaluations`]) on a
     /// deterministic objective spends what its descent leaves: once a descent ends
@@ -277,6 +279,10 @@ pub enum AutoTermination {
     /// understates the problem's scale about as much). The run ends, whatever its
     /// budget, at the best point found.
     Diverged,
+    /// A run without a budget used [`unbudgeted_cap`](super::unbudgeted_cap)`(n)`
+    /// evaluations without converging: f may approach its infimum only at infinity, or
+    /// its noise hide what is left to gain. θ is the best point found.
+    EvaluationCap,
 }
 
 impl fmt::Display for AutoTermination {
@@ -285,6 +291,9 @@ impl fmt::Display for AutoTermination {
             AutoTermination::Converged => "converged (spread below tolerance, or f settled)",
             AutoTermination::Stagnated => "stagnated (no lower value within the patience)",
             AutoTermination::MaxEvaluations => "evaluation budget used",
+            AutoTermination::EvaluationCap => {
+                "evaluation cap of a run without a budget reached (f may approach its infimum only at infinity, or be too noisy to converge; give a budget to run longer)"
+            }
             AutoTermination::Diverged => {
                 "diverged (spread grew 2^64-fold or f fell below -2^-64 of the largest float: f may be unbounded below, or sigma0 far too small)"
             }
