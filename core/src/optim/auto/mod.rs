@@ -94,7 +94,11 @@
 //!   [`THETA_DRAWS`] draws), trials being compared with the median of θ's draws, so
 //!   that a draw from the noise's low tail cannot hold θ by itself; nor can it move θ:
 //!   where every draw is noisy, a sample takes θ's place only when lower by more than
-//!   the noise's scale. Sparse outliers
+//!   the noise's scale. Nor does a lucky draw count as a lower f(θ) for the patience:
+//!   where every draw is noisy, a gain must lie below both f(θ)'s draw and the lowest
+//!   draw that counted before by more than the last fit's residual scatter
+//!   (`Auto::clears_noise`), so that a descent whose θ wanders within the noise about
+//!   the minimum stagnates. Sparse outliers
 //!   (the check's draws did not all differ, or two remembered draws at one point
 //!   agree) are voted out instead: from then on every point is drawn until two of its
 //!   draws agree exactly (at most [`VOTES`] draws, else their median), which costs
@@ -196,9 +200,7 @@
 //!   Without a budget it also ends once it has used [`unbudgeted_cap`]`(n)`
 //!   evaluations ([`AutoTermination::EvaluationCap`]), as pycma's default `maxiter`
 //!   ends its runs: an infimum approached ever more slowly at infinity
-//!   (1/(1 + |x₀|) + …), or noise the objective does not declare, whose lucky draws
-//!   keep counting as gains for the patience, would otherwise hold a call for minutes
-//!   or forever.
+//!   (1/(1 + |x₀|) + …) would otherwise hold a call forever.
 //! * **Probes.** Before each fresh start, up to [`AutoOptions::probes`] points per
 //!   coordinate ([`AutoStep::Probed`], n per iteration), each the best point with one
 //!   contiguous block of 1, 2, 4, … ≤ n/2 coordinates moved: uniformly over the box
@@ -675,6 +677,14 @@ struct State<T> {
     shared: Option<(NoiseSeed, T)>,
     /// θ moved this iteration to a point of lower value on a common seed.
     gained: bool,
+    /// On dense unseeded noise, the last model step's fit residual scatter in value
+    /// units (ηF, its weighted RMS residual): a draw below f(θ)'s by less may be the
+    /// noise's low tail, and moves θ without counting as a gain for the patience
+    /// (`Auto::clears_noise`). Zero until such a fit.
+    scatter: T,
+    /// On dense unseeded noise, the lowest draw that counted as a gain in the run
+    /// (`Auto::clears_noise`; such a run has one descent); `None` before one.
+    floor: Option<T>,
     /// How often an exploring pair drawn after a failed model step has lowered f(θ):
     /// an average over such pairs, each weighing 1/[`PAIR_MEMORY`] (see [`PAIRS_PAY`]).
     pair_rate: T,
@@ -820,6 +830,8 @@ impl<T: Real> State<T> {
             lattice: false,
             tie_scale: T::ZERO,
             rough_scale: T::ZERO,
+            scatter: T::ZERO,
+            floor: None,
             noisy: false,
             checked: true,
             unseeded: false,

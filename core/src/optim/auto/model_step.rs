@@ -48,6 +48,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // θ's draw lies below the robust model's value at θ: it may be a lucky one.
         let mut lucky = false;
         if self.st.unseeded {
+            self.st.scatter = noise * scale;
             // One step of iteratively reweighted least squares per iteration, warm
             // started from the points' weights of the last. The noise level η stays the
             // first fit's: the scatter the robust fit sets aside is still the noise a
@@ -332,7 +333,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if accepted {
             self.theta.copy_from_slice(&self.mem.stage[..n]);
             self.st.value = Some(trial);
-            self.st.gained |= trial < reference;
+            self.st.gained |= self.clears_noise(trial, reference);
             self.st.improved |= trial < reference;
             Ok((AutoStep::Accepted, Some(ratio)))
         } else {

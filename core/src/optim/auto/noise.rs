@@ -209,6 +209,27 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         (pairs >= 3 && !exact).then(|| lower_median(&self.mem.sw[..pairs]))
     }
 
+    /// Whether a draw `value` below the `reference` draw is a gain for the patience. On
+    /// dense unseeded noise, only where it is lower by more than the last fit's residual
+    /// scatter ([`State::scatter`](super::State::scatter)) than both the reference and
+    /// the lowest draw that counted in the run ([`State::floor`](super::State::floor)),
+    /// which it then becomes; any lower value
+    /// otherwise. Two draws differ by more than the scatter about a quarter of the
+    /// time, so that without the margin and the floor a lucky draw counted as a lower
+    /// f(θ) every few iterations, and the patience never ran out while θ wandered
+    /// within the noise about the minimum.
+    pub(super) fn clears_noise(&mut self, value: T, reference: T) -> bool {
+        if !(self.st.unseeded && self.st.dense) {
+            return value < reference;
+        }
+        let bar = self.st.floor.map_or(reference, |f| f.min(reference));
+        let clears = value < bar - self.st.scatter;
+        if clears {
+            self.st.floor = Some(value);
+        }
+        clears
+    }
+
     /// The unseeded noise is sparse: outliers on values that are mostly exact — the
     /// check's three draws did not all differ, or two remembered draws at one point
     /// agree exactly. O(m²n) for m remembered points.

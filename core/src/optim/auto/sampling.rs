@@ -186,8 +186,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             if trust_samples && self.st.value.is_none_or(|v| f < v - margin) {
                 let (theta, stage) = (&mut *self.theta, &self.mem.stage);
                 theta.copy_from_slice(&stage[row * n..(row + 1) * n]);
+                let reference = self.st.value;
+                self.st.gained |= reference.is_none_or(|v| self.clears_noise(f, v));
                 self.st.value = Some(f);
-                self.st.gained = true;
                 self.st.improved = true;
             }
         }
