@@ -209,15 +209,15 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         (pairs >= 3 && !exact).then(|| lower_median(&self.mem.sw[..pairs]))
     }
 
-    /// Whether a draw `value` below the `reference` draw is a gain for the patience. On
-    /// dense unseeded noise, only where it is lower by more than the last fit's residual
-    /// scatter ([`State::scatter`](super::State::scatter)) than both the reference and
-    /// the lowest draw that counted in the run ([`State::floor`](super::State::floor)),
-    /// which it then becomes; any lower value
-    /// otherwise. Two draws differ by more than the scatter about a quarter of the
-    /// time, so that without the margin and the floor a lucky draw counted as a lower
-    /// f(θ) every few iterations, and the patience never ran out while θ wandered
-    /// within the noise about the minimum.
+    /// Whether a draw `value` below the `reference` draw is a gain for the patience: any
+    /// lower value, except on dense unseeded noise, where it must lie below both the
+    /// reference and the lowest draw that counted in the run
+    /// ([`State::floor`](super::State::floor), which it then becomes) by more than the
+    /// last fit's residual scatter ([`State::scatter`](super::State::scatter)). One
+    /// Gaussian draw exceeds another by more than their standard deviation with
+    /// probability 0.24, so that without the margin and the floor a lucky draw counted
+    /// as a lower f(θ) every few iterations, and the patience never ran out while θ
+    /// wandered within the noise about the minimum.
     pub(super) fn clears_noise(&mut self, value: T, reference: T) -> bool {
         if !(self.st.unseeded && self.st.dense) {
             return value < reference;
