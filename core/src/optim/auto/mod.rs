@@ -94,9 +94,10 @@
 //!   [`THETA_DRAWS`] draws), trials being compared with the median of θ's draws, so
 //!   that a draw from the noise's low tail cannot hold θ by itself; nor can it move θ:
 //!   where every draw is noisy, a sample takes θ's place only when lower by more than
-//!   the noise's scale. Nor does a lucky draw count as a lower f(θ) for the patience:
-//!   where every draw is noisy, a gain must lie below both f(θ)'s draw and the lowest
-//!   draw that counted before by more than the last fit's residual scatter
+//!   the noise's scale. Nor does a lucky draw count as a lower f(θ) for the patience
+//!   of a run without a budget: where every draw is noisy, a gain must lie below both
+//!   f(θ)'s draw and the lowest draw that counted before by more than the last fit's
+//!   residual scatter
 //!   (`Auto::clears_noise`), so that a descent whose θ wanders within the noise about
 //!   the minimum stagnates. Sparse outliers
 //!   (the check's draws did not all differ, or two remembered draws at one point
@@ -112,8 +113,9 @@
 //!   where it would leave the box, the coordinates it carries out are held on the
 //!   bounds they cross and the model is minimised again over the rest of the region. It
 //!   replaces θ when f is no higher there on common noise (a tie moves to the smoothed
-//!   model's minimum of a flat piece of f). A sample lower than f(θ) on its seed
-//!   replaces θ too.
+//!   model's minimum of a flat piece of f); on unseeded noise that every draw carries,
+//!   only when it is lower by a tenth of the decrease the model predicted (ρ̂ ≥ 0.1). A
+//!   sample lower than f(θ) on its seed replaces θ too.
 //! * **σ is the trust radius** and follows the ratio ρ̂ of actual to predicted decrease:
 //!   ρ̂ ≥ 0.7 with a step to the boundary doubles σ; on a deterministic objective, a step
 //!   to the boundary that lowered f with ρ̂ < 0.1 grows σ by 2^¼ (the model overstated

@@ -178,8 +178,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         };
         // A tie is accepted: on a flat piece of f the smoothed model's minimum is the
         // better guess (the middle of a zero-loss region, the continuous optimum of a
-        // rounded function).
-        let accepted = trial.is_finite() && reference.is_finite() && trial <= reference;
+        // rounded function). On unseeded noise that every draw carries, a lower draw
+        // moves θ only where it delivers a tenth of the decrease the model promised
+        // (ρ̂ ≥ 0.1): a smaller one is as likely the noise's, and where the noise grows
+        // with f (f·e^(N/2)) accepting such draws walked θ uphill without end.
+        let lower = trial.is_finite() && reference.is_finite() && trial <= reference;
+        let accepted = lower && !(self.dense_unseeded() && ratio < T::from_f64(0.1));
         let tie = accepted && trial == reference;
         if !accepted
             && trial.is_finite()
@@ -204,9 +208,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.st.sigma = sigma * T::HALF;
             return Ok((AutoStep::Continued, Some(ratio)));
         }
-        // On an unseeded objective, a trial rejected by less than twice the noise's
-        // scale, whose step promised no more than that, was judged by the noise.
-        let judged_by_noise = self.st.unseeded && !accepted && {
+        // On an unseeded objective, a trial whose draw is higher than f(θ)'s by less than
+        // twice the noise's scale, whose step promised no more than that, was judged by
+        // the noise. (A lower draw that fell short of its promise, not accepted on dense
+        // noise, is a poor step as it would be on an exact f.)
+        let judged_by_noise = self.st.unseeded && !lower && {
             let level = T::TWO * self.repeat_spread().unwrap_or(T::ZERO);
             trial - reference <= level && predicted * scale <= level
         };
@@ -256,12 +262,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             } else {
                 validated
             };
-        // On an unseeded objective whose every draw is noisy, a trial rejected by less
-        // than NOISE_MARGIN times the noise's scale may have been rejected by the noise
-        // rather than the model: halving σ on its word shrinks the steps until every
-        // comparison is a coin toss. The model needs more points at this scale instead.
+        // On an unseeded objective whose every draw is noisy, a trial whose draw is
+        // higher by less than NOISE_MARGIN times the noise's scale may have been rejected
+        // by the noise rather than the model: halving σ on its word shrinks the steps
+        // until every comparison is a coin toss. The model needs more points at this
+        // scale instead.
         let noise_rejected = poor
-            && !accepted
+            && !lower
             && self.st.unseeded
             && self
                 .dense_noise_scale()

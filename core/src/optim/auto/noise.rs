@@ -209,17 +209,26 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         (pairs >= 3 && !exact).then(|| lower_median(&self.mem.sw[..pairs]))
     }
 
+    /// The objective draws fresh noise at every call, and every draw carries it (not
+    /// sparse outliers on exact values).
+    pub(super) fn dense_unseeded(&self) -> bool {
+        self.st.unseeded && self.st.dense
+    }
+
     /// Whether a draw `value` below the `reference` draw is a gain for the patience: any
-    /// lower value, except on dense unseeded noise, where it must lie below both the
-    /// reference and the lowest draw that counted in the run
+    /// lower value, except on dense unseeded noise in a run without a budget, where it
+    /// must lie below both the reference and the lowest draw that counted in the run
     /// ([`State::floor`](super::State::floor), which it then becomes) by more than the
     /// last fit's residual scatter ([`State::scatter`](super::State::scatter)). One
     /// Gaussian draw exceeds another by more than their standard deviation with
     /// probability 0.24, so that without the margin and the floor a lucky draw counted
     /// as a lower f(θ) every few iterations, and the patience never ran out while θ
-    /// wandered within the noise about the minimum.
+    /// wandered within the noise about the minimum. With a budget the run ends by it
+    /// anyway, and the margin would cost precision where the noise shrinks with f
+    /// (f·e^(N/2)): the fit's scatter is that of values a radius away from θ, larger
+    /// than θ's own draws near the minimum, so no later draw could clear it.
     pub(super) fn clears_noise(&mut self, value: T, reference: T) -> bool {
-        if !(self.st.unseeded && self.st.dense) {
+        if !self.dense_unseeded() || self.options.max_evaluations.is_some() {
             return value < reference;
         }
         let bar = self.st.floor.map_or(reference, |f| f.min(reference));
