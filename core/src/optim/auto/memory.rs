@@ -407,7 +407,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // A kept point's z is stored as −1 − z until the batch is in (and then
         // computed again: the round trip through −1 − z is not exact).
         let kept = |z: T| -T::ONE - z;
-        let noisy_draws = self.st.unseeded && self.st.dense;
+        let noisy_draws = self.dense_unseeded();
         if self.st.count + rows > cap {
             self.refresh_reach();
             if keep_batch {

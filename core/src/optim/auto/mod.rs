@@ -680,12 +680,13 @@ struct State<T> {
     /// θ moved this iteration to a point of lower value on a common seed.
     gained: bool,
     /// On dense unseeded noise, the last model step's fit residual scatter in value
-    /// units (ηF, its weighted RMS residual): a draw below f(θ)'s by less may be the
-    /// noise's low tail, and moves θ without counting as a gain for the patience
-    /// (`Auto::clears_noise`). Zero until such a fit.
+    /// units (ηF, its weighted RMS residual): in a run without a budget, a draw below
+    /// f(θ)'s by less may be the noise's low tail, and moves θ without counting as a
+    /// gain for the patience (`Auto::clears_noise`). Zero until such a fit.
     scatter: T,
-    /// On dense unseeded noise, the lowest draw that counted as a gain in the run
-    /// (`Auto::clears_noise`; such a run has one descent); `None` before one.
+    /// On dense unseeded noise in a run without a budget, the lowest draw that counted
+    /// as a gain in the run (`Auto::clears_noise`; such a run has one descent); `None`
+    /// before one.
     floor: Option<T>,
     /// How often an exploring pair drawn after a failed model step has lowered f(θ):
     /// an average over such pairs, each weighing 1/[`PAIR_MEMORY`] (see [`PAIRS_PAY`]).
