@@ -7,7 +7,7 @@ use rand_core::Rng;
 
 use super::memory::memory_determines_model;
 use super::model::{self, Ridge, Shape};
-use super::{Auto, BY_COLUMNS_MIN_DIM, EXACT, FIT_WIDTH, REACH, SavedPrior, metric};
+use super::{Auto, BY_COLUMNS_MIN_DIM, EXACT, FIT_WIDTH, REACH, SavedPrior, WALL_GROUP, metric};
 use crate::optim::vector::{dot, norm, transpose};
 use crate::real::Real;
 
@@ -80,6 +80,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // (its z is computed another way, equal to the fit's up to rounding; the margin
         // leaves every point near the limit to the fit's own z).
         let known_far = self.reach_is_current().then(|| limit * T::from_f64(1.001));
+        let wall = T::from_f64(WALL_GROUP);
         for j in 0..self.st.count {
             let k = self.slot(j);
             if known_far.is_some_and(|far| self.mem.zs[k] > far) {
@@ -107,8 +108,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 shape.half_quadratic(self.mem.h, row)
             };
             let prior = dot(self.mem.g, row) + quadratic;
-            let v = (self.mem.fs[k] - value) / scale;
             let id = self.mem.gs[k];
+            let mut v = (self.mem.fs[k] - value) / scale;
+            if id == wall && v < prior {
+                // A failed evaluation's stand-in is a floor (`Auto::stand_in`): it holds
+                // the model up where the prior puts f below it, and pulls on nothing
+                // where the prior has f at or above it.
+                v = prior;
+            }
             let slot = &mut self.mem.u[m * n..(m + 1) * n];
             if m < kept && !(same(slot, row) && same(&[self.mem.sw[m], self.mem.gid[m]], &[sw, id]))
             {

@@ -6,7 +6,9 @@
 use rand_core::Rng;
 
 use super::model::{self, Shape};
-use super::{Auto, FULL_MEMORY_PER_DIM, MAX_MEMORY, metric, ties_with};
+use super::{
+    Auto, FULL_MEMORY_PER_DIM, MAX_MEMORY, REACH, WALL_GROUP, metric, tie_width, ties_with,
+};
 use crate::optim::vector::norm;
 use crate::real::Real;
 
@@ -384,7 +386,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Remembers the staged rows 0 … `rows` − 1 with finite values, in noise group
-    /// `group`, after the points remembered before them. When the memory is full, each
+    /// `group`, and then its failed rows (NaN or ±∞) with their stand-in values
+    /// ([`Auto::stand_in`]) in group [`WALL_GROUP`], after the points remembered before
+    /// them. When the memory is full, each
     /// replaces the point farthest from θ (by z) —
     /// on unseeded noise that every draw carries, the point whose z lies farthest from
     /// σ's scale (the largest max(z, 1/z)), θ's own draws kept: a point at z ≪ 1 is one
@@ -418,12 +422,23 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 }
             }
         }
-        for row in 0..rows {
+        // The finite rows in a first pass, the failed ones in a second, so that a
+        // failed row's stand-in sees its batch's values.
+        for pass in 0..2 * rows {
+            let row = pass % rows;
             let f = self.mem.stage_f[row];
-            if !f.is_finite() {
+            if f.is_finite() != (pass < rows) {
                 continue;
             }
-            if self.st.value.is_some_and(|v| !ties_with(f, v)) {
+            let (f, group) = if f.is_finite() {
+                (f, group)
+            } else {
+                match self.stand_in(row) {
+                    Some(f) => (f, T::from_f64(WALL_GROUP)),
+                    None => continue,
+                }
+            };
+            if group != T::from_f64(WALL_GROUP) && self.st.value.is_some_and(|v| !ties_with(f, v)) {
                 self.st.varied = true;
             }
             let count = self.st.count;
@@ -482,6 +497,44 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 }
             }
         }
+    }
+
+    /// The value a failed evaluation (NaN or ±∞) at staged row `row` is remembered
+    /// with, on an objective not declared noisy: just above (by twice the tie width) the
+    /// value of the finite point remembered nearest to it, where one lies within the
+    /// fit's reach of it (‖L⁻¹(x − x_f)‖ ≤ 2ρσ√n; else `None`, and the row is not
+    /// remembered). The fit reads it as a floor ([`Auto::fit`]): where the model would put
+    /// f lower there, the point holds it up to that value; elsewhere it pulls on nothing.
+    /// The model then sees where f fails as no better than the nearest point where it
+    /// does not. Fitted to the finite values alone, it carried on past a wall (a
+    /// constraint the objective enforces by failing) and, where the minimum of f lies on
+    /// the wall, put its own minimum beyond it: every trial failed, σ shrank and θ stalled
+    /// short of the minimum. Not on a declared-noisy objective, whose values on different
+    /// seeds do not compare.
+    fn stand_in(&mut self, row: usize) -> Option<T> {
+        if self.st.noisy {
+            return None;
+        }
+        let n = self.theta.len();
+        self.whiten_positions();
+        let x = &self.mem.stage[row * n..(row + 1) * n];
+        metric::whiten(self.shape, self.mem.li, x, self.mem.ya, self.mem.gx);
+        let limit = (T::from_f64(2.0 * REACH) * self.st.sigma).sq() * T::from_usize(n);
+        let wall = T::from_f64(WALL_GROUP);
+        let (mut nearest, mut value) = (limit, None);
+        for k in (0..self.st.count).filter(|&k| self.mem.gs[k] != wall) {
+            let y = &self.mem.ys[k * n..(k + 1) * n];
+            let d = y
+                .iter()
+                .zip(self.mem.gx.iter())
+                .fold(T::ZERO, |s, (&a, &b)| s + (a - b).sq());
+            if d <= nearest {
+                (nearest, value) = (d, Some(self.mem.fs[k]));
+            }
+        }
+        // Above the tie width, so that no test of ties reads a failed point as f's level.
+        let above = value? + T::TWO * tie_width(value?);
+        above.is_finite().then_some(above)
     }
 
     /// Whether [`Memory::zs`] holds the remembered points' z for the current θ, σ and

@@ -558,6 +558,10 @@ pub const AXIS_COHERENCE: f64 = 0.5;
 /// every direction widens σ instead.
 pub const FLAT_STRETCH: f64 = 2.0;
 
+/// The noise group of the points remembered in place of failed evaluations
+/// (`Auto::stand_in`); the groups of drawn values are never negative.
+const WALL_GROUP: f64 = -1.0;
+
 /// Draws of f(θ) an unseeded objective's trials are compared with, at most: after a
 /// rejected trial, where θ's draw lies below the robust fit's value at θ, θ is drawn
 /// again beside the next trial until the memory holds this many, and trials must beat

@@ -10,8 +10,11 @@ use crate::real::Real;
 /// What to do with an objective value that is NaN or ±∞.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum NonFinite {
-    /// The point counts as worse than any finite value: it is not fitted, a trial point
-    /// there is rejected. Default.
+    /// The point counts as worse than any finite value: a trial point there is rejected,
+    /// and on an objective not declared noisy the model is fitted to it at just above the
+    /// largest finite value remembered near it, so that the steps follow a wall of such
+    /// points (a constraint the objective enforces by failing) instead of running into
+    /// it. Default.
     #[default]
     Worst,
     /// [`Auto::step`](super::Auto::step) returns [`Error::NonFiniteObjective`]; θ is unchanged.
