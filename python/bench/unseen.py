@@ -39,7 +39,9 @@ discs9, triangles12), first run on 2026-12-03, and a tenth, objectives users fro
 fields bring (other_fields.py: a Lennard-Jones cluster, a teacher-student network, a
 planar arm, a camera's pose, logistic regression, Gaussian peaks: lennard-jones6,
 teacher-network21, arm10, camera-pose6, logistic30, gaussian-peaks9), first run on
-2026-12-04.
+2026-12-04, and an eleventh, a constraint the objective enforces itself with the minimum
+on it (constraint_walls.py: a bowl cut by a half-space beyond which f is inf, NaN, or the
+bowl plus a constant or an exact penalty; the wall-* names), first run on 2026-12-05.
 Each problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
@@ -70,6 +72,7 @@ from typing import Callable, NamedTuple, Optional
 import numpy as np
 
 import bound_constrained
+import constraint_walls
 import hodr
 import least_squares
 import other_fields
@@ -693,6 +696,12 @@ PROBLEMS.update({name: Problem(*case) for name, case in raster_losses.PROBLEMS.i
 # network (n = 21), a planar arm of ten links (n = 10), a camera's pose (n = 6), logistic
 # regression (n = 30) and three Gaussian peaks (n = 9); first run as Auto stood.
 PROBLEMS.update({name: Problem(*case) for name, case in other_fields.PROBLEMS.items()})
+
+# The eleventh set (2026-12-05, seventy-sixth session): a constraint the objective
+# enforces itself, with the minimum on it (constraint_walls.py): a bowl cut through its
+# interior by a half-space beyond which f fails (inf, NaN) or pays a constant or exact
+# penalty, n = 2, 5 and 10.
+PROBLEMS.update({name: Problem(*case) for name, case in constraint_walls.PROBLEMS.items()})
 
 
 def draw_start(problem, rng):
