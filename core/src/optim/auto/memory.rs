@@ -9,7 +9,7 @@ use super::model::{self, Shape};
 use super::{
     Auto, FULL_MEMORY_PER_DIM, MAX_MEMORY, REACH, WALL_GROUP, metric, tie_width, ties_with,
 };
-use crate::optim::vector::norm;
+use crate::optim::vector::{distance, norm};
 use crate::real::Real;
 
 /// How far θ may move from the whitened positions' anchor, in units of σ√n (whitened),
@@ -519,21 +519,18 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.whiten_positions();
         let x = &self.mem.stage[row * n..(row + 1) * n];
         metric::whiten(self.shape, self.mem.li, x, self.mem.ya, self.mem.gx);
-        let limit = (T::from_f64(2.0 * REACH) * self.st.sigma).sq() * T::from_usize(n);
+        let limit = T::from_f64(2.0 * REACH) * self.st.sigma * T::from_usize(n).sqrt();
         let wall = T::from_f64(WALL_GROUP);
         let (mut nearest, mut value) = (limit, None);
         for k in (0..self.st.count).filter(|&k| self.mem.gs[k] != wall) {
-            let y = &self.mem.ys[k * n..(k + 1) * n];
-            let d = y
-                .iter()
-                .zip(self.mem.gx.iter())
-                .fold(T::ZERO, |s, (&a, &b)| s + (a - b).sq());
+            let d = distance(&self.mem.ys[k * n..(k + 1) * n], self.mem.gx);
             if d <= nearest {
                 (nearest, value) = (d, Some(self.mem.fs[k]));
             }
         }
         // Above the tie width, so that no test of ties reads a failed point as f's level.
-        let above = value? + T::TWO * tie_width(value?);
+        let value = value?;
+        let above = value + T::TWO * tie_width(value);
         above.is_finite().then_some(above)
     }
 
