@@ -9,6 +9,9 @@ minimum, n/4, lies on the cut at x_i = 1/2. Beyond the cut the objective returns
   fails on parameters it cannot draw;
 * the bowl plus 100 or plus 1e10 (wall-plus100-5, wall-plus1e10-5): a constant penalty,
   a step at the minimum;
+* 1e10 alone (wall-const1e10-2, wall-const1e10-5, wall-const1e10-10; added on
+  2026-12-05, after the set's first run): "return a big number where the parameters are
+  not allowed", a plateau beyond a step at the minimum;
 * the bowl plus 1000 times the violation (wall-exact5): an exact penalty, continuous, a
   kink at the minimum (a control).
 
@@ -38,6 +41,7 @@ def case(beyond, n):
 
 
 def fail(value):
+    """`value` wherever the constraint is broken: a failure (inf, NaN) or a plateau."""
     return lambda q, violation: value
 
 
@@ -48,5 +52,8 @@ PROBLEMS = {
     "wall-nan5": case(fail(float("nan")), 5),
     "wall-plus100-5": case(lambda q, violation: q + 100.0, 5),
     "wall-plus1e10-5": case(lambda q, violation: q + 1e10, 5),
+    "wall-const1e10-2": case(fail(1e10), 2),
+    "wall-const1e10-5": case(fail(1e10), 5),
+    "wall-const1e10-10": case(fail(1e10), 10),
     "wall-exact5": case(lambda q, violation: q + 1000.0 * violation, 5),
 }

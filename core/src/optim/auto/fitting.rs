@@ -5,7 +5,7 @@
 
 use rand_core::Rng;
 
-use super::memory::memory_determines_model;
+use super::memory::{Points, memory_determines_model};
 use super::model::{self, Ridge, Shape};
 use super::{Auto, BY_COLUMNS_MIN_DIM, EXACT, FIT_WIDTH, REACH, SavedPrior, WALL_GROUP, metric};
 use crate::optim::vector::{dot, norm, transpose};
@@ -37,10 +37,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// `scale`, from the prior moved to θ and σ — unless the points refute the prior
     /// ([`REFUTED`]), when the fit starts from zero and the prior is forgotten; or unless
     /// the prior predicts them to rounding ([`EXACT`]; deterministic objectives only),
-    /// when it is the fit and no system is solved. Returns the fit's noise level (the
-    /// weighted RMS residual, as `model::fit` gives it) and the number of points fitted;
-    /// `None` when the fit failed.
-    pub(super) fn fit(&mut self, value: T, scale: T) -> Option<(T, usize)> {
+    /// when it is the fit and no system is solved. Values above `cliff` ([`Auto::cliff`])
+    /// are read as failed evaluations' stand-ins are: floors just above the nearest
+    /// point's below it. Returns the fit's noise level (the weighted RMS residual, as
+    /// `model::fit` gives it) and the number of points fitted; `None` when the fit failed.
+    pub(super) fn fit(&mut self, value: T, scale: T, cliff: Option<T>) -> Option<(T, usize)> {
         let n = self.theta.len();
         let sigma = self.st.sigma;
         let shape = self.shape;
@@ -108,12 +109,28 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 shape.half_quadratic(self.mem.h, row)
             };
             let prior = dot(self.mem.g, row) + quadratic;
-            let id = self.mem.gs[k];
-            let mut v = (self.mem.fs[k] - value) / scale;
+            let (f, id) = match cliff {
+                Some(level) if self.mem.fs[k] > level && self.mem.gs[k] != wall => {
+                    let points = Points {
+                        ys: self.mem.ys,
+                        fs: self.mem.fs,
+                        gs: self.mem.gs,
+                        count: self.st.count,
+                    };
+                    let y = &self.mem.ys[k * n..(k + 1) * n];
+                    match points.floor_beside(y, limit * sigma * root_n, level) {
+                        Some(floor) => (floor, wall),
+                        None => continue,
+                    }
+                }
+                _ => (self.mem.fs[k], self.mem.gs[k]),
+            };
+            let mut v = (f - value) / scale;
             if id == wall && v < prior {
-                // A failed evaluation's stand-in is a floor (`Auto::stand_in`): it holds
-                // the model up where the prior puts f below it, and pulls on nothing
-                // where the prior has f at or above it.
+                // A failed evaluation's stand-in (`Auto::stand_in`), or a value beyond
+                // a cliff (`Auto::cliff`), is a floor: it holds the model up where the
+                // prior puts f below it, and pulls on nothing where the prior has f at
+                // or above it.
                 v = prior;
             }
             let slot = &mut self.mem.u[m * n..(m + 1) * n];
@@ -143,7 +160,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             .then(|| (unseen.0 / unseen.1).sqrt());
         if self.st.has_prior && spread > T::ZERO && misfit > T::from_f64(REFUTED).sq() * spread {
             self.st.has_prior = false;
-            return self.fit(value, scale);
+            return self.fit(value, scale, cliff);
         }
         // The prior predicts every point to rounding (EXACT): it is the fit, which could
         // change it by no more than that. The system is not factored, so the next fit

@@ -3,6 +3,8 @@
 //! needs within reach), which evaluated points are kept (`Auto::remember`: the farthest
 //! from θ goes), and their whitened distances to θ, counted within the kernel's reach.
 
+use core::cmp::Ordering;
+
 use rand_core::Rng;
 
 use super::model::{self, Shape};
@@ -17,6 +19,11 @@ use crate::real::Real;
 /// (ys_k − yt)/σ then lose at most about this many times rounding's share of |u| to the
 /// subtraction, where L⁻¹(x_k − θ)/σ loses rounding's.
 const ANCHOR_REACH: f64 = 32.0;
+
+/// How far a gap in f's values about θ must exceed the spreads of the values on either
+/// side of it, together, to be a cliff ([`Auto::cliff`]): more than 9 times, the gap
+/// spanning more than 90 % of their range.
+const CLIFF: f64 = 9.0;
 
 /// Regions of the caller's buffer.
 pub(super) struct Memory<'b, T> {
@@ -520,18 +527,54 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let x = &self.mem.stage[row * n..(row + 1) * n];
         metric::whiten(self.shape, self.mem.li, x, self.mem.ya, self.mem.gx);
         let limit = T::from_f64(2.0 * REACH) * self.st.sigma * T::from_usize(n).sqrt();
+        let points = Points {
+            ys: self.mem.ys,
+            fs: self.mem.fs,
+            gs: self.mem.gs,
+            count: self.st.count,
+        };
+        points.floor_beside(self.mem.gx, limit, T::MAX)
+    }
+
+    /// The level above which f's values about θ stand on a cliff, where they do: sorted,
+    /// the values of the remembered points within the fit's reach (z ≤ 2ρ, stand-ins
+    /// left out) split at a gap above f(θ) more than [`CLIFF`] times the spreads of the
+    /// values below and above it together, with more than n values below it, spread
+    /// apart. That is f jumping between two levels about θ — a constant penalty where a
+    /// constraint is broken, a step — which no quadratic fits: fitted, the jump's
+    /// smoothed slope dominates the model at every σ while θ lies within σ of it. The fit
+    /// reads values above the level as floors (`Auto::fit`), as it reads failed
+    /// evaluations' stand-ins. Returns the gap's midpoint; `None` where no gap
+    /// qualifies, and on a noisy objective (declared, or unseeded noise found), whose
+    /// draws at one point differ and whose robust fit sets outliers aside.
+    /// `mem.r` serves as scratch (the fit writes it afresh).
+    pub(super) fn cliff(&mut self, value: T) -> Option<T> {
+        if self.st.noisy || self.st.unseeded {
+            return None;
+        }
+        self.refresh_reach();
+        let limit = T::from_f64(2.0 * REACH);
         let wall = T::from_f64(WALL_GROUP);
-        let (mut nearest, mut value) = (limit, None);
-        for k in (0..self.st.count).filter(|&k| self.mem.gs[k] != wall) {
-            let d = distance(&self.mem.ys[k * n..(k + 1) * n], self.mem.gx);
-            if d <= nearest {
-                (nearest, value) = (d, Some(self.mem.fs[k]));
+        let mut count = 0;
+        for k in 0..self.st.count {
+            if self.mem.zs[k] <= limit && self.mem.gs[k] != wall && self.mem.credit[k] > T::ZERO {
+                self.mem.r[count] = self.mem.fs[k] - value;
+                count += 1;
             }
         }
-        // Above the tie width, so that no test of ties reads a failed point as f's level.
-        let value = value?;
-        let above = value + T::TWO * tie_width(value);
-        above.is_finite().then_some(above)
+        let sorted = &mut self.mem.r[..count];
+        sorted.sort_unstable_by(|a, b| a.partial_cmp(b).unwrap_or(Ordering::Equal));
+        let (&lowest, &highest) = (sorted.first()?, sorted.last()?);
+        let cliff = T::from_f64(CLIFF);
+        let n = self.theta.len();
+        (n..count.saturating_sub(1)).find_map(|k| {
+            let (below, above) = (sorted[k], sorted[k + 1]);
+            let gap = above - below;
+            (below >= T::ZERO
+                && below > lowest
+                && gap > cliff * ((below - lowest) + (highest - above)))
+                .then(|| value + below + gap * T::HALF)
+        })
     }
 
     /// Whether [`Memory::zs`] holds the remembered points' z for the current θ, σ and
@@ -667,15 +710,17 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             })
     }
 
-    /// max |f − f(θ)| over remembered points within z (0 when f(θ) is unknown); for a
-    /// noisy objective the largest difference within a noise group, where values
-    /// compare (max |f − f(θ)| where no group holds two such points).
-    pub(super) fn spread(&mut self, z: T) -> T {
+    /// max |f − f(θ)| over remembered points within z whose values are at most `cliff`
+    /// ([`Auto::cliff`]; all with `None`), 0 when f(θ) is unknown; for a noisy objective
+    /// the largest difference within a noise group, where values compare
+    /// (max |f − f(θ)| where no group holds two such points).
+    pub(super) fn spread(&mut self, z: T, cliff: Option<T>) -> T {
         let Some(v) = self.st.value else {
             return T::ZERO;
         };
         self.refresh_reach();
-        let near = |k: &usize| self.mem.zs[*k] <= z;
+        let near =
+            |k: &usize| self.mem.zs[*k] <= z && cliff.is_none_or(|level| self.mem.fs[*k] <= level);
         if self.st.noisy {
             let within = (0..self.st.count).filter(near).fold(T::ZERO, |s, k| {
                 (0..k)
@@ -690,5 +735,37 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         (0..self.st.count)
             .filter(near)
             .fold(T::ZERO, |s, k| s.max((self.mem.fs[k] - v).abs()))
+    }
+}
+
+/// The remembered points' whitened positions, values and noise groups, in slots
+/// 0 … `count` − 1: what [`Points::floor_beside`] searches, borrowed apart from the fit's
+/// rows.
+pub(super) struct Points<'a, T> {
+    pub(super) ys: &'a [T],
+    pub(super) fs: &'a [T],
+    pub(super) gs: &'a [T],
+    pub(super) count: usize,
+}
+
+impl<T: Real> Points<'_, T> {
+    /// The floor a point at whitened position `y` is read with where f there cannot be
+    /// fitted (a failed evaluation, a value beyond a cliff): just above (by twice the tie
+    /// width) the value of the nearest remembered point that is no stand-in and lies
+    /// below `below`, where one lies within `limit` of `y` (whitened distance); else
+    /// `None`. Above the tie width, so that no test of ties reads it as f's level.
+    pub(super) fn floor_beside(&self, y: &[T], limit: T, below: T) -> Option<T> {
+        let n = y.len();
+        let wall = T::from_f64(WALL_GROUP);
+        let (mut nearest, mut value) = (limit, None);
+        for k in (0..self.count).filter(|&k| self.gs[k] != wall && self.fs[k] < below) {
+            let d = distance(&self.ys[k * n..(k + 1) * n], y);
+            if d <= nearest {
+                (nearest, value) = (d, Some(self.fs[k]));
+            }
+        }
+        let value = value?;
+        let above = value + T::TWO * tie_width(value);
+        above.is_finite().then_some(above)
     }
 }

@@ -38,11 +38,26 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if self.st.unseeded && !self.st.voting {
             self.st.voting = self.sparse_noise();
         }
-        let scale = self.spread(T::from_f64(2.0 * REACH));
-        let Some((noise, mut fitted)) = self.fit(value, scale) else {
+        let mut scale = self.spread(T::from_f64(2.0 * REACH), None);
+        let Some((mut noise, mut fitted)) = self.fit(value, scale, None) else {
             self.st.sigma = sigma * T::HALF;
             return Ok((AutoStep::Rejected, None));
         };
+        // A fit that does not describe f closely may be a quadratic fitted across a
+        // cliff (`Auto::cliff`): fitted again, values beyond it are floors.
+        let cliff = if noise > T::from_f64(SMOOTH) {
+            self.cliff(value)
+        } else {
+            None
+        };
+        if let Some(cliff) = cliff {
+            scale = self.spread(T::from_f64(2.0 * REACH), Some(cliff));
+            let Some(refitted) = self.fit(value, scale, Some(cliff)) else {
+                self.st.sigma = sigma * T::HALF;
+                return Ok((AutoStep::Rejected, None));
+            };
+            (noise, fitted) = refitted;
+        }
         self.st.unfitted = 0;
         let mut value = value;
         // θ's draw lies below the robust model's value at θ: it may be a lucky one.
@@ -54,7 +69,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             // first fit's: the scatter the robust fit sets aside is still the noise a
             // step must clear.
             let cut = self.reweigh(value, scale);
-            let Some((_, refitted)) = self.fit(value, scale) else {
+            let Some((_, refitted)) = self.fit(value, scale, None) else {
                 self.st.sigma = sigma * T::HALF;
                 return Ok((AutoStep::Rejected, None));
             };

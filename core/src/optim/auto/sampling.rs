@@ -238,7 +238,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             // descent has converged where the rise of f about θ explains the ties (not
             // before: the models at the scales between may still move θ closer).
             if let Some(v) = self.st.value {
-                if self.spread(T::from_f64(2.0 * REACH)) > T::EPSILON.sqrt() * v.abs() {
+                if self.spread(T::from_f64(2.0 * REACH), None) > T::EPSILON.sqrt() * v.abs() {
                     self.st.tie_scale = self.st.tie_scale.max(sigma);
                 } else {
                     self.st.rounded = self.st.confirmed && self.ties_are_rounding();
