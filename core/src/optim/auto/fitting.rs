@@ -109,24 +109,29 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 shape.half_quadratic(self.mem.h, row)
             };
             let prior = dot(self.mem.g, row) + quadratic;
-            let (f, id) = match cliff {
-                Some(level) if self.mem.fs[k] > level && self.mem.gs[k] != wall => {
+            // Values beyond the cliff are floors as stand-ins are, in their own noise
+            // groups: a group weighs in the system only on a noisy objective, which
+            // has no cliff, so the system keeps its rows whether a cliff is found.
+            let id = self.mem.gs[k];
+            let (f, floor) = match cliff {
+                Some(level) if self.mem.fs[k] > level && id != wall => {
                     let points = Points {
                         ys: self.mem.ys,
                         fs: self.mem.fs,
                         gs: self.mem.gs,
                         count: self.st.count,
+                        reach: known_far.map(|_| (&*self.mem.zs, sigma * root_n)),
                     };
                     let y = &self.mem.ys[k * n..(k + 1) * n];
-                    match points.floor_beside(y, limit * sigma * root_n, level) {
-                        Some(floor) => (floor, wall),
+                    match points.floor_beside(y, z, limit * sigma * root_n, level) {
+                        Some(floor) => (floor, true),
                         None => continue,
                     }
                 }
-                _ => (self.mem.fs[k], self.mem.gs[k]),
+                _ => (self.mem.fs[k], id == wall),
             };
             let mut v = (f - value) / scale;
-            if id == wall && v < prior {
+            if floor && v < prior {
                 // A failed evaluation's stand-in (`Auto::stand_in`), or a value beyond
                 // a cliff (`Auto::cliff`), is a floor: it holds the model up where the
                 // prior puts f below it, and pulls on nothing where the prior has f at

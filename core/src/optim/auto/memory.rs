@@ -532,8 +532,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             fs: self.mem.fs,
             gs: self.mem.gs,
             count: self.st.count,
+            reach: None,
         };
-        points.floor_beside(self.mem.gx, limit, T::MAX)
+        points.floor_beside(self.mem.gx, T::ZERO, limit, T::MAX)
     }
 
     /// The level above which f's values about θ stand on a cliff, where they do: sorted,
@@ -740,12 +741,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
 
 /// The remembered points' whitened positions, values and noise groups, in slots
 /// 0 … `count` − 1: what [`Points::floor_beside`] searches, borrowed apart from the fit's
-/// rows.
+/// rows; with `reach`, their z ([`Memory::zs`], current) and σ√n.
 pub(super) struct Points<'a, T> {
     pub(super) ys: &'a [T],
     pub(super) fs: &'a [T],
     pub(super) gs: &'a [T],
     pub(super) count: usize,
+    pub(super) reach: Option<(&'a [T], T)>,
 }
 
 impl<T: Real> Points<'_, T> {
@@ -754,11 +756,20 @@ impl<T: Real> Points<'_, T> {
     /// width) the value of the nearest remembered point that is no stand-in and lies
     /// below `below`, where one lies within `limit` of `y` (whitened distance); else
     /// `None`. Above the tie width, so that no test of ties reads it as f's level.
-    pub(super) fn floor_beside(&self, y: &[T], limit: T, below: T) -> Option<T> {
+    /// With `reach`, `z` is y's, and a point whose z differs from it by more than the
+    /// nearest distance so far (over σ√n, with a margin for rounding) is passed over: by
+    /// the triangle inequality it lies farther.
+    pub(super) fn floor_beside(&self, y: &[T], z: T, limit: T, below: T) -> Option<T> {
         let n = y.len();
         let wall = T::from_f64(WALL_GROUP);
+        let margin = T::from_f64(1.001);
         let (mut nearest, mut value) = (limit, None);
         for k in (0..self.count).filter(|&k| self.gs[k] != wall && self.fs[k] < below) {
+            if let Some((zs, unit)) = self.reach {
+                if (zs[k] - z).abs() * unit > nearest * margin {
+                    continue;
+                }
+            }
             let d = distance(&self.ys[k * n..(k + 1) * n], y);
             if d <= nearest {
                 (nearest, value) = (d, Some(self.fs[k]));
