@@ -11,7 +11,8 @@ minimum, n/4, lies on the cut at x_i = 1/2. Beyond the cut the objective returns
   a step at the minimum;
 * 1e10 alone (wall-const1e10-2, wall-const1e10-5, wall-const1e10-10; added on
   2026-12-05, after the set's first run): "return a big number where the parameters are
-  not allowed", a plateau beyond a step at the minimum;
+  not allowed", a plateau beyond a step at the minimum; and, as a control, the same
+  with the bowl centred at 0.2, its minimum inside (inside-const1e10-10);
 * the bowl plus 1000 times the violation (wall-exact5): an exact penalty, continuous, a
   kink at the minimum (a control).
 
@@ -24,12 +25,12 @@ import numpy as np
 from raster_losses import Case
 
 
-def walled(beyond):
-    """The bowl where sum(x) <= n/2, `beyond(q, violation)` elsewhere."""
+def walled(beyond, centre=1.0):
+    """The bowl ||x - centre||^2 where sum(x) <= n/2, `beyond(q, violation)` elsewhere."""
 
     def f(x):
         x = np.asarray(x, dtype=float)
-        q = float(np.sum((x - 1.0) ** 2))
+        q = float(np.sum((x - centre) ** 2))
         violation = float(np.sum(x)) - 0.5 * len(x)
         return q if violation <= 0.0 else beyond(q, violation)
 
@@ -38,6 +39,11 @@ def walled(beyond):
 
 def case(beyond, n):
     return Case(walled(beyond), np.full(n, 0.5), 1.0, None, 2000 * n, 1e-6, (-3.0, 3.0))
+
+
+def inside(beyond, n):
+    """The bowl centred at 0.2 instead, its minimum inside, sum(x) = 0.2 n < n/2."""
+    return Case(walled(beyond, 0.2), np.full(n, 0.2), 1.0, None, 2000 * n, 1e-6, (-3.0, 3.0))
 
 
 def fail(value):
@@ -55,5 +61,6 @@ PROBLEMS = {
     "wall-const1e10-2": case(fail(1e10), 2),
     "wall-const1e10-5": case(fail(1e10), 5),
     "wall-const1e10-10": case(fail(1e10), 10),
+    "inside-const1e10-10": inside(fail(1e10), 10),
     "wall-exact5": case(lambda q, violation: q + 1000.0 * violation, 5),
 }
