@@ -40,8 +40,9 @@ fields bring (other_fields.py: a Lennard-Jones cluster, a teacher-student networ
 planar arm, a camera's pose, logistic regression, Gaussian peaks: lennard-jones6,
 teacher-network21, arm10, camera-pose6, logistic30, gaussian-peaks9), first run on
 2026-12-04, and an eleventh, a constraint the objective enforces itself with the minimum
-on it (constraint_walls.py: a bowl cut by a half-space beyond which f is inf, NaN, or the
-bowl plus a constant or an exact penalty; the wall-* names), first run on 2026-12-05.
+on it (constraint_walls.py: a bowl cut by a half-space beyond which f is inf, NaN, 1e10,
+or the bowl plus a constant or an exact penalty; the wall-* names, and inside-const1e10-10
+with the minimum inside), first run on 2026-12-05.
 Each problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
