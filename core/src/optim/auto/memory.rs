@@ -537,17 +537,20 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         points.floor_beside(self.mem.gx, T::ZERO, limit, T::MAX)
     }
 
-    /// The level above which f's values about θ stand on a cliff, where they do: sorted,
-    /// the values of the remembered points within the fit's reach (z ≤ 2ρ, stand-ins
-    /// left out) split at a gap above f(θ) more than [`CLIFF`] times the spreads of the
-    /// values below and above it together, with more than n values below it, spread
-    /// apart. That is f jumping between two levels about θ — a constant penalty where a
-    /// constraint is broken, a step — which no quadratic fits: fitted, the jump's
-    /// smoothed slope dominates the model at every σ while θ lies within σ of it. The fit
-    /// reads values above the level as floors (`Auto::fit`), as it reads failed
-    /// evaluations' stand-ins. Returns the gap's midpoint; `None` where no gap
-    /// qualifies, and on a noisy objective (declared, or unseeded noise found), whose
-    /// draws at one point differ and whose robust fit sets outliers aside.
+    /// The level above which f's values about θ stand on a cliff, where they do:
+    /// sorted, the values of the remembered points within the fit's reach (z ≤ 2ρ,
+    /// stand-ins left out) split at a gap above f(θ) more than [`CLIFF`] times the
+    /// spreads of the values below and above it together, with more than n values on
+    /// either side of it, those below not all equal. That is f jumping between two
+    /// levels about θ — a constant penalty where a constraint is broken, a step — which
+    /// no quadratic fits: fitted, the jump's smoothed slope dominates the model at
+    /// every σ while θ lies within σ of it. A level of n values or fewer is no cliff's
+    /// side: a quadratic's stiff pair above the points along its valley, or a few noisy
+    /// values among exact ones, make such a gap too. The fit reads values above the
+    /// level as floors (`Auto::fit`), as it reads failed evaluations' stand-ins.
+    /// Returns the gap's midpoint; `None` where no gap qualifies, and on a noisy
+    /// objective (declared, or unseeded noise found), whose draws at one point differ
+    /// and whose robust fit sets outliers aside.
     /// `mem.r` serves as scratch (the fit writes it afresh).
     pub(super) fn cliff(&mut self, value: T) -> Option<T> {
         if self.st.noisy || self.st.unseeded {
@@ -568,7 +571,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let (&lowest, &highest) = (sorted.first()?, sorted.last()?);
         let cliff = T::from_f64(CLIFF);
         let n = self.theta.len();
-        (n..count.saturating_sub(1)).find_map(|k| {
+        (n..count.saturating_sub(n + 1)).find_map(|k| {
             let (below, above) = (sorted[k], sorted[k + 1]);
             let gap = above - below;
             (below >= T::ZERO
