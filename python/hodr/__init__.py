@@ -354,7 +354,7 @@ def minimize(
         Return inf or NaN, or a large constant such as 1e10, to enforce a constraint
         other than bounds: the run reaches a minimum that lies on such a wall (measured
         on a half-space at n <= 10). A small penalty step such as ``f + 100`` costs
-        about twice pycma's evaluations there.
+        about five times pycma's evaluations there.
     x0 : array_like, shape (n,)
         The start.
     sigma0 : float or array_like, shape (n,)
