@@ -25,6 +25,11 @@ const ANCHOR_REACH: f64 = 32.0;
 /// spanning more than 90 % of their range.
 const CLIFF: f64 = 9.0;
 
+/// How far a gap must exceed the spreads on either side of it, together, to be a cliff
+/// where the fit it makes is smooth ([`Auto::cliff`]): more than once, the gap spanning
+/// more than half of their range.
+const SMOOTHED_CLIFF: f64 = 1.0;
+
 /// Regions of the caller's buffer.
 pub(super) struct Memory<'b, T> {
     pub(super) lower: &'b mut [T],
@@ -548,11 +553,17 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// side: a quadratic's stiff pair above the points along its valley, or a few noisy
     /// values among exact ones, make such a gap too. The fit reads values above the
     /// level as floors (`Auto::fit`), as it reads failed evaluations' stand-ins.
-    /// Returns the gap's midpoint; `None` where no gap qualifies, and on a noisy
-    /// objective (declared, or unseeded noise found), whose draws at one point differ
-    /// and whose robust fit sets outliers aside.
+    /// A gap only more than [`SMOOTHED_CLIFF`] times the spreads is a cliff if the fit
+    /// that reads the values above it as floors is smooth (the caller's test): a small
+    /// step on a slope, where the slope's rise within reach is a sizeable share of the
+    /// step, and not values that scatter about a rough f (a staircase of many steps,
+    /// noise), which the floors leave as rough.
+    /// Returns the gap's midpoint and whether the gap is more than [`CLIFF`] times the
+    /// spreads; `None` where no gap qualifies, and on a noisy objective (declared, or
+    /// unseeded noise found), whose draws at one point differ and whose robust fit sets
+    /// outliers aside.
     /// `mem.r` serves as scratch (the fit writes it afresh).
-    pub(super) fn cliff(&mut self, value: T) -> Option<T> {
+    pub(super) fn cliff(&mut self, value: T) -> Option<(T, bool)> {
         if self.st.noisy || self.st.unseeded {
             return None;
         }
@@ -569,15 +580,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let sorted = &mut self.mem.r[..count];
         sorted.sort_unstable_by(|a, b| a.partial_cmp(b).unwrap_or(Ordering::Equal));
         let (&lowest, &highest) = (sorted.first()?, sorted.last()?);
-        let cliff = T::from_f64(CLIFF);
         let n = self.theta.len();
         (n..count.saturating_sub(n + 1)).find_map(|k| {
             let (below, above) = (sorted[k], sorted[k + 1]);
             let gap = above - below;
-            (below >= T::ZERO
-                && below > lowest
-                && gap > cliff * ((below - lowest) + (highest - above)))
-                .then(|| value + below + gap * T::HALF)
+            let spreads = (below - lowest) + (highest - above);
+            let sure = gap > T::from_f64(CLIFF) * spreads;
+            (below >= T::ZERO && below > lowest && gap > T::from_f64(SMOOTHED_CLIFF) * spreads)
+                .then(|| (value + below + gap * T::HALF, sure))
         })
     }
 

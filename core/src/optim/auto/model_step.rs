@@ -50,13 +50,26 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             None
         };
-        if let Some(cliff) = cliff {
+        if let Some((cliff, sure)) = cliff {
+            let (first_scale, had_prior) = (scale, self.st.has_prior);
             scale = self.spread(T::from_f64(2.0 * REACH), Some(cliff));
             let Some(refitted) = self.fit(value, scale, Some(cliff)) else {
                 self.st.sigma = sigma * T::HALF;
                 return Ok((AutoStep::Rejected, None));
             };
-            (noise, fitted) = refitted;
+            if sure || refitted.0 <= T::from_f64(SMOOTH) {
+                (noise, fitted) = refitted;
+            } else {
+                // A small gap whose floors leave the fit rough is no cliff: the first
+                // fit again.
+                scale = first_scale;
+                self.st.has_prior = had_prior;
+                let Some(first) = self.fit(value, scale, None) else {
+                    self.st.sigma = sigma * T::HALF;
+                    return Ok((AutoStep::Rejected, None));
+                };
+                (noise, fitted) = first;
+            }
         }
         self.st.unfitted = 0;
         let mut value = value;
