@@ -351,10 +351,11 @@ def minimize(
         else (None, a string, a complex number, an array of shape (1,)) is a TypeError.
         NaN or inf counts as worse than any value; a run in which every value was
         non-finite reports the first infinite one as ``fun`` and does not succeed.
-        Return inf or NaN, or a large constant such as 1e10, to enforce a constraint
-        other than bounds: the run reaches a minimum that lies on such a wall (measured
-        on a half-space at n <= 10). A small penalty step such as ``f + 100`` costs
-        about five times pycma's evaluations there.
+        Return inf or NaN, or a constant penalty such as 1e10 or ``f + 100``, to
+        enforce a constraint other than bounds: the run reaches a minimum that lies on
+        such a wall (measured on a half-space at n <= 10). A step as small as f's own
+        rise across sigma0 (a step of 1 beside a bowl's minimum) costs about twice
+        pycma's evaluations.
     x0 : array_like, shape (n,)
         The start.
     sigma0 : float or array_like, shape (n,)
