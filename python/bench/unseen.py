@@ -42,7 +42,11 @@ teacher-network21, arm10, camera-pose6, logistic30, gaussian-peaks9), first run 
 2026-12-04, and an eleventh, a constraint the objective enforces itself with the minimum
 on it (constraint_walls.py: a bowl cut by a half-space beyond which f is inf, NaN, 1e10,
 or the bowl plus a constant or an exact penalty; the wall-* names, and inside-const1e10-10
-with the minimum inside), first run on 2026-12-05.
+with the minimum inside), first run on 2026-12-05, and a twelfth, classic test functions
+none of the earlier sets had (classics.py: himmelblau2, goldstein-price2, booth2, matyas2,
+mccormick2, three-hump-camel2, bukin6-2, drop-wave2, eggholder2, holder-table2,
+cross-in-tray2, shubert2, colville4, perm4, qing5, chung-reynolds10, schwefel222-10,
+powell-sum5), first run on 2026-12-05.
 Each problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
@@ -73,6 +77,7 @@ from typing import Callable, NamedTuple, Optional
 import numpy as np
 
 import bound_constrained
+import classics
 import constraint_walls
 import hodr
 import least_squares
@@ -703,6 +708,14 @@ PROBLEMS.update({name: Problem(*case) for name, case in other_fields.PROBLEMS.it
 # interior by a half-space beyond which f fails (inf, NaN) or pays a constant or exact
 # penalty, n = 2, 5 and 10.
 PROBLEMS.update({name: Problem(*case) for name, case in constraint_walls.PROBLEMS.items()})
+
+# The twelfth set (2026-12-05, seventy-eighth session): classic test functions none of the
+# earlier sets had (classics.py): twelve two-dimensional ones in their published boxes
+# (Himmelblau, Goldstein-Price, Booth, Matyas, McCormick, the three-hump camel, Bukin 6,
+# drop-wave, Eggholder, the Hoelder table, cross-in-tray, Shubert) and six of n = 4-10
+# (Colville, Perm 0,d,beta, Qing, Chung-Reynolds, Schwefel 2.22, Powell's sum); first run
+# as Auto stood.
+PROBLEMS.update({name: Problem(*case) for name, case in classics.PROBLEMS.items()})
 
 
 def draw_start(problem, rng):
