@@ -651,6 +651,11 @@ struct State<T> {
     /// restarted — f rough there, or a held step's model blind (`Auto::hold_sigma`);
     /// zero when none was.
     rough_scale: T,
+    /// The least σ at which every sample of an iteration failed (NaN or ±∞) about θ
+    /// since f(θ) last fell or the run last restarted; zero when none did. The rough rule
+    /// (`Auto::model_step`) widens σ only below it: θ lies near where f stops being
+    /// defined, and the samples of the wider σ fail again.
+    fail_scale: T,
     /// The objective is noisy ([`Objective::deterministic`] is false): values are
     /// compared, and fitted, only within a noise group — the points evaluated on one
     /// seed.
@@ -837,6 +842,7 @@ impl<T: Real> State<T> {
             lattice: false,
             tie_scale: T::ZERO,
             rough_scale: T::ZERO,
+            fail_scale: T::ZERO,
             scatter: T::ZERO,
             floor: None,
             noisy: false,

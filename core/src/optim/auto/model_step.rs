@@ -244,17 +244,21 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             let level = T::TWO * self.repeat_spread().unwrap_or(T::ZERO);
             trial - reference <= level && predicted * scale <= level
         };
+        let widened = self.widened_sigma(PLATEAU_WIDTH);
+        let fails_wider = self.st.fail_scale > T::ZERO && widened >= self.st.fail_scale;
         if judged_by_noise
             || !accepted
                 && noise > T::from_f64(ROUGH)
                 && trial - reference <= T::TWO * noise * scale
+                && !fails_wider
         {
             // f is rough at this scale — the fit leaves scatter comparable to the values'
             // spread, or the step's promise is within the noise — and the trial is no
             // worse than that scatter: look wider, where the smoothed function has a
-            // slope to see.
+            // slope to see. Not as wide as a scale whose samples all failed about this θ
+            // (`State::fail_scale`): there they fail again, and σ halves back to here.
             self.st.rough_scale = self.st.rough_scale.max(sigma);
-            self.st.sigma = self.widened_sigma(PLATEAU_WIDTH);
+            self.st.sigma = widened;
             return Ok((AutoStep::Plateau, Some(ratio)));
         }
         let boundary = length >= T::from_f64(0.9) * radius;

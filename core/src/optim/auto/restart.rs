@@ -54,11 +54,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
     }
 
-    /// Clears the tie and rough scales (`Auto::hold_sigma`): f(θ) fell, or the run
-    /// restarts, so what they recorded no longer describes θ's surroundings.
+    /// Clears the tie, rough and failure scales (`Auto::hold_sigma`, `State::fail_scale`):
+    /// f(θ) fell, or the run restarts, so what they recorded no longer describes θ's
+    /// surroundings.
     pub(super) fn forget_scales(&mut self) {
         self.st.tie_scale = T::ZERO;
         self.st.rough_scale = T::ZERO;
+        self.st.fail_scale = T::ZERO;
     }
 
     /// The widest σ: `width`·σ₀, at most [`Auto::max_scale`] and, with bounds, half the

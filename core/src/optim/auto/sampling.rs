@@ -227,6 +227,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             // by returning ∞, a renderer's invalid parameters). That is no plateau: a
             // wider σ would put still more samples outside, and the run would end up
             // sampling there at the widest scale. Look closer instead.
+            if self.st.fail_scale <= T::ZERO || sigma < self.st.fail_scale {
+                self.st.fail_scale = sigma;
+            }
             self.st.sigma = sigma * T::HALF;
             return Ok(Some(AutoStep::Rejected));
         }
