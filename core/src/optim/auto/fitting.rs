@@ -148,11 +148,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.mem.gid[m] = id;
             self.mem.r[m] = sw * (v - prior);
             misfit += self.mem.r[m].sq();
-            spread += (sw * v).sq();
+            let drawn = if floor { T::ZERO } else { (sw * v).sq() };
+            spread += drawn;
             if j >= first_unseen {
                 unseen = (
                     unseen.0 + self.mem.r[m].sq(),
-                    unseen.1 + (sw * v).sq(),
+                    unseen.1 + drawn,
                     unseen.2 + 1,
                 );
             }
