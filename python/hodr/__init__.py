@@ -353,9 +353,8 @@ def minimize(
         non-finite reports the first infinite one as ``fun`` and does not succeed.
         Return inf or NaN, or a constant penalty such as 1e10 or ``f + 100``, to
         enforce a constraint other than bounds: the run reaches a minimum that lies on
-        such a wall (measured on a half-space at n <= 10). A step as small as f's own
-        rise across sigma0 (a step of 1 beside a bowl's minimum) costs about twice
-        pycma's evaluations.
+        such a wall (measured on a half-space at n <= 10, in fewer evaluations than
+        pycma).
     x0 : array_like, shape (n,)
         The start.
     sigma0 : float or array_like, shape (n,)
