@@ -12,7 +12,8 @@ use crate::optim::vector::{dot, norm, transpose};
 use crate::real::Real;
 
 /// How far the prior must miss the points to be dropped: its weighted RMS residual over
-/// the points a fit uses, more than this many times theirs about f(θ) (the flat model's).
+/// the points a fit uses, more than this many times theirs about f(θ) (the flat model's,
+/// over the drawn values: floors left out).
 /// A prior carried from the last iteration, whose θ and σ differ by at most the factors
 /// one step allows, misses a smooth f's points by less; one fitted where f was no
 /// quadratic — a wall where f grows by orders of magnitude, which a shrinking σ has
@@ -55,7 +56,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         });
         let mut m = 0;
         // Σ wᵢ(m₀(uᵢ) − vᵢ)² and Σ wᵢvᵢ², vᵢ the scaled (f − f(θ)): the prior's misfit
-        // and that of the flat model f(θ).
+        // and that of the flat model f(θ), the latter over drawn values only: a floor
+        // the prior puts above its value takes the prior's own there, and would judge a
+        // wild prior against itself.
         let (mut misfit, mut spread) = (T::ZERO, T::ZERO);
         // The same sums over the points remembered since the last fit, which the prior
         // has not seen: (misfit, spread, points).
