@@ -7,7 +7,9 @@ use rand_core::Rng;
 
 use super::memory::{Points, memory_determines_model};
 use super::model::{self, Ridge, Shape};
-use super::{Auto, BY_COLUMNS_MIN_DIM, EXACT, FIT_WIDTH, REACH, SavedPrior, WALL_GROUP, metric};
+use super::{
+    Auto, BY_COLUMNS_MIN_DIM, EXACT, FIT_WIDTH, REACH, SMOOTH, SavedPrior, WALL_GROUP, metric,
+};
 use crate::optim::vector::{dot, norm, transpose};
 use crate::real::Real;
 
@@ -32,6 +34,33 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             *u = (yk - t) / self.st.sigma;
         }
         norm(self.mem.gx) / T::from_usize(n).sqrt()
+    }
+
+    /// The model step's fit: [`Auto::fit`] with values scaled by their spread within 2ρ.
+    /// Where it is rough (noise above [`SMOOTH`]) it may be a quadratic fitted across a
+    /// cliff ([`Auto::cliff`]): fitted again with the values beyond it as floors (scaled
+    /// by the spread below it), which stands where the gap is sure or the refit smooth;
+    /// otherwise the first fit is made again, the prior as it was. Returns the scale,
+    /// noise level and points of the fit that stands; `None` where a fit failed.
+    pub(super) fn fit_about_cliffs(&mut self, value: T) -> Option<(T, T, usize)> {
+        let limit = T::from_f64(2.0 * REACH);
+        let scale = self.spread(limit, None);
+        let first = self.fit(value, scale, None)?;
+        if first.0 <= T::from_f64(SMOOTH) {
+            return Some((scale, first.0, first.1));
+        }
+        let Some((cliff, sure)) = self.cliff(value) else {
+            return Some((scale, first.0, first.1));
+        };
+        let had_prior = self.st.has_prior;
+        let below = self.spread(limit, Some(cliff));
+        let (noise, fitted) = self.fit(value, below, Some(cliff))?;
+        if sure || noise <= T::from_f64(SMOOTH) {
+            return Some((below, noise, fitted));
+        }
+        self.st.has_prior = had_prior;
+        let (noise, fitted) = self.fit(value, scale, None)?;
+        Some((scale, noise, fitted))
     }
 
     /// Fits the model around θ to the remembered points within 2ρ, values scaled by

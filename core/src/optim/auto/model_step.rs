@@ -38,39 +38,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if self.st.unseeded && !self.st.voting {
             self.st.voting = self.sparse_noise();
         }
-        let mut scale = self.spread(T::from_f64(2.0 * REACH), None);
-        let Some((mut noise, mut fitted)) = self.fit(value, scale, None) else {
+        let Some((scale, noise, mut fitted)) = self.fit_about_cliffs(value) else {
             self.st.sigma = sigma * T::HALF;
             return Ok((AutoStep::Rejected, None));
         };
-        // A fit that does not describe f closely may be a quadratic fitted across a
-        // cliff (`Auto::cliff`): fitted again, values beyond it are floors.
-        let cliff = if noise > T::from_f64(SMOOTH) {
-            self.cliff(value)
-        } else {
-            None
-        };
-        if let Some((cliff, sure)) = cliff {
-            let (first_scale, had_prior) = (scale, self.st.has_prior);
-            scale = self.spread(T::from_f64(2.0 * REACH), Some(cliff));
-            let Some(refitted) = self.fit(value, scale, Some(cliff)) else {
-                self.st.sigma = sigma * T::HALF;
-                return Ok((AutoStep::Rejected, None));
-            };
-            if sure || refitted.0 <= T::from_f64(SMOOTH) {
-                (noise, fitted) = refitted;
-            } else {
-                // A small gap whose floors leave the fit rough is no cliff: the first
-                // fit again.
-                scale = first_scale;
-                self.st.has_prior = had_prior;
-                let Some(first) = self.fit(value, scale, None) else {
-                    self.st.sigma = sigma * T::HALF;
-                    return Ok((AutoStep::Rejected, None));
-                };
-                (noise, fitted) = first;
-            }
-        }
         self.st.unfitted = 0;
         let mut value = value;
         // θ's draw lies below the robust model's value at θ: it may be a lucky one.
