@@ -574,6 +574,17 @@ pub const THETA_DRAWS: usize = 2;
 /// noise's, and the iteration draws another pair at the same σ instead.
 pub const NOISE_MARGIN: f64 = 10.0;
 
+/// Failed evaluations that fail again when repeated (`Auto::evaluate`), after which an
+/// objective's failures are taken to belong to its points — a wall, a region where it
+/// is undefined — and are no longer repeated: a run beside a wall pays this many
+/// evaluations for the check.
+pub const FAILURE_CHECKS: usize = 4;
+
+/// Repeats of a failed evaluation, at the same point and seed, once the objective has
+/// been seen to fail at random (a repeat returned a finite value): at a failure rate p
+/// a point still fails after them with probability p^(1 + FAILURE_RETRIES).
+pub const FAILURE_RETRIES: usize = 3;
+
 /// Draws of one point at most on sparse unseeded noise (`Auto::vote`): it is drawn
 /// until two draws agree exactly, and keeps the median of its draws when none do.
 pub const VOTES: usize = 5;
@@ -680,6 +691,16 @@ struct State<T> {
     /// The unseeded noise is sparse (`Auto::sparse_noise`): every point is drawn until
     /// two draws agree (`Auto::vote`). Once set, it stays set.
     voting: bool,
+    /// Failed evaluations (NaN or ±∞) that failed again at the same point and seed
+    /// (`Auto::evaluate`), at most [`FAILURE_CHECKS`]: once there are that many, the
+    /// objective's failures are taken to belong to its points (a wall) and are no
+    /// longer checked.
+    failures_repeated: u8,
+    /// A failed evaluation returned a finite value when repeated: the objective fails
+    /// at random (a renderer or simulation that sometimes crashes), and every failed
+    /// evaluation is repeated, up to [`FAILURE_RETRIES`] times, before it counts as one.
+    /// Once set, it stays set.
+    flaky: bool,
     /// Noise groups handed out so far; a point's group is stored as this count modulo
     /// 2²⁰ (exact in `f32`; the memory never holds points that far apart in time).
     groups: u32,
@@ -851,6 +872,8 @@ impl<T: Real> State<T> {
             dense: false,
             doubted: false,
             voting: false,
+            failures_repeated: 0,
+            flaky: false,
             groups: 0,
             shared: None,
             gained: false,

@@ -253,6 +253,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             unseeded: run.unseeded,
             dense: run.dense,
             voting: run.voting,
+            failures_repeated: run.failures_repeated,
+            flaky: run.flaky,
             groups: run.groups,
             metric_changes: run.metric_changes.wrapping_add(1),
             record: run.record,

@@ -9,7 +9,10 @@ use rand_core::Rng;
 use super::memory::{history_len, nearby_needed, survey_pairs, validating};
 use super::model::Ridge;
 use super::options::{AutoStep, NonFinite};
-use super::{Auto, CHUNK, PLATEAU_WIDTH, REACH, VOTES, metric, reflect, room_along, ties_with};
+use super::{
+    Auto, CHUNK, FAILURE_CHECKS, FAILURE_RETRIES, PLATEAU_WIDTH, REACH, VOTES, metric, reflect,
+    room_along, ties_with,
+};
 use crate::error::Error;
 use crate::objective::{Batch, NoiseSeed, Objective};
 use crate::optim::vector::orthogonalise;
@@ -337,6 +340,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                     &mut self.st.evaluations,
                     spent,
                 )?;
+                if self.options.non_finite != NonFinite::Error {
+                    self.repeat_failures(objective, start, &seeds[..distinct], spent)?;
+                }
                 if distinct < len {
                     self.spread_distinct(start, len, &draws);
                 }
@@ -355,6 +361,62 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 }
             }
             start += len;
+        }
+        Ok(())
+    }
+
+    /// Evaluates again each failed row (NaN or ±∞) among the staged rows `start …
+    /// start + seeds.len() − 1`, on its own seed, while the budget lasts: once, while
+    /// fewer than [`FAILURE_CHECKS`] repeats have failed too; up to [`FAILURE_RETRIES`]
+    /// times once a repeat has returned a finite value (`State::flaky`), which it then
+    /// keeps. On an objective that fails at random, a failed evaluation says nothing
+    /// about its point, and read as a wall ([`Auto::remember`]'s stand-ins) it rejected
+    /// good trials and bent the model; on one whose failures are its points', the
+    /// check costs [`FAILURE_CHECKS`] evaluations a run.
+    fn repeat_failures<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        start: usize,
+        seeds: &[NoiseSeed],
+        spent: &mut usize,
+    ) -> Result<(), Error> {
+        let n = self.theta.len();
+        // A second pass where the first found the failures random: rows checked
+        // before that are repeated as later ones are.
+        let flaky = self.st.flaky;
+        for pass in 0..2 {
+            if pass == 1 && (flaky || !self.st.flaky) {
+                break;
+            }
+            for (k, seed) in seeds.iter().enumerate() {
+                let row = start + k;
+                let mut repeats = 0;
+                while !self.mem.stage_f[row].is_finite() && self.remaining() > 0 {
+                    let checking = usize::from(self.st.failures_repeated) < FAILURE_CHECKS;
+                    let allowed = if self.st.flaky {
+                        FAILURE_RETRIES
+                    } else {
+                        usize::from(checking)
+                    };
+                    if repeats >= allowed {
+                        break;
+                    }
+                    repeats += 1;
+                    draw(
+                        objective,
+                        &self.mem.stage[row * n..(row + 1) * n],
+                        core::slice::from_ref(seed),
+                        &mut self.mem.stage_f[row..=row],
+                        &mut self.st.evaluations,
+                        spent,
+                    )?;
+                    if self.mem.stage_f[row].is_finite() {
+                        self.st.flaky = true;
+                    } else if !self.st.flaky {
+                        self.st.failures_repeated += 1;
+                    }
+                }
+            }
         }
         Ok(())
     }
