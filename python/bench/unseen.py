@@ -46,7 +46,10 @@ with the minimum inside), first run on 2026-12-05, and a twelfth, classic test f
 none of the earlier sets had (classics.py: himmelblau2, goldstein-price2, booth2, matyas2,
 mccormick2, three-hump-camel2, bukin6-2, drop-wave2, eggholder2, holder-table2,
 cross-in-tray2, shubert2, colville4, perm4, qing5, chung-reynolds10, schwefel222-10,
-powell-sum5), first run on 2026-12-05.
+powell-sum5), first run on 2026-12-05, and a thirteenth, objectives that fail at random
+(eight earlier rows whose evaluations return NaN with probability 0.1 or 0.3 wherever they
+lie: camera-pose6, gaussian-peaks9, arm10, mgh-wood4, zakharov10, discs9, rastrigin5 and
+walled10, each with -fails10 and -fails30 appended), first run on 2026-12-06.
 Each problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
@@ -95,10 +98,15 @@ class Spent(Exception):
 class Counted:
     """f with COCO's bookkeeping: evaluations, the first that reached the target (the
     run ends there; the evaluations after it count for nothing), and the wall time from
-    the object's making (the run's start) to that evaluation's return, in seconds."""
+    the object's making (the run's start) to that evaluation's return, in seconds. With
+    `failures` > 0 each evaluation fails (returns NaN, and reaches no target) with that
+    probability, whatever the point: draws from a generator seeded by the run's seed, so
+    that each solver's k-th evaluation of a run fails alike."""
 
-    def __init__(self, f, f_opt, target, budget):
+    def __init__(self, f, f_opt, target, budget, failures=0.0, seed=0):
         self.f, self.f_opt, self.target, self.budget = f, f_opt, target, budget
+        self.failures = failures
+        self.failure_draws = np.random.default_rng(20_000 + seed)
         self.evaluations = 0
         self.hit = None
         self.hit_time = None
@@ -109,6 +117,8 @@ class Counted:
             raise Spent
         self.evaluations += 1
         value = self.f(np.asarray(x, dtype=float))
+        if self.failures > 0.0 and self.failure_draws.random() < self.failures:
+            return float("nan")
         if self.hit is None and np.isfinite(value) and value - self.f_opt <= self.target:
             self.hit = self.evaluations
             self.hit_time = time.perf_counter() - self.start
@@ -381,7 +391,8 @@ class Problem(NamedTuple):
     coordinate, or n), the box ((low, high), each a scalar for every coordinate or n
     values, -inf or inf for an open side; or None), the budget, the target on f - f*, and
     the range the starts are drawn from, uniformly in each coordinate (scalars or n
-    values) and then clipped into the box."""
+    values) and then clipped into the box; and the probability with which an evaluation
+    fails at random, returning NaN (0 on all but the thirteenth set's rows)."""
 
     f: Callable[[np.ndarray], float]
     x_opt: np.ndarray
@@ -390,6 +401,7 @@ class Problem(NamedTuple):
     budget: int
     target: float
     start: tuple = (-3.0, 3.0)
+    failures: float = 0.0
 
     @property
     def n(self):
@@ -717,6 +729,15 @@ PROBLEMS.update({name: Problem(*case) for name, case in constraint_walls.PROBLEM
 # as Auto stood.
 PROBLEMS.update({name: Problem(*case) for name, case in classics.PROBLEMS.items()})
 
+# The thirteenth set (2026-12-06, seventy-ninth session): objectives that fail at random,
+# as a renderer or a simulation that sometimes crashes does: earlier rows whose every
+# evaluation returns NaN with probability 0.1 or 0.3, wherever its point lies (`Counted`),
+# so that a failure says nothing about the point. Walled10 fails beyond its wall as well.
+FLAKY = ["camera-pose6", "gaussian-peaks9", "arm10", "mgh-wood4", "zakharov10", "discs9",
+         "rastrigin5", "walled10"]
+PROBLEMS.update({f"{name}-fails{round(100 * rate)}": PROBLEMS[name]._replace(failures=rate)
+                 for name in FLAKY for rate in (0.1, 0.3)})
+
 
 def draw_start(problem, rng):
     """A start uniform in the problem's start range, clipped into its box."""
@@ -817,7 +838,8 @@ def main():
             run, hits = runners[solver], []
             for seed in range(args.seeds):
                 x0 = draw_start(problem, np.random.default_rng(seed))
-                counted = Counted(problem.f, problem.f_opt, problem.target, problem.budget)
+                counted = Counted(problem.f, problem.f_opt, problem.target, problem.budget,
+                                  problem.failures, seed)
                 try:
                     run(counted, x0, problem, seed)
                 except Spent:

@@ -14,7 +14,10 @@ pub enum NonFinite {
     /// and on an objective not declared noisy the model is fitted to it at just above the
     /// largest finite value remembered near it, so that the steps follow a wall of such
     /// points (a constraint the objective enforces by failing) instead of running into
-    /// it. Default.
+    /// it. A failed evaluation is first repeated at its point and seed, until
+    /// [`FAILURE_CHECKS`](super::FAILURE_CHECKS) repeats have failed too; once a repeat
+    /// returns a finite value, the objective fails at random and each failure is
+    /// repeated up to [`FAILURE_RETRIES`](super::FAILURE_RETRIES) times. Default.
     #[default]
     Worst,
     /// [`Auto::step`](super::Auto::step) returns [`Error::NonFiniteObjective`]; θ is unchanged.
