@@ -305,7 +305,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// not evaluated again but takes that row's value ([`Objective`]: equal seeds give
     /// equal noise), unless the objective draws unseeded noise, where a second draw is
     /// information: a pair whose halves the box folds onto one point (from a corner, or
-    /// along an axis normal to a face) costs one evaluation.
+    /// along an axis normal to a face) costs one evaluation. A row whose value failed
+    /// (NaN or ±∞) is evaluated again as [`Auto::repeat_failures`] says, except with
+    /// [`NonFinite::Error`].
     pub(super) fn evaluate<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,
