@@ -382,42 +382,54 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         seeds: &[NoiseSeed],
         spent: &mut usize,
     ) -> Result<(), Error> {
-        let n = self.theta.len();
-        // A second pass where the first found the failures random: rows checked
-        // before that are repeated as later ones are.
         let flaky = self.st.flaky;
-        for pass in 0..2 {
-            if pass == 1 && (flaky || !self.st.flaky) {
+        for (k, &seed) in seeds.iter().enumerate() {
+            self.repeat_failure(objective, start + k, seed, spent)?;
+        }
+        // Found random in this batch: the rows checked before are repeated as later
+        // ones were.
+        if !flaky && self.st.flaky {
+            for (k, &seed) in seeds.iter().enumerate() {
+                self.repeat_failure(objective, start + k, seed, spent)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Staged row `row`, while it has failed and the budget lasts, evaluated again on
+    /// `seed`: once while the check runs (fewer than [`FAILURE_CHECKS`] repeats have
+    /// failed), up to [`FAILURE_RETRIES`] times once the failures are known random.
+    fn repeat_failure<O: Objective<T> + ?Sized>(
+        &mut self,
+        objective: &mut O,
+        row: usize,
+        seed: NoiseSeed,
+        spent: &mut usize,
+    ) -> Result<(), Error> {
+        let n = self.theta.len();
+        let mut repeats = 0;
+        while !self.mem.stage_f[row].is_finite() && self.remaining() > 0 {
+            let allowed = if self.st.flaky {
+                FAILURE_RETRIES
+            } else {
+                usize::from(usize::from(self.st.failures_repeated) < FAILURE_CHECKS)
+            };
+            if repeats >= allowed {
                 break;
             }
-            for (k, seed) in seeds.iter().enumerate() {
-                let row = start + k;
-                let mut repeats = 0;
-                while !self.mem.stage_f[row].is_finite() && self.remaining() > 0 {
-                    let checking = usize::from(self.st.failures_repeated) < FAILURE_CHECKS;
-                    let allowed = if self.st.flaky {
-                        FAILURE_RETRIES
-                    } else {
-                        usize::from(checking)
-                    };
-                    if repeats >= allowed {
-                        break;
-                    }
-                    repeats += 1;
-                    draw(
-                        objective,
-                        &self.mem.stage[row * n..(row + 1) * n],
-                        core::slice::from_ref(seed),
-                        &mut self.mem.stage_f[row..=row],
-                        &mut self.st.evaluations,
-                        spent,
-                    )?;
-                    if self.mem.stage_f[row].is_finite() {
-                        self.st.flaky = true;
-                    } else if !self.st.flaky {
-                        self.st.failures_repeated += 1;
-                    }
-                }
+            repeats += 1;
+            draw(
+                objective,
+                &self.mem.stage[row * n..(row + 1) * n],
+                &[seed],
+                &mut self.mem.stage_f[row..=row],
+                &mut self.st.evaluations,
+                spent,
+            )?;
+            if self.mem.stage_f[row].is_finite() {
+                self.st.flaky = true;
+            } else if !self.st.flaky {
+                self.st.failures_repeated += 1;
             }
         }
         Ok(())
