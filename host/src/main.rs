@@ -189,15 +189,15 @@ enum Command {
         repeats: u64,
     },
     /// Generalisation suite: Auto, CMA-ES, BOBYQA and FR22 on BBOB functions, plateaus,
-    /// integer plateaus, a flat direction, BOX2, noisy functions and discs rendered on a
-    /// noise seed (suite.md, suite.csv, ecdf.png).
+    /// integer plateaus, a flat direction, BOX2, noisy functions, discs rendered on a
+    /// noise seed and functions that fail at random (suite.md, suite.csv, ecdf.png).
     #[command(allow_negative_numbers = true)]
     Suite {
         /// Families (comma-separated; default all): bbob, plateau, integer, flat, tasks,
-        /// noisy, rendered.
+        /// noisy, rendered, failing.
         #[arg(long, value_delimiter = ',')]
         families: Vec<String>,
-        /// Dimensions to run (comma-separated; default every family's own: BBOB 2, 5, 10, 20, plateau 2, 4, 8, integer 2, 5, 10, flat 6, tasks 2, noisy 2, 5, 10, rendered 2, 4, 8). BBOB and noisy run at any n from 2 to 1000, e.g. 40,100; the other families only at their own.
+        /// Dimensions to run (comma-separated; default every family's own: BBOB 2, 5, 10, 20, plateau 2, 4, 8, integer 2, 5, 10, flat 6, tasks 2, noisy 2, 5, 10, rendered 2, 4, 8, failing 2, 5, 10). BBOB, noisy and failing run at any n from 2 to 1000, e.g. 40,100; the other families only at their own.
         #[arg(long, value_delimiter = ',')]
         dims: Vec<usize>,
         /// Functions of the bbob and noisy families (comma-separated numbers; default all): bbob 1, 2, 6, 7, 8, 10, 11, 12, 13, 14, 15; noisy 101–112. A selected bbob or noisy family none of whose functions is listed runs none.

@@ -18,7 +18,8 @@
 //!   points' bit patterns — since the crate does not expose its sampling order; the
 //!   points are i.i.d., so this order is as good as any, and it does not depend on
 //!   thread scheduling. A run stops at the budget or at the crate's own termination
-//!   criteria.
+//!   criteria. A failed evaluation (NaN) is passed to it as +∞, worse than any value:
+//!   its ranking needs a total order (the crate takes NaN as equal to everything).
 //! * **BOBYQA** (the `bobyqa` crate, Powell's method ported from PRIMA): 2n + 1
 //!   interpolation points, ρ_begin = min(σ₀, ½·narrowest box width), ρ_end = 10⁻⁸·ρ_begin,
 //!   max_fun = the budget; bounds are passed to it (±∞ where the problem has none), and it
@@ -153,7 +154,7 @@ fn cma_es(problem: &Problem, x0: &[f64], seed: u64, counter: &mut Counter<'_>) -
         if let Ok(mut p) = pending.lock() {
             p.push((x, f, took));
         }
-        f
+        if f.is_nan() { f64::INFINITY } else { f }
     };
     let mut cma = cmaes::CMAESOptions::new(x0.to_vec(), problem.sigma0)
         .seed(seed)

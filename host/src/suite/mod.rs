@@ -4,8 +4,10 @@
 //! * A [`Problem`] is one definition — f, f*, x*, the start distribution, σ₀, bounds,
 //!   budget — and says nothing about any method. Families: BBOB noiseless functions
 //!   ([`bbob`]), disc and integer plateaus ([`plateau`]), a flat direction ([`flat`]),
-//!   the built-in BOX2 task ([`tasks`]), and the sphere and Rosenbrock's function under
-//!   BBOB's noise models ([`noisy`]). [`catalogue`] lists them.
+//!   the built-in BOX2 task ([`tasks`]), the sphere and Rosenbrock's function under
+//!   BBOB's noise models ([`noisy`]), discs rendered on the method's noise seed
+//!   ([`rendered`]) and BBOB functions whose evaluations fail at random ([`failing`]).
+//!   [`catalogue`] lists them.
 //! * A [`Method`] (Auto, CMA-ES, BOBYQA, FR22; [`methods`]) sees x₀, σ₀, bounds and
 //!   budget, and evaluates through one counting wrapper ([`trace`]) that records every
 //!   new best, so all are measured alike.
@@ -21,6 +23,7 @@
 //! may use both cores inside a run (CMA-ES generations, hodr-core batches).
 
 pub mod bbob;
+pub mod failing;
 pub mod flat;
 pub mod methods;
 pub mod noisy;
@@ -177,7 +180,9 @@ impl Config {
                     let have: Vec<String> = families
                         .iter()
                         .map(|f| match f {
-                            Family::Bbob | Family::Noisy => format!("{f} 2–{MAX_DIM}"),
+                            Family::Bbob | Family::Noisy | Family::Failing => {
+                                format!("{f} 2–{MAX_DIM}")
+                            }
                             _ => format!("{f} {:?}", f.dims()),
                         })
                         .collect();
@@ -333,6 +338,17 @@ pub fn catalogue(config: &Config) -> Result<Vec<Problem>> {
                     for &n in &dims {
                         for i in instances.clone() {
                             out.push(noisy::problem(id, n, i, b));
+                        }
+                    }
+                }
+            }
+            Family::Failing => {
+                for percent in failing::PERCENTS {
+                    for id in failing::IDS {
+                        for &n in &dims {
+                            for i in instances.clone() {
+                                out.push(failing::problem(id, percent, n, i, b));
+                            }
                         }
                     }
                 }

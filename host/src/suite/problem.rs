@@ -58,11 +58,13 @@ pub enum Family {
     /// The disc plateaus rendered by Monte Carlo on the method's noise seed,
     /// [`super::rendered`].
     Rendered,
+    /// BBOB functions whose evaluations fail (NaN) at random, [`super::failing`].
+    Failing,
 }
 
 impl Family {
     /// Every family, in run order.
-    pub const ALL: [Family; 7] = [
+    pub const ALL: [Family; 8] = [
         Family::Bbob,
         Family::Plateau,
         Family::Integer,
@@ -70,6 +72,7 @@ impl Family {
         Family::Tasks,
         Family::Noisy,
         Family::Rendered,
+        Family::Failing,
     ];
 
     /// The name on the command line.
@@ -82,6 +85,7 @@ impl Family {
             Family::Tasks => "tasks",
             Family::Noisy => "noisy",
             Family::Rendered => "rendered",
+            Family::Failing => "failing",
         }
     }
 
@@ -93,11 +97,11 @@ impl Family {
     }
 
     /// Whether the family has problems of dimension n: any n from 2 to [`MAX_DIM`] for
-    /// BBOB and its noisy variants, whose functions are defined in every dimension; the
-    /// family's own [`Family::dims`] for the others.
+    /// BBOB and its noisy and failing variants, whose functions are defined in every
+    /// dimension; the family's own [`Family::dims`] for the others.
     pub fn defined_at(self, n: usize) -> bool {
         match self {
-            Family::Bbob | Family::Noisy => (2..=MAX_DIM).contains(&n),
+            Family::Bbob | Family::Noisy | Family::Failing => (2..=MAX_DIM).contains(&n),
             _ => self.dims().contains(&n),
         }
     }
@@ -110,7 +114,7 @@ impl Family {
             Family::Integer => &[2, 5, 10],
             Family::Flat => &[super::flat::DIM],
             Family::Tasks => &[2],
-            Family::Noisy => &[2, 5, 10],
+            Family::Noisy | Family::Failing => &[2, 5, 10],
         }
     }
 }

@@ -237,12 +237,12 @@ fn log_ratios(mine: &[&Row], rows: &[Row], reference: Method, statistic: Statist
     logs
 }
 
-/// One group of problems (a family, or one BBOB function across its dimensions and
-/// instances) and the geometric-mean ratios of `method`'s median evaluations and median
+/// One group of problems (a family, one BBOB or noisy function across its dimensions
+/// and instances, or one failure rate of the failing family) and the geometric-mean ratios of `method`'s median evaluations and median
 /// wall time to each other method's, with the number of problems that entered each.
 #[derive(Clone, Debug)]
 pub struct PairRow {
-    /// The group's name: a family, or `bbob-fNN`.
+    /// The group's name: a family, `bbob-fNN`, `noisy-fNNN` or `failing-pNN`.
     pub group: String,
     /// Each other method and the geometric-mean ratio of evaluations against it.
     pub ratios: Vec<(Method, Ratio)>,
@@ -258,7 +258,9 @@ pub fn pairwise(
     rows: &[Row],
 ) -> Vec<PairRow> {
     let group_of = |p: &Problem| match p.family {
-        Family::Bbob | Family::Noisy => p.name.split('-').take(2).collect::<Vec<_>>().join("-"),
+        Family::Bbob | Family::Noisy | Family::Failing => {
+            p.name.split('-').take(2).collect::<Vec<_>>().join("-")
+        }
         f => f.to_string(),
     };
     let mut groups: Vec<String> = Family::ALL.iter().map(|f| f.to_string()).collect();

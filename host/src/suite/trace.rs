@@ -5,7 +5,8 @@
 //! is first clamped into the problem's bounds (a no-op for methods that stay inside);
 //! f and the parameter error are those of the clamped point. The method sees the value
 //! [`Problem::observe`] gives (f itself unless the problem is noisy); the trace judges
-//! the noiseless f. Whenever f − f* falls below the best so far, the trace records
+//! the noiseless f, at the points where the method saw a value: an evaluation that
+//! failed (NaN or ±∞ seen where f is finite) finds nothing. Whenever f − f* falls below the best so far, the trace records
 //! (evaluation number, wall time since the run began, f − f*, parameter error).
 //! Evaluations after the budget still return f (so a method can finish its iteration)
 //! but are not recorded or counted.
@@ -187,14 +188,15 @@ impl<'p> Counter<'p> {
     }
 
     /// Counts one evaluation of x (unclamped, as the method asked) that the method saw
-    /// as `seen` ([`Clamped::value`]); a noisy problem's run is judged on f there.
+    /// as `seen` ([`Clamped::value`]); a noisy problem's run is judged on f there, unless
+    /// `seen` is not finite (a failed evaluation finds nothing).
     pub fn record(&mut self, x: &[f64], seen: f64) {
         if self.count >= self.budget {
             return;
         }
         self.count += 1;
         let y = self.clamped().point(x);
-        let f = if self.problem.is_noisy() {
+        let f = if self.problem.is_noisy() && seen.is_finite() {
             self.problem.value(&y)
         } else {
             seen
