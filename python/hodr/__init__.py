@@ -353,8 +353,10 @@ def minimize(
         non-finite reports the first infinite one as ``fun`` and does not succeed.
         A failed evaluation is repeated at the same point (and seed) until four repeats
         have failed too; once one has returned a value, ``fun`` is taken to fail at
-        random (a renderer that sometimes crashes) and every failure is repeated up to
-        three times, so a failure rate p costs about 1/(1 - p) of the evaluations.
+        random (a renderer that sometimes crashes) and every failure is repeated while
+        the next repeat is likely to return a value, by the rate of random failures and
+        the share of failed points that no repeat turns into a value (a wall's) seen so
+        far, so a failure rate p costs about 1/(1 - p) of the evaluations.
         Return inf or NaN, or a constant penalty such as 1e10 or ``f + 100``, to
         enforce a constraint other than bounds: the run reaches a minimum that lies on
         such a wall (measured on a half-space at n <= 10, in fewer evaluations than

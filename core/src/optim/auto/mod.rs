@@ -261,6 +261,7 @@ mod centre;
 mod creep;
 mod eigen;
 mod explore;
+mod failures;
 mod fitting;
 mod fixed;
 mod memory;
@@ -281,6 +282,7 @@ use creep::Creep;
 pub use creep::{CREEP_GAIN, CREEP_SHRINK, CREEP_WINDOWS};
 use explore::Exploration;
 pub use explore::SHARE_RANGE;
+use failures::Failures;
 pub use fixed::FixedAuto;
 pub use memory::buffer_len;
 use memory::{Memory, buffer_len_of, carve, history_len, memory_determines_model};
@@ -580,11 +582,6 @@ pub const NOISE_MARGIN: f64 = 10.0;
 /// evaluations for the check.
 pub const FAILURE_CHECKS: usize = 4;
 
-/// Repeats of a failed evaluation, at the same point and seed, once the objective has
-/// been seen to fail at random (a repeat returned a finite value): at a failure rate p
-/// a point still fails after them with probability p^(1 + FAILURE_RETRIES).
-pub const FAILURE_RETRIES: usize = 3;
-
 /// Draws of one point at most on sparse unseeded noise (`Auto::vote`): it is drawn
 /// until two draws agree exactly, and keeps the median of its draws when none do.
 pub const VOTES: usize = 5;
@@ -691,16 +688,10 @@ struct State<T> {
     /// The unseeded noise is sparse (`Auto::sparse_noise`): every point is drawn until
     /// two draws agree (`Auto::vote`). Once set, it stays set.
     voting: bool,
-    /// Failed evaluations (NaN or ±∞) that failed again at the same point and seed
-    /// (`Auto::evaluate`), at most [`FAILURE_CHECKS`]: once there are that many, the
-    /// objective's failures are taken to belong to its points (a wall) and are no
-    /// longer checked.
-    failures_repeated: u8,
-    /// A failed evaluation returned a finite value when repeated: the objective fails
-    /// at random (a renderer or simulation that sometimes crashes), and every failed
-    /// evaluation is repeated, up to [`FAILURE_RETRIES`] times, before it counts as one.
-    /// Once set, it stays set.
-    flaky: bool,
+    /// How the run's failed evaluations (NaN or ±∞) fared when evaluated again at the
+    /// same point and seed (`Auto::evaluate`): whether the objective fails at random,
+    /// and how often a repeat then returns a value.
+    failures: Failures,
     /// Noise groups handed out so far; a point's group is stored as this count modulo
     /// 2²⁰ (exact in `f32`; the memory never holds points that far apart in time).
     groups: u32,
@@ -872,8 +863,7 @@ impl<T: Real> State<T> {
             dense: false,
             doubted: false,
             voting: false,
-            failures_repeated: 0,
-            flaky: false,
+            failures: Failures::default(),
             groups: 0,
             shared: None,
             gained: false,

@@ -17,7 +17,9 @@ pub enum NonFinite {
     /// it. A failed evaluation is first repeated at its point and seed, until
     /// [`FAILURE_CHECKS`](super::FAILURE_CHECKS) repeats have failed too; once a repeat
     /// returns a finite value, the objective fails at random and each failure is
-    /// repeated up to [`FAILURE_RETRIES`](super::FAILURE_RETRIES) times. Default.
+    /// repeated while the next repeat is likely enough to return a value, by the rates
+    /// of random failures and of failures that repeats never turned into values the run
+    /// has seen. Default.
     #[default]
     Worst,
     /// [`Auto::step`](super::Auto::step) returns [`Error::NonFiniteObjective`]; θ is unchanged.

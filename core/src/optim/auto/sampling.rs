@@ -9,10 +9,7 @@ use rand_core::Rng;
 use super::memory::{history_len, nearby_needed, survey_pairs, validating};
 use super::model::Ridge;
 use super::options::{AutoStep, NonFinite};
-use super::{
-    Auto, CHUNK, FAILURE_CHECKS, FAILURE_RETRIES, PLATEAU_WIDTH, REACH, VOTES, metric, reflect,
-    room_along, ties_with,
-};
+use super::{Auto, CHUNK, PLATEAU_WIDTH, REACH, VOTES, metric, reflect, room_along, ties_with};
 use crate::error::Error;
 use crate::objective::{Batch, NoiseSeed, Objective};
 use crate::optim::vector::orthogonalise;
@@ -368,13 +365,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Evaluates again each failed row (NaN or ±∞) among the staged rows `start …
-    /// start + seeds.len() − 1`, on its own seed, while the budget lasts: once, while
-    /// fewer than [`FAILURE_CHECKS`] repeats have failed too; up to [`FAILURE_RETRIES`]
-    /// times once a repeat has returned a finite value (`State::flaky`), which it then
-    /// keeps. On an objective that fails at random, a failed evaluation says nothing
-    /// about its point, and read as a wall ([`Auto::remember`]'s stand-ins) it rejected
-    /// good trials and bent the model; on one whose failures are its points', the
-    /// check costs [`FAILURE_CHECKS`] evaluations a run.
+    /// start + seeds.len() − 1`, on its own seed, while the budget lasts and
+    /// [`Failures::repeat`](super::failures::Failures::repeat) says so: once each while
+    /// the run checks whether its failures are random (until [`FAILURE_CHECKS`](super::FAILURE_CHECKS) repeats
+    /// have failed too), and once a repeat has returned a value, while the next is
+    /// likely enough to. On an objective that fails at random, a failed evaluation says
+    /// nothing about its point, and read as a wall ([`Auto::remember`]'s stand-ins) it
+    /// rejected good trials and bent the model; on one whose failures are its points',
+    /// the check costs [`FAILURE_CHECKS`](super::FAILURE_CHECKS) evaluations a run.
     fn repeat_failures<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,
@@ -382,13 +380,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         seeds: &[NoiseSeed],
         spent: &mut usize,
     ) -> Result<(), Error> {
-        let flaky = self.st.flaky;
+        let random = self.st.failures.random();
         for (k, &seed) in seeds.iter().enumerate() {
             self.repeat_failure(objective, start + k, seed, spent)?;
         }
         // Found random in this batch: the rows checked before are repeated as later
         // ones were.
-        if !flaky && self.st.flaky {
+        if !random && self.st.failures.random() {
             for (k, &seed) in seeds.iter().enumerate() {
                 self.repeat_failure(objective, start + k, seed, spent)?;
             }
@@ -396,9 +394,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         Ok(())
     }
 
-    /// Staged row `row`, while it has failed and the budget lasts, evaluated again on
-    /// `seed`: once while the check runs (fewer than [`FAILURE_CHECKS`] repeats have
-    /// failed), up to [`FAILURE_RETRIES`] times once the failures are known random.
+    /// Staged row `row`, while it has failed, the budget lasts and the run's record of
+    /// failures says it is worth it, evaluated again on `seed`; how its repeats ended
+    /// goes into that record.
     fn repeat_failure<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,
@@ -408,14 +406,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     ) -> Result<(), Error> {
         let n = self.theta.len();
         let mut repeats = 0;
-        while !self.mem.stage_f[row].is_finite() && self.remaining() > 0 {
-            let allowed = if self.st.flaky {
-                FAILURE_RETRIES
-            } else {
-                usize::from(usize::from(self.st.failures_repeated) < FAILURE_CHECKS)
-            };
-            if repeats >= allowed {
-                break;
+        let mut first_failed = false;
+        while !self.mem.stage_f[row].is_finite() && self.st.failures.repeat(repeats) {
+            if self.remaining() == 0 {
+                return Ok(());
             }
             repeats += 1;
             draw(
@@ -426,12 +420,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 &mut self.st.evaluations,
                 spent,
             )?;
-            if self.mem.stage_f[row].is_finite() {
-                self.st.flaky = true;
-            } else if !self.st.flaky {
-                self.st.failures_repeated += 1;
+            if repeats == 1 {
+                first_failed = !self.mem.stage_f[row].is_finite();
             }
         }
+        let recovered = self.mem.stage_f[row].is_finite();
+        self.st.failures.note(repeats, first_failed, recovered);
         Ok(())
     }
 
