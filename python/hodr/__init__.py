@@ -352,7 +352,7 @@ def minimize(
         NaN or inf counts as worse than any value; a run in which every value was
         non-finite reports the first infinite one as ``fun`` and does not succeed.
         A failed evaluation is repeated at the same point (and seed) until four repeats
-        have failed too; once one has returned a value, ``fun`` is taken to fail at
+        have failed too, then at each doubling of the failures; once one has returned a value, ``fun`` is taken to fail at
         random (a renderer that sometimes crashes) and every failure is repeated while
         the next repeat is likely to return a value, by the rate of random failures and
         the share of failed points that no repeat turns into a value (a wall's) seen so

@@ -32,13 +32,24 @@ const LOST: f64 = 1e-4;
 /// Repeats of one failed evaluation at most.
 const MOST_REPEATS: usize = 16;
 
+/// Once [`FAILURE_CHECKS`] checks have failed, the failed evaluations numbered 16, 32,
+/// 64, … from there are checked again: an objective that fails at random with
+/// probability p fails every first check with probability p^FAILURE_CHECKS (1 in 16 at p
+/// = ½), and a run that took its failures for a wall then has a chance 1 − p at each
+/// recheck to learn otherwise, while a wall's run pays one evaluation per doubling of
+/// its failures.
+const RECHECK_FROM: u32 = 16;
+
 /// How the run's failed evaluations fared when repeated (module header). Kept across
 /// descents.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(super) struct Failures {
-    /// Checks that failed too, while none has returned a value (at most
-    /// [`FAILURE_CHECKS`]).
+    /// Checks that failed too, while none has returned a value.
     checked: u8,
+    /// Failed evaluations since [`FAILURE_CHECKS`] checks had failed, while none has
+    /// returned a value: each whose number is a power of two from [`RECHECK_FROM`] is
+    /// checked again.
+    since_checks: u32,
     /// A repeat has returned a value: the objective fails at random.
     random: bool,
     /// Failed evaluations repeated since `random`.
@@ -58,13 +69,16 @@ impl Failures {
     }
 
     /// Whether a failed evaluation whose `repeats` repeats have failed too is evaluated
-    /// again: once while the run checks (fewer than [`FAILURE_CHECKS`] failed checks);
+    /// again: once while the run checks (fewer than [`FAILURE_CHECKS`] failed checks, then
+    /// at each doubling of the failures since from [`RECHECK_FROM`]);
     /// once failures are known random, always once, and then while the next repeat
     /// returns a value with probability at least [`WORTH`] and p^(1 + repeats) > [`LOST`],
     /// at most [`MOST_REPEATS`] times.
     pub(super) fn repeat(&self, repeats: usize) -> bool {
         if !self.random {
-            return repeats == 0 && usize::from(self.checked) < FAILURE_CHECKS;
+            let next = self.since_checks.saturating_add(1);
+            let recheck = next >= RECHECK_FROM && next.is_power_of_two();
+            return repeats == 0 && (usize::from(self.checked) < FAILURE_CHECKS || recheck);
         }
         if repeats == 0 {
             return true;
@@ -91,6 +105,10 @@ impl Failures {
     /// failing when `first_failed`, the last returning a value when `recovered`. Not for
     /// repeats the budget cut short.
     pub(super) fn note(&mut self, repeats: usize, first_failed: bool, recovered: bool) {
+        if !self.random && !recovered && usize::from(self.checked) >= FAILURE_CHECKS {
+            self.since_checks = self.since_checks.saturating_add(1);
+            return;
+        }
         if repeats == 0 {
             return;
         }
@@ -114,13 +132,13 @@ impl Failures {
 mod tests {
     use super::*;
 
-    /// Failures at a wall are checked [`FAILURE_CHECKS`] times, once each, and then no
-    /// longer repeated.
+    /// Failures at a wall are checked [`FAILURE_CHECKS`] times, once each, and then once
+    /// at each doubling of the failures since from [`RECHECK_FROM`]: 16, 32 and 64 of 100.
     #[test]
-    fn a_wall_is_checked_failure_checks_times() {
+    fn a_wall_is_checked_failure_checks_times_and_at_doublings() {
         let mut f = Failures::default();
         let mut repeats = 0;
-        for _ in 0..100 {
+        for _ in 0..FAILURE_CHECKS + 100 {
             let mut k = 0;
             while f.repeat(k) {
                 k += 1;
@@ -128,7 +146,7 @@ mod tests {
             f.note(k, k > 0, false);
             repeats += k;
         }
-        assert_eq!(repeats, FAILURE_CHECKS);
+        assert_eq!(repeats, FAILURE_CHECKS + 3);
         assert!(!f.random());
     }
 
@@ -140,6 +158,7 @@ mod tests {
         let allowed = |f: &Failures| (0..).find(|&k| !f.repeat(k)).unwrap();
         let record = |repeated, first_failed, recovered, misses| Failures {
             checked: 0,
+            since_checks: 0,
             random: true,
             repeated,
             first_failed,

@@ -578,8 +578,9 @@ pub const NOISE_MARGIN: f64 = 10.0;
 
 /// Failed evaluations that fail again when repeated (`Auto::evaluate`), after which an
 /// objective's failures are taken to belong to its points — a wall, a region where it
-/// is undefined — and are no longer repeated: a run beside a wall pays this many
-/// evaluations for the check.
+/// is undefined — and are repeated only at each doubling of the failures from the 16th
+/// after the checks: a run beside a wall pays this many evaluations for the check, and
+/// one for each doubling.
 pub const FAILURE_CHECKS: usize = 4;
 
 /// Draws of one point at most on sparse unseeded noise (`Auto::vote`): it is drawn

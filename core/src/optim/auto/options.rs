@@ -15,7 +15,8 @@ pub enum NonFinite {
     /// largest finite value remembered near it, so that the steps follow a wall of such
     /// points (a constraint the objective enforces by failing) instead of running into
     /// it. A failed evaluation is first repeated at its point and seed, until
-    /// [`FAILURE_CHECKS`](super::FAILURE_CHECKS) repeats have failed too; once a repeat
+    /// [`FAILURE_CHECKS`](super::FAILURE_CHECKS) repeats have failed too, then at each
+    /// doubling of the failures; once a repeat
     /// returns a finite value, the objective fails at random and each failure is
     /// repeated while the next repeat is likely enough to return a value, by the rates
     /// of random failures and of failures that repeats never turned into values the run
