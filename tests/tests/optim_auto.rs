@@ -1029,6 +1029,14 @@ fn noise_that_grows_with_f_does_not_walk_uphill() {
     }
 }
 
+/// Whether each evaluation in turn fails, with probability `p`: draws from a stream of
+/// their own, seeded by 7 000 000 + `seed`.
+fn random_failures(p: f64, seed: u64) -> impl FnMut() -> bool {
+    use rand_xoshiro::rand_core::Rng;
+    let mut draws = Xoshiro256PlusPlus::seed_from_u64(7_000_000 + seed);
+    move || ((draws.next_u64() >> 11) as f64 / (1u64 << 53) as f64) < p
+}
+
 /// An objective that fails at random — NaN from one evaluation in five, wherever the point
 /// lies, as a renderer or simulation that sometimes crashes — costs about 1/(1 − p) of
 /// the evaluations it would without failures: a failed evaluation is repeated once the
@@ -1039,14 +1047,12 @@ fn noise_that_grows_with_f_does_not_walk_uphill() {
 /// seeds 0–399). Bound over 20 seeds: P(X < 18 | p = 0.99, N = 20) = 0.001.
 #[test]
 fn random_failures_cost_little() {
-    use rand_xoshiro::rand_core::Rng;
     let n = 5;
     let mut solved = 0;
     for seed in 0..20u64 {
-        let mut failures = Xoshiro256PlusPlus::seed_from_u64(7_000_000 + seed);
+        let mut fails = random_failures(0.2, seed);
         let mut f = |x: &[f64]| {
-            let draw = (failures.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-            if draw < 0.2 {
+            if fails() {
                 return f64::NAN;
             }
             x.iter()
@@ -1115,15 +1121,13 @@ fn failures_at_a_wall_are_repeated_only_to_check() {
 /// N = 20) = 0.01; at the fixed repeats' rate, at most 0.5, P(X ≥ 15) = 0.02.
 #[test]
 fn a_wall_of_an_objective_that_also_fails_at_random_costs_little() {
-    use rand_xoshiro::rand_core::Rng;
     let n = 5;
     let half = 0.5 * (n as f64).sqrt();
     let mut solved = 0;
     for seed in 0..20u64 {
-        let mut failures = Xoshiro256PlusPlus::seed_from_u64(7_000_000 + seed);
+        let mut fails = random_failures(0.1, seed);
         let mut f = |x: &[f64]| {
-            let draw = (failures.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-            if draw < 0.1 {
+            if fails() {
                 f64::NAN
             } else if x.iter().sum::<f64>() / (n as f64).sqrt() <= half {
                 x.iter().map(|v| (v - 1.0).powi(2)).sum()

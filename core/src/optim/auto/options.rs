@@ -16,11 +16,10 @@ pub enum NonFinite {
     /// points (a constraint the objective enforces by failing) instead of running into
     /// it. A failed evaluation is first repeated at its point and seed, until
     /// [`FAILURE_CHECKS`](super::FAILURE_CHECKS) repeats have failed too, then at each
-    /// doubling of the failures; once a repeat
-    /// returns a finite value, the objective fails at random and each failure is
-    /// repeated while the next repeat is likely enough to return a value, by the rates
-    /// of random failures and of failures that repeats never turned into values the run
-    /// has seen. Default.
+    /// doubling of the failures; once a repeat returns a finite value, the objective
+    /// fails at random and each failure is repeated while the next repeat is likely
+    /// enough to return a value, by the rate of random failures and the share of failed
+    /// points that are a wall's, as the run has seen them. Default.
     #[default]
     Worst,
     /// [`Auto::step`](super::Auto::step) returns [`Error::NonFiniteObjective`]; θ is unchanged.
