@@ -341,8 +341,8 @@ fn parallel_runs_give_the_same_results() {
     assert_eq!(evaluations("1"), evaluations("2"));
 }
 
-/// BBOB and its noisy variants run at any chosen dimension ≥ 2, the other families only
-/// at their own.
+/// BBOB and its noisy and failing variants run at any chosen dimension ≥ 2, the other
+/// families only at their own.
 #[test]
 fn chosen_dimensions_select_bbob_anywhere_and_the_rest_at_their_own() {
     let dims = [40, 2];
@@ -356,7 +356,9 @@ fn chosen_dimensions_select_bbob_anywhere_and_the_rest_at_their_own() {
     assert!(problems.iter().all(|p| p.n == 40 || p.n == 2));
     assert!(problems.iter().filter(|p| p.n == 40).all(|p| matches!(
         p.family,
-        suite::problem::Family::Bbob | suite::problem::Family::Noisy
+        suite::problem::Family::Bbob
+            | suite::problem::Family::Noisy
+            | suite::problem::Family::Failing
     )));
 }
 
