@@ -200,7 +200,7 @@ enum Command {
         /// Dimensions to run (comma-separated; default every family's own: BBOB 2, 5, 10, 20, plateau 2, 4, 8, integer 2, 5, 10, flat 6, tasks 2, noisy 2, 5, 10, rendered 2, 4, 8, failing 2, 5, 10). BBOB, noisy and failing run at any n from 2 to 1000, e.g. 40,100; the other families only at their own.
         #[arg(long, value_delimiter = ',')]
         dims: Vec<usize>,
-        /// Functions of the bbob and noisy families (comma-separated numbers; default all): bbob 1, 2, 6, 7, 8, 10, 11, 12, 13, 14, 15; noisy 101–112. A selected bbob or noisy family none of whose functions is listed runs none.
+        /// Functions of the bbob, noisy and failing families (comma-separated numbers; default all): bbob 1, 2, 6, 7, 8, 10, 11, 12, 13, 14, 15; noisy 101–112; failing 1, 2, 8, 10, 15. A selected bbob, noisy or failing family none of whose functions is listed runs none.
         #[arg(long, value_delimiter = ',')]
         functions: Vec<u32>,
         /// Methods (comma-separated; default all): Auto, CMA-ES, BOBYQA, FR22.

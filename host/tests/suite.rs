@@ -362,11 +362,11 @@ fn chosen_dimensions_select_bbob_anywhere_and_the_rest_at_their_own() {
     )));
 }
 
-/// `--functions` keeps the chosen BBOB and noisy functions, in the suite's order, and the
-/// other families whole; a BBOB or noisy family none of whose functions is listed runs
-/// none.
+/// `--functions` keeps the chosen BBOB, noisy and failing functions, in the suite's
+/// order, and the other families whole; a BBOB, noisy or failing family none of whose
+/// functions is listed runs none.
 #[test]
-fn chosen_functions_select_bbob_and_noisy_problems() {
+fn chosen_functions_select_bbob_noisy_and_failing_problems() {
     use suite::problem::Family;
     let all = Config::from_args(&[], &[], &[], None, None, true, "unused".into()).unwrap();
     let names = |config: &Config, family: Family| -> Vec<String> {
@@ -386,8 +386,34 @@ fn chosen_functions_select_bbob_and_noisy_problems() {
     assert!(!names(&bbob_only, Family::Plateau).is_empty());
     assert!(names(&bbob_only, Family::Noisy).is_empty());
 
+    // The failing family's functions are BBOB's numbers, selected with them.
+    assert!(
+        names(&bbob_only, Family::Failing)
+            .iter()
+            .all(|n| n.ends_with("-f02") || n.ends_with("-f10"))
+    );
+    let failing_only = Config::from_args(
+        &["failing".into()],
+        &[],
+        &[],
+        None,
+        None,
+        true,
+        "unused".into(),
+    )
+    .unwrap()
+    .with_functions(&[8])
+    .unwrap();
+    let failing = names(&failing_only, Family::Failing);
+    assert!(!failing.is_empty());
+    assert!(failing.iter().all(|n| n.ends_with("-f08")));
+
     let mixed = all.with_functions(&[109, 13, 104]).unwrap();
     assert!(names(&mixed, Family::Bbob).iter().all(|n| n == "bbob-f13"));
+    assert!(
+        names(&mixed, Family::Failing).is_empty(),
+        "f13 is not a failing function"
+    );
     let noisy = names(&mixed, Family::Noisy);
     let first_f109 = noisy.iter().position(|n| n == "noisy-f109").unwrap();
     assert!(first_f109 > 0);
@@ -419,6 +445,14 @@ fn bad_suite_arguments_fail_with_one_line() {
         (
             &["suite", "--families", "bbob", "--functions", "2,104"][..],
             "function 104 belongs to the noisy family",
+        ),
+        (
+            &["suite", "--families", "failing", "--functions", "6"][..],
+            "function 6 belongs to the bbob family",
+        ),
+        (
+            &["suite", "--families", "noisy", "--functions", "8"][..],
+            "function 8 belongs to the bbob or failing family",
         ),
     ] {
         let out = hodr(args);

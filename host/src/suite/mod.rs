@@ -77,8 +77,9 @@ pub struct Config {
     /// `None`: every family's own (with `quick`, those up to [`QUICK_MAX_DIM`], and the
     /// flat problem).
     pub dims: Option<Vec<usize>>,
-    /// BBOB and noisy functions to run, in [`bbob::IDS`] then [`noisy::IDS`] order;
-    /// `None`: all of them.
+    /// BBOB, noisy and failing functions to run, in [`bbob::IDS`] then [`noisy::IDS`]
+    /// order (the failing family's are BBOB's numbers, [`failing::IDS`]); `None`: all of
+    /// them.
     pub functions: Option<Vec<u32>>,
     /// Methods, in [`Method::ALL`] order.
     pub methods: Vec<Method>,
@@ -111,34 +112,45 @@ impl Config {
         Ok(self)
     }
 
-    /// Runs only the functions `ids` of the BBOB family ([`bbob::IDS`], e.g. 2 and 10)
-    /// and of the noisy family ([`noisy::IDS`], e.g. 104); the other families run whole.
-    /// A selected BBOB or noisy family none of whose functions is listed runs none.
+    /// Runs only the functions `ids` of the BBOB family ([`bbob::IDS`], e.g. 2 and 10),
+    /// of the noisy family ([`noisy::IDS`], e.g. 104) and of the failing family
+    /// ([`failing::IDS`], BBOB's numbers); the other families run whole. A selected
+    /// BBOB, noisy or failing family none of whose functions is listed runs none.
     /// Empty: all of them.
     ///
     /// # Errors
     /// A one-line message naming the culprit: a function the suite does not define, one
-    /// listed twice, or one whose family (bbob for 1–15, noisy for 101–112) is not
-    /// selected.
+    /// listed twice, or one none of whose families (bbob for 1–15, failing for 1, 2, 8,
+    /// 10 and 15, noisy for 101–112) is selected.
     pub fn with_functions(mut self, ids: &[u32]) -> Result<Config> {
         if ids.is_empty() {
             self.functions = None;
             return Ok(self);
         }
         for (k, id) in ids.iter().enumerate() {
-            let family = if bbob::IDS.contains(id) {
-                Family::Bbob
-            } else if noisy::IDS.contains(id) {
-                Family::Noisy
-            } else {
+            let families: Vec<Family> = [
+                (Family::Bbob, &bbob::IDS[..]),
+                (Family::Failing, &failing::IDS[..]),
+                (Family::Noisy, &noisy::IDS[..]),
+            ]
+            .into_iter()
+            .filter(|(_, have)| have.contains(id))
+            .map(|(family, _)| family)
+            .collect();
+            if families.is_empty() {
                 bail!(
-                    "unknown function {id} (bbob has {:?}, noisy has {:?})",
+                    "unknown function {id} (bbob has {:?}, failing {:?}, noisy {:?})",
                     bbob::IDS,
+                    failing::IDS,
                     noisy::IDS
                 );
-            };
-            if !self.families.contains(&family) {
-                bail!("function {id} belongs to the {family} family, which is not selected");
+            }
+            if !families.iter().any(|f| self.families.contains(f)) {
+                let names: Vec<&str> = families.iter().map(|f| f.name()).collect();
+                bail!(
+                    "function {id} belongs to the {} family, which is not selected",
+                    names.join(" or ")
+                );
             }
             if ids[..k].contains(id) {
                 bail!("function {id} listed twice");
@@ -149,7 +161,7 @@ impl Config {
         Ok(self)
     }
 
-    /// Whether function `id` of the BBOB or noisy family runs.
+    /// Whether function `id` of the BBOB, noisy or failing family runs.
     fn runs_function(&self, id: u32) -> bool {
         self.functions.as_ref().is_none_or(|f| f.contains(&id))
     }
@@ -344,7 +356,10 @@ pub fn catalogue(config: &Config) -> Result<Vec<Problem>> {
             }
             Family::Failing => {
                 for percent in failing::PERCENTS {
-                    for id in failing::IDS {
+                    for id in failing::IDS
+                        .into_iter()
+                        .filter(|&i| config.runs_function(i))
+                    {
                         for &n in &dims {
                             for i in instances.clone() {
                                 out.push(failing::problem(id, percent, n, i, b));
