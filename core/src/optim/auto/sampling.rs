@@ -369,10 +369,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// [`Failures::repeat`](super::failures::Failures::repeat) says so: once each while
     /// the run checks whether its failures are random (until
     /// [`FAILURE_CHECKS`](super::FAILURE_CHECKS) repeats have failed too), and once a
-    /// repeat has returned a value, while the next is likely enough to. On an objective that fails at random, a failed evaluation says
-    /// nothing about its point, and read as a wall ([`Auto::remember`]'s stand-ins) it
-    /// rejected good trials and bent the model; on one whose failures are its points',
-    /// the check costs [`FAILURE_CHECKS`](super::FAILURE_CHECKS) evaluations a run.
+    /// repeat has returned a value, while the next is likely enough to. On an objective
+    /// that fails at random, a failed evaluation says nothing about its point, and read
+    /// as a wall ([`Auto::remember`]'s stand-ins) it rejected good trials and bent the
+    /// model; on one whose failures are its points', the check costs
+    /// [`FAILURE_CHECKS`](super::FAILURE_CHECKS) evaluations a run, and one more per
+    /// doubling of its failures.
     fn repeat_failures<O: Objective<T> + ?Sized>(
         &mut self,
         objective: &mut O,
