@@ -97,8 +97,10 @@ pub(crate) fn factor_rows<T: Real>(
         for j in 0..start {
             let lj = &done[j * stride..j * stride + j + 1];
             let dots = {
-                let rows: [&[T]; BLOCK] =
-                    core::array::from_fn(|b| &rest[b * stride..b * stride + j]);
+                let mut rows: [&[T]; BLOCK] = [&[]; BLOCK];
+                for (b, row) in rows.iter_mut().enumerate() {
+                    *row = &rest[b * stride..b * stride + j];
+                }
                 dot_lanes_many(rows, lj, j)
             };
             for (b, d) in dots.into_iter().enumerate() {

@@ -134,8 +134,10 @@ pub fn whiten_rows<T: Real>(
     let mut k0 = 0;
     if shape == Shape::Full {
         while k0 + WHITEN_BLOCK <= count {
-            let x: [&[T]; WHITEN_BLOCK] =
-                core::array::from_fn(|b| &xs[(k0 + b) * n..(k0 + b + 1) * n]);
+            let mut x: [&[T]; WHITEN_BLOCK] = [&[]; WHITEN_BLOCK];
+            for (b, xb) in x.iter_mut().enumerate() {
+                *xb = &xs[(k0 + b) * n..(k0 + b + 1) * n];
+            }
             for (i, row) in li[..n * n].chunks_exact(n).enumerate() {
                 let sums = rows_times_difference(row, x, y);
                 for (b, &s) in sums.iter().enumerate() {
@@ -172,11 +174,12 @@ fn rows_times_difference<T: Real, const R: usize>(a: &[T], x: [&[T]; R], y: &[T]
             }
         }
     }
-    core::array::from_fn(|r| {
-        let tail = (full..n).fold(T::ZERO, |s, j| s + a[j] * (x[r][j] - y[j]));
-        let l = &lanes[r];
-        (l[0] + l[1]) + (l[2] + l[3]) + tail
-    })
+    let mut out = [T::ZERO; R];
+    for ((o, l), xr) in out.iter_mut().zip(&lanes).zip(x) {
+        let tail = (full..n).fold(T::ZERO, |s, j| s + a[j] * (xr[j] - y[j]));
+        *o = (l[0] + l[1]) + (l[2] + l[3]) + tail;
+    }
+    out
 }
 
 /// Σⱼ aⱼ(xⱼ − yⱼ) in four interleaved partial sums (as

@@ -246,20 +246,22 @@ fn products<T: Real, const R: usize>(rows: [&[T]; R], b: &[T], n: usize) -> [(T,
             }
         }
     }
-    core::array::from_fn(|r| {
-        let (q, l) = (&quad[r], &lin[r]);
-        let (tq, tl) = rows[r][full..n].iter().zip(&b[full..n]).fold(
-            (T::ZERO, T::ZERO),
-            |(sq, sl), (&x, &y)| {
-                let p = x * y;
-                (sq + p * p, sl + p)
-            },
-        );
-        (
+    let mut out = [(T::ZERO, T::ZERO); R];
+    for ((o, (q, l)), row) in out.iter_mut().zip(quad.iter().zip(&lin)).zip(rows) {
+        let (tq, tl) =
+            row[full..n]
+                .iter()
+                .zip(&b[full..n])
+                .fold((T::ZERO, T::ZERO), |(sq, sl), (&x, &y)| {
+                    let p = x * y;
+                    (sq + p * p, sl + p)
+                });
+        *o = (
             (q[0] + q[1]) + (q[2] + q[3]) + tq,
             (l[0] + l[1]) + (l[2] + l[3]) + tl,
-        )
-    })
+        );
+    }
+    out
 }
 
 /// ‖a‖² in four interleaved partial sums, (s₀ + s₁) + (s₂ + s₃), the tail's squares
@@ -295,22 +297,29 @@ fn kernel_block<T: Real, const R: usize>(
     k0: usize,
 ) -> [T; R] {
     let ui = &u[i * n..(i + 1) * n];
-    let rows: [&[T]; R] = core::array::from_fn(|b| &u[(k0 + b) * n..(k0 + b + 1) * n]);
+    let mut rows: [&[T]; R] = [&[]; R];
+    for (b, row) in rows.iter_mut().enumerate() {
+        *row = &u[(k0 + b) * n..(k0 + b + 1) * n];
+    }
     let common = |b: usize| norms[i] * norms[k0 + b];
+    let mut out = [T::ZERO; R];
     if shape == Shape::Full && share == T::ZERO {
         // No per-axis features (a determined full model): the dot products alone, summed
         // as `products` sums them.
         let dots = dot_lanes_many(rows, ui, n);
-        return core::array::from_fn(|b| dots[b].sq() + common(b));
+        for (b, (o, dot)) in out.iter_mut().zip(dots).enumerate() {
+            *o = dot.sq() + common(b);
+        }
+        return out;
     }
     let sums = products(rows, ui, n);
-    core::array::from_fn(|b| {
-        let (quad, lin) = sums[b];
-        match shape {
+    for (b, (o, (quad, lin))) in out.iter_mut().zip(sums).enumerate() {
+        *o = match shape {
             Shape::Full => lin.sq() + common(b) + share * quad,
             Shape::Diagonal => quad * share + common(b) + T::from_f64(4.0) * lin,
-        }
-    })
+        };
+    }
+    out
 }
 
 /// Points whose Gram entries with one point [`fit`] computes in one pass.
@@ -550,12 +559,19 @@ fn update_block<T: Real, const R: usize>(
     half_lh: T,
     h: &mut [T],
 ) {
-    let c: [T; R] = core::array::from_fn(|b| sw[b] * alpha[b]);
-    let us: [&[T]; R] = core::array::from_fn(|b| &u[b * n..(b + 1) * n]);
-    let common: [T; R] =
-        core::array::from_fn(|b| c[b] * us[b].iter().fold(T::ZERO, |s, &x| s + x * x) * half_lh);
+    let mut c = [T::ZERO; R];
+    let mut us: [&[T]; R] = [&[]; R];
+    let mut common = [T::ZERO; R];
+    for b in 0..R {
+        c[b] = sw[b] * alpha[b];
+        us[b] = &u[b * n..(b + 1) * n];
+        common[b] = c[b] * us[b].iter().fold(T::ZERO, |s, &x| s + x * x) * half_lh;
+    }
     for (j, row) in h[..n * n].chunks_exact_mut(n).enumerate() {
-        let a: [T; R] = core::array::from_fn(|b| c[b] * us[b][j] * half_lh);
+        let mut a = [T::ZERO; R];
+        for b in 0..R {
+            a[b] = c[b] * us[b][j] * half_lh;
+        }
         // The diagonal entry takes each point's axis terms right after its product.
         let mut diagonal = row[j];
         for b in 0..R {
