@@ -2,7 +2,7 @@
 //! and with a growing diagonal shift, for Newton steps on estimated (noisy, possibly
 //! indefinite) Hessians.
 
-use crate::optim::vector::{axpy, dot_lanes, dot_lanes_many};
+use crate::optim::vector::{axpy, dot_lanes, dot_lanes_many, row_block};
 use crate::real::Real;
 use crate::wide::avx2_twin;
 
@@ -96,13 +96,7 @@ pub(crate) fn factor_rows<T: Real>(
         let (done, rest) = a.split_at_mut(start * stride);
         for j in 0..start {
             let lj = &done[j * stride..j * stride + j + 1];
-            let dots = {
-                let mut rows: [&[T]; BLOCK] = [&[]; BLOCK];
-                for (b, row) in rows.iter_mut().enumerate() {
-                    *row = &rest[b * stride..b * stride + j];
-                }
-                dot_lanes_many(rows, lj, j)
-            };
+            let dots = dot_lanes_many(row_block::<T, BLOCK>(rest, 0, stride, j), lj, j);
             for (b, d) in dots.into_iter().enumerate() {
                 let x = &mut rest[b * stride + j];
                 *x = (*x - d) / lj[j];

@@ -33,6 +33,25 @@ pub(crate) fn dot_lanes<T: Real>(x: &[T], y: &[T]) -> T {
     (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) + tail
 }
 
+/// The R slices `data[start + b·stride ..][..len]`, b = 0 … R − 1: the rows a blocked
+/// kernel reads together. Filled in a loop, as the blocked kernels fill their arrays of R
+/// results: closures of `core::array::from_fn` were not inlined into the kernels' AVX2
+/// copies and cost a call per entry.
+#[inline(always)]
+pub(crate) fn row_block<T, const R: usize>(
+    data: &[T],
+    start: usize,
+    stride: usize,
+    len: usize,
+) -> [&[T]; R] {
+    let mut rows: [&[T]; R] = [&[]; R];
+    for (b, row) in rows.iter_mut().enumerate() {
+        let first = start + b * stride;
+        *row = &data[first..first + len];
+    }
+    rows
+}
+
 /// [`dot_lanes`] of the first `len` elements of each of R vectors `xs` with `y`'s, in
 /// one pass over y. Each product is summed in the same lanes and order whatever R, so
 /// its result does not depend on the block it is computed in, while each element of y

@@ -18,7 +18,7 @@
 
 use super::eigen;
 use super::model::Shape;
-use crate::optim::vector::{axpy, transpose};
+use crate::optim::vector::{axpy, row_block, transpose};
 use crate::real::Real;
 use crate::wide::avx2_twin;
 
@@ -134,10 +134,7 @@ pub fn whiten_rows<T: Real>(
     let mut k0 = 0;
     if shape == Shape::Full {
         while k0 + WHITEN_BLOCK <= count {
-            let mut x: [&[T]; WHITEN_BLOCK] = [&[]; WHITEN_BLOCK];
-            for (b, xb) in x.iter_mut().enumerate() {
-                *xb = &xs[(k0 + b) * n..(k0 + b + 1) * n];
-            }
+            let x = row_block::<T, WHITEN_BLOCK>(xs, k0 * n, n, n);
             for (i, row) in li[..n * n].chunks_exact(n).enumerate() {
                 let sums = rows_times_difference(row, x, y);
                 for (b, &s) in sums.iter().enumerate() {

@@ -53,7 +53,7 @@
 //!   (1/(2λ_H)) Σᵢ √wᵢ αᵢ (‖uᵢ‖² + ω uᵢ²) (elementwise square), g by (1/λ_H) Σᵢ √wᵢ αᵢ uᵢ.
 
 use crate::cholesky;
-use crate::optim::vector::{axpy, dot, dot_lanes_many, mat_vec_by_columns};
+use crate::optim::vector::{axpy, dot, dot_lanes_many, mat_vec_by_columns, row_block};
 use crate::real::Real;
 use crate::wide::avx2_twin;
 
@@ -297,10 +297,7 @@ fn kernel_block<T: Real, const R: usize>(
     k0: usize,
 ) -> [T; R] {
     let ui = &u[i * n..(i + 1) * n];
-    let mut rows: [&[T]; R] = [&[]; R];
-    for (b, row) in rows.iter_mut().enumerate() {
-        *row = &u[(k0 + b) * n..(k0 + b + 1) * n];
-    }
+    let rows = row_block::<T, R>(u, k0 * n, n, n);
     let common = |b: usize| norms[i] * norms[k0 + b];
     let mut out = [T::ZERO; R];
     if shape == Shape::Full && share == T::ZERO {
@@ -559,12 +556,11 @@ fn update_block<T: Real, const R: usize>(
     half_lh: T,
     h: &mut [T],
 ) {
+    let us = row_block::<T, R>(u, 0, n, n);
     let mut c = [T::ZERO; R];
-    let mut us: [&[T]; R] = [&[]; R];
     let mut common = [T::ZERO; R];
     for b in 0..R {
         c[b] = sw[b] * alpha[b];
-        us[b] = &u[b * n..(b + 1) * n];
         common[b] = c[b] * us[b].iter().fold(T::ZERO, |s, &x| s + x * x) * half_lh;
     }
     for (j, row) in h[..n * n].chunks_exact_mut(n).enumerate() {
