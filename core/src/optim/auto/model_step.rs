@@ -46,13 +46,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let mut value = value;
         // θ's draw lies below the robust model's value at θ: it may be a lucky one.
         let mut lucky = false;
+        // The fit's residuals grow with f (`Auto::residuals_grow`); assumed where unknown.
+        let mut noise_grows = true;
         if self.st.unseeded {
             self.st.scatter = noise * scale;
             // One step of iteratively reweighted least squares per iteration, warm
             // started from the points' weights of the last. The noise level η stays the
             // first fit's: the scatter the robust fit sets aside is still the noise a
             // step must clear.
-            let cut = self.reweigh(value, scale);
+            let cut;
+            (cut, noise_grows) = self.reweigh(value, scale);
             let Some((_, refitted)) = self.fit(value, scale, None) else {
                 self.st.sigma = sigma * T::HALF;
                 return Ok((AutoStep::Rejected, None));
@@ -210,9 +213,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // On an unseeded objective, a trial whose draw is higher than f(θ)'s by less than
         // twice the noise's scale, whose step promised no more than that, was judged by
         // the noise. (A lower draw that fell short of its promise, not accepted on dense
-        // noise, is a poor step as it would be on an exact f.)
+        // noise, is a poor step as it would be on an exact f.) The noise's scale is the
+        // spread of repeated draws; where the memory holds too few, on dense noise that
+        // does not grow with f, the fit's residual scatter. (Where it grows with f, the
+        // scatter of points a radius out overstates the noise at θ, and widening σ on
+        // its word cost runs that reach the minimum's precision.)
         let judged_by_noise = self.st.unseeded && !lower && {
-            let level = T::TWO * self.repeat_spread().unwrap_or(T::ZERO);
+            let scatter = (self.st.dense && !noise_grows).then_some(noise * scale);
+            let level = T::TWO * self.repeat_spread().or(scatter).unwrap_or(T::ZERO);
             trial - reference <= level && predicted * scale <= level
         };
         let widened = self.widened_sigma(PLATEAU_WIDTH);

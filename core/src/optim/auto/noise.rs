@@ -12,6 +12,12 @@ use crate::objective::Objective;
 use crate::optim::vector::dot;
 use crate::real::Real;
 
+/// How much larger the residuals of a fit's upper half of values must be than those of
+/// its lower half for its noise to count as growing with f ([`Auto::residuals_grow`]).
+/// Additive noise leaves the halves' medians alike but for sampling error; noise that
+/// scales with f sets them apart as far as the values span.
+const NOISE_GROWTH: f64 = 2.0;
+
 impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// Evaluates θ once more, unremembered, on an objective declared deterministic, at
     /// the first model step after each restart until noise is found, and sets
@@ -58,8 +64,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// the median |rᵢ| (floored at √ε of the values' spread, so that a model that
     /// interpolates most points exactly keeps them). Points beyond the fit's reach keep
     /// their weights. Returns the cut cs, in the fit's units (values over `scale`;
-    /// `T::MAX` when no point was within reach).
-    pub(super) fn reweigh(&mut self, value: T, scale: T) -> T {
+    /// `T::MAX` when no point was within reach), and whether the residuals grow with f
+    /// ([`Auto::residuals_grow`]).
+    pub(super) fn reweigh(&mut self, value: T, scale: T) -> (T, bool) {
         let shape = self.shape;
         let limit = T::from_f64(2.0 * REACH);
         let c = self.mem.beta[0];
@@ -79,7 +86,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             used += 1;
         }
         if used == 0 {
-            return T::MAX;
+            return (T::MAX, true);
         }
         let spread = T::from_f64(1.4826) * lower_median(&self.mem.sw[..used]);
         let cut = T::from_f64(TUKEY) * spread.max(T::EPSILON.sqrt());
@@ -94,9 +101,50 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 T::ZERO
             };
         }
+        let grows = self.residuals_grow(limit);
         // `zs` held residuals: the reach cache is stale.
         self.st.reach_key = None;
-        cut
+        (cut, grows)
+    }
+
+    /// Whether the residuals [`Auto::reweigh`] left in `zs` grow with f: over the points
+    /// within `limit`, the median |r| of those whose values lie above the points' median
+    /// value exceeds the others' by more than [`NOISE_GROWTH`] — noise that scales with f
+    /// and fades towards the minimum (f·e^(N/2), BBOB's noisy functions), where the scatter
+    /// of a fit's points, a radius out, overstates the noise at θ. True where either half
+    /// holds fewer than three points. `gram` (the fit's cache, stale once `reweigh` has
+    /// run) and `sw` serve as scratch.
+    fn residuals_grow(&mut self, limit: T) -> bool {
+        let mut within = 0;
+        for k in 0..self.st.count {
+            if self.offset_of(k) <= limit {
+                self.mem.gram[within] = self.mem.fs[k];
+                within += 1;
+            }
+        }
+        if within == 0 {
+            return true;
+        }
+        let middle = lower_median(&self.mem.gram[..within]);
+        let (mut low, mut high) = (0, 0);
+        for k in 0..self.st.count {
+            if self.offset_of(k) > limit {
+                continue;
+            }
+            let r = self.mem.zs[k].abs();
+            if self.mem.fs[k] <= middle {
+                self.mem.gram[within + low] = r;
+                low += 1;
+            } else {
+                self.mem.sw[high] = r;
+                high += 1;
+            }
+        }
+        if low < 3 || high < 3 {
+            return true;
+        }
+        let below = lower_median(&self.mem.gram[within..within + low]);
+        lower_median(&self.mem.sw[..high]) > T::from_f64(NOISE_GROWTH) * below
     }
 
     /// On sparse unseeded noise ([`State::voting`](super::State::voting)), evaluates the staged rows
