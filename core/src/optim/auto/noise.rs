@@ -122,9 +122,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 within += 1;
             }
         }
-        if within == 0 {
-            return true;
-        }
+        // `reweigh` returns before this where no point lies within reach.
         let middle = lower_median(&self.mem.gram[..within]);
         let (mut low, mut high) = (0, 0);
         for k in 0..self.st.count {
