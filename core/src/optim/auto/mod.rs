@@ -99,7 +99,11 @@
 //!   f(θ)'s draw and the lowest draw that counted before by more than the last fit's
 //!   residual scatter
 //!   (`Auto::clears_noise`), so that a descent whose θ wanders within the noise about
-//!   the minimum stagnates. Sparse outliers
+//!   the minimum stagnates. Where the noise is flat, of one scale wherever θ lies (θ's
+//!   pairs of draws differ by as much as the fit's points scatter, and by no more at
+//!   the descent's higher values: `Auto::flat_noise`), model steps stay within
+//!   0.3·σ√n, well inside the points the fit averages over, and a trial the noise could
+//!   have rejected widens σ whatever it promised. Sparse outliers
 //!   (the check's draws did not all differ, or two remembered draws at one point
 //!   agree) are voted out instead: from then on every point is drawn until two of its
 //!   draws agree exactly (at most [`VOTES`] draws, else their median), which costs
@@ -108,8 +112,9 @@
 //!   from determined fits) apply to them too. Without the vote a model fitted to fewer
 //!   points than it has coefficients interpolates the outliers, which no residual then
 //!   exposes, and predicts steps from them.
-//! * **Step.** The model's minimiser within ‖s‖ ≤ σ√n (the `trust` module: exact for
-//!   indefinite H, so a non-PSD model steps along its negative curvature) is evaluated;
+//! * **Step.** The model's minimiser within ‖s‖ ≤ σ√n (0.3·σ√n on flat noise; the
+//!   `trust` module: exact for indefinite H, so a non-PSD model steps along its
+//!   negative curvature) is evaluated;
 //!   where it would leave the box, the coordinates it carries out are held on the
 //!   bounds they cross and the model is minimised again over the rest of the region. It
 //!   replaces θ when f is no higher there on common noise (a tie moves to the smoothed
@@ -710,6 +715,14 @@ struct State<T> {
     /// as a gain in the run (`Auto::clears_noise`; such a run has one descent); `None`
     /// before one.
     floor: Option<T>,
+    /// On unseeded noise, pairs (the lower draw, |f − f′|) of two draws of f at θ, the
+    /// last [`THETA_SPREADS`](noise::THETA_SPREADS) of the descent in a ring
+    /// (`Auto::record_theta_spread`, `Auto::flat_noise`): the check's first two draws,
+    /// and θ's two draws each time it was drawn again beside a trial.
+    theta_spreads: [(T, T); noise::THETA_SPREADS],
+    /// How many spreads [`State::theta_spreads`] has taken in the descent (the ring's
+    /// next slot is this modulo its length).
+    theta_spreads_taken: usize,
     /// How often an exploring pair drawn after a failed model step has lowered f(θ):
     /// an average over such pairs, each weighing 1/[`PAIR_MEMORY`] (see [`PAIRS_PAY`]).
     pair_rate: T,
@@ -858,6 +871,8 @@ impl<T: Real> State<T> {
             fail_scale: T::ZERO,
             scatter: T::ZERO,
             floor: None,
+            theta_spreads: [(T::ZERO, T::ZERO); noise::THETA_SPREADS],
+            theta_spreads_taken: 0,
             noisy: false,
             checked: true,
             unseeded: false,

@@ -7,6 +7,7 @@ use rand_core::Rng;
 
 use super::memory::{blaming, memory_determines_model, nearby_needed, validating};
 use super::model::Shape;
+use super::noise::NOISE_RADIUS;
 use super::options::AutoStep;
 use super::{
     Auto, CONTINUATION_SCALE, DETERMINED_METRIC_WEIGHT, GROWTH_WIDTH, NOISE_MARGIN, PAIRS_PAY,
@@ -77,7 +78,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             }
         }
         self.save_prior(scale, sigma);
-        let radius = root_n;
+        // On flat noise the steps stay well inside the points the fit averages over.
+        let flat_noise = self.flat_noise(noise * scale);
+        let radius = if flat_noise {
+            T::from_f64(NOISE_RADIUS) * root_n
+        } else {
+            root_n
+        };
         let ok = self.trust_step(radius);
         // Project the trial point θ + σLs into the box; the step is what remains of s.
         metric::apply(self.shape, self.mem.l, self.mem.s, self.mem.gx);
@@ -166,6 +173,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             // The trial must beat the median of θ's draws (the larger of two), which one
             // lucky draw — the low tail of the noise — cannot set.
             let draws = self.draws_at_theta();
+            if redraw && draws == 2 {
+                self.record_theta_spread(self.mem.sw[0], self.mem.sw[1]);
+            }
             if draws > 0 {
                 reference = lower_median(&self.mem.sw[..draws]);
             }
@@ -212,16 +222,18 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         // On an unseeded objective, a trial whose draw is higher than f(θ)'s by less than
         // twice the noise's scale, whose step promised no more than that, was judged by
-        // the noise. (A lower draw that fell short of its promise, not accepted on dense
-        // noise, is a poor step as it would be on an exact f.) The noise's scale is the
-        // spread of repeated draws; where the memory holds too few, on dense noise that
-        // does not grow with f, the fit's residual scatter. (Where it grows with f, the
-        // scatter of points a radius out overstates the noise at θ, and widening σ on
-        // its word cost runs that reach the minimum's precision.)
+        // the noise; on flat noise whatever it promised, for a fit that averages over
+        // noise of θ's own scale promises the noise's excursions too. (A lower draw that
+        // fell short of its promise, not accepted on dense noise, is a poor step as it
+        // would be on an exact f.) The noise's scale is the spread of repeated draws;
+        // where the memory holds too few, on dense noise that does not grow with f, the
+        // fit's residual scatter. (Where it grows with f, the scatter of points a radius
+        // out overstates the noise at θ, and widening σ on its word cost runs that reach
+        // the minimum's precision.)
         let judged_by_noise = self.st.unseeded && !lower && {
             let scatter = (self.st.dense && !noise_grows).then_some(noise * scale);
             let level = T::TWO * self.repeat_spread().or(scatter).unwrap_or(T::ZERO);
-            trial - reference <= level && predicted * scale <= level
+            trial - reference <= level && (flat_noise || predicted * scale <= level)
         };
         let widened = self.widened_sigma(PLATEAU_WIDTH);
         let fails_wider = self.st.fail_scale > T::ZERO && widened >= self.st.fail_scale;

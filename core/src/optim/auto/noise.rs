@@ -18,6 +18,30 @@ use crate::real::Real;
 /// scales with f sets them apart as far as the values span.
 const NOISE_GROWTH: f64 = 2.0;
 
+/// How many of a descent's spreads between two draws of f at θ [`Auto::flat_noise`]
+/// weighs: the latest, so that it follows noise whose scale changes as θ moves.
+pub(super) const THETA_SPREADS: usize = 16;
+
+/// How many spreads between two draws at θ a descent must have taken before
+/// [`Auto::flat_noise`] judges the noise flat: enough that the halves its growth test
+/// compares hold four each.
+const FLAT_SPREADS: usize = 8;
+
+/// How much larger the median spread of θ's draws in the upper half of their values may
+/// be than the lower half's for the noise to count as flat ([`Auto::flat_noise`]).
+/// Noise of one scale leaves the two medians (of four |N| each) alike but for sampling
+/// error, which exceeds a factor 2 too often; noise that scales with f sets them apart as
+/// far as θ's values have fallen over the descent.
+const SPREAD_GROWTH: f64 = 3.0;
+
+/// The model step's trust radius on flat noise ([`Auto::flat_noise`]), as a fraction of
+/// the radius √n (in σ) it has otherwise: the fit averages the noise over points about
+/// √n·σ out, and its minimum is trusted only well inside them, where its error is the
+/// smallest. With noise of a constant scale added to a quadratic (n = 2, 4, 10), runs
+/// ended two to three times closer to the minimum with the shorter steps than with
+/// √n·σ (BENCHMARKS.md).
+pub(super) const NOISE_RADIUS: f64 = 0.3;
+
 impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// Evaluates θ once more, unremembered, on an objective declared deterministic, at
     /// the first model step after each restart until noise is found, and sets
@@ -40,6 +64,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if self.st.unseeded && self.remaining() > 0 {
             let third = self.evaluate_theta_again(objective, spent)?;
             self.st.dense = third != value && third != again;
+        }
+        if self.st.unseeded {
+            self.record_theta_spread(value, again);
         }
         Ok(())
     }
@@ -253,6 +280,61 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let pairs = self.repeat_differences();
         let exact = self.mem.sw[..pairs].contains(&T::ZERO);
         (pairs >= 3 && !exact).then(|| lower_median(&self.mem.sw[..pairs]))
+    }
+
+    /// Takes two draws `a`, `b` of f at θ into [`State::theta_spreads`](super::State::theta_spreads)
+    /// as (min(a, b), |a − b|), in place of the oldest pair where the ring is full.
+    pub(super) fn record_theta_spread(&mut self, a: T, b: T) {
+        if a.is_finite() && b.is_finite() {
+            self.st.theta_spreads[self.st.theta_spreads_taken % THETA_SPREADS] =
+                (a.min(b), (a - b).abs());
+            self.st.theta_spreads_taken += 1;
+        }
+    }
+
+    /// Whether dense unseeded noise is flat: of one scale wherever θ lies, as a Monte
+    /// Carlo render's, not growing with f. Over the descent's last [`THETA_SPREADS`]
+    /// pairs of draws at θ (at least [`FLAT_SPREADS`]):
+    /// * the spreads do not grow with the values: split at the pairs' median value, the
+    ///   upper half's median spread is at most [`SPREAD_GROWTH`] times the lower half's
+    ///   (noise that scales with f shrinks as θ descends);
+    /// * the median spread is at least the fit's residual scatter `scatter` (value
+    ///   units): two draws of noise of scale s differ by a median of 0.95·√2·s ≈ 1.35·s,
+    ///   while the fit's RMS residual is below s; where the noise grows with f, points a
+    ///   radius out scatter by more than θ's draws differ.
+    ///
+    /// False on sparse or declared noise.
+    pub(super) fn flat_noise(&self, scatter: T) -> bool {
+        let taken = self.st.theta_spreads_taken.min(THETA_SPREADS);
+        if !self.dense_unseeded() || taken < FLAT_SPREADS {
+            return false;
+        }
+        let pairs = &self.st.theta_spreads[..taken];
+        let mut values = [T::ZERO; THETA_SPREADS];
+        for (v, &(value, _)) in values.iter_mut().zip(pairs) {
+            *v = value;
+        }
+        let middle = lower_median(&values[..taken]);
+        let (mut low, mut high) = ([T::ZERO; THETA_SPREADS], [T::ZERO; THETA_SPREADS]);
+        let (mut lows, mut highs) = (0, 0);
+        for &(value, spread) in pairs {
+            if value <= middle {
+                low[lows] = spread;
+                lows += 1;
+            } else {
+                high[highs] = spread;
+                highs += 1;
+            }
+        }
+        if lows < 2 || highs < 2 {
+            return false;
+        }
+        let mut spreads = [T::ZERO; THETA_SPREADS];
+        for (s, &(_, spread)) in spreads.iter_mut().zip(pairs) {
+            *s = spread;
+        }
+        lower_median(&high[..highs]) <= T::from_f64(SPREAD_GROWTH) * lower_median(&low[..lows])
+            && lower_median(&spreads[..taken]) >= scatter
     }
 
     /// The objective draws fresh noise at every call, and every draw carries it (not
