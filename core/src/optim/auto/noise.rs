@@ -1,8 +1,10 @@
 //! Noise an objective does not declare: the check that a "deterministic" objective
 //! gives θ the same value twice (`Auto::check_determinism`), the robust weights that
 //! let a fit ignore the points it cannot explain (`Auto::reweigh`), the vote that draws
-//! a point until two values agree where the noise is sparse (`Auto::vote`), and the
-//! spreads of repeated draws that tell dense noise from sparse.
+//! a point until two values agree where the noise is sparse (`Auto::vote`), the
+//! spreads of repeated draws that tell dense noise from sparse, and those of θ's draws
+//! that tell flat noise, of one scale wherever θ lies, from noise that grows with f
+//! (`Auto::flat_noise`).
 
 use rand_core::Rng;
 
@@ -36,10 +38,9 @@ const SPREAD_GROWTH: f64 = 3.0;
 
 /// The model step's trust radius on flat noise ([`Auto::flat_noise`]), as a fraction of
 /// the radius √n (in σ) it has otherwise: the fit averages the noise over points about
-/// √n·σ out, and its minimum is trusted only well inside them, where its error is the
-/// smallest. With noise of a constant scale added to a quadratic (n = 2, 4, 10), runs
-/// ended two to three times closer to the minimum with the shorter steps than with
-/// √n·σ (BENCHMARKS.md).
+/// √n·σ out, and its minimum is trusted only well inside them, where the noise moves it
+/// least; at the region's boundary a fit of noisy values promises most along whichever
+/// direction the noise bent its curvature down.
 pub(super) const NOISE_RADIUS: f64 = 0.3;
 
 impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
@@ -329,12 +330,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if lows < 2 || highs < 2 {
             return false;
         }
-        let mut spreads = [T::ZERO; THETA_SPREADS];
-        for (s, &(_, spread)) in spreads.iter_mut().zip(pairs) {
-            *s = spread;
+        // `values` is free once the median value is known: it takes the spreads.
+        for (v, &(_, spread)) in values.iter_mut().zip(pairs) {
+            *v = spread;
         }
         lower_median(&high[..highs]) <= T::from_f64(SPREAD_GROWTH) * lower_median(&low[..lows])
-            && lower_median(&spreads[..taken]) >= scatter
+            && lower_median(&values[..taken]) >= scatter
     }
 
     /// The objective draws fresh noise at every call, and every draw carries it (not
