@@ -446,7 +446,7 @@ def minimize(
         n = 14 it suits a ``fun`` whose parameters interact little, as a sum of terms
         in one or a few of them, but a rotated ill-conditioned ``fun`` stalls it);
         default: full up to n = 14, diagonal above 127, and in between full unless
-        the first 2 + 2⌈log₂ n⌉ evaluations find ``fun`` separable (a sum of terms in
+        the first 4 + 2⌈log₂ n⌉ evaluations find ``fun`` separable (a sum of terms in
         one coordinate each), when it is diagonal.
     tol : float, optional
         scipy's name for ``options["tolerance"]`` (0 < tol < 1); give one or the other.

@@ -197,7 +197,7 @@ fn a_point_folded_twice_is_evaluated_once() {
 /// model would no longer be exact). At every n where the model is full (up to
 /// `FULL_MODEL_MAX_DIM`), including n > 14 where later fits lean on their prior, the
 /// first fit has none and is made exact. From n = 15 the default model first tests
-/// whether f is separable (2 + 2⌈log₂ n⌉ evaluations, θ among them, which the survey
+/// whether f is separable (4 + 2⌈log₂ n⌉ evaluations, θ among them, which the survey
 /// does not evaluate again), finds the bowl so and takes the diagonal model, whose first
 /// step, its gradient held by a small ridge, lowers f a millionfold. Deterministic: holds
 /// for every seed.
@@ -205,7 +205,7 @@ fn a_point_folded_twice_is_evaluated_once() {
 fn a_round_bowl_is_solved_by_the_first_model() {
     for n in [2usize, 5, 10, 20, 30, 40] {
         let test = if n > 14 {
-            1 + 2 * (usize::BITS - (n - 1).leading_zeros()) as usize
+            3 + 2 * (usize::BITS - (n - 1).leading_zeros()) as usize
         } else {
             0
         };
@@ -2101,7 +2101,7 @@ fn convergence_rates_hold() {
         })
         .count();
     assert!(solved >= 38, "disc on a grid: {solved} of {seeds}");
-    // A 100-D ellipsoid of condition 100, which the separability test (16 evaluations)
+    // A 100-D ellipsoid of condition 100, which the separability test (18 evaluations)
     // hands to the diagonal model, whose memory (128 points) holds fewer points than its
     // 201 coefficients, from 0 to a tenth of the start's parameter error within 800
     // evaluations. Measured: 400 of 400 (400 before, and without the test).
@@ -2969,7 +2969,7 @@ fn the_separability_test_keeps_what_it_cannot_tell() {
     let rng = Xoshiro256PlusPlus::seed_from_u64(1);
     let mut auto = Auto::with_model(&mut theta, 1.0, &mut buffer, rng, AutoModel::ByDimension)
         .unwrap()
-        .with_options(AutoOptions::default().with_max_evaluations(12).unwrap());
+        .with_options(AutoOptions::default().with_max_evaluations(14).unwrap());
     let mut bowl = sphere(1.0, 1.0);
     auto.run(&mut bowl, |_, _| {}).unwrap();
     assert_eq!(auto.model(), AutoModel::Diagonal);
@@ -2979,18 +2979,21 @@ fn the_separability_test_keeps_what_it_cannot_tell() {
 
 /// A model named ([`Auto::with_model`]), and the one the default picks. Above n = 127 the
 /// default's run is the diagonal model's, point for point; from n = 15 its first
-/// 2 + 2⌈log₂ n⌉ = 12 evaluations (n = 20) test whether f is separable, θ first, and the
+/// 4 + 2⌈log₂ n⌉ = 14 evaluations (n = 20) test whether f is separable, θ first, and the
 /// run after them is the model the test picked, point for point but for θ, which it does
 /// not evaluate again: the diagonal one on the L1 norm
-/// Σ|xᵢ − 0.3|, the full one where a term (Σᵢ(xᵢ − 0.3))² couples the coordinates. The
-/// full model above n = 127 is a typed error, though its buffer is long enough; the
+/// Σ|xᵢ − 0.3|, the full one where terms in s = Σᵢ(xᵢ − 0.3), s² and s⁴, couple the
+/// coordinates. The quartic keeps f off a quadratic along the test's line, so the full
+/// model keeps its axis prior, as a named one does; on an exact quadratic coupled the same
+/// way the test's line check drops the prior, and the run departs from the named model's.
+/// The full model above n = 127 is a typed error, though its buffer is long enough; the
 /// default takes the 20-D L1 norm to 10⁻⁶ within 8 000 evaluations.
 #[test]
 fn a_model_chosen_by_name() {
     let mut l1 = |x: &[f64]| x.iter().map(|v| (v - 0.3).abs()).sum::<f64>();
     let mut coupled = |x: &[f64]| {
         let sum: f64 = x.iter().map(|v| v - 0.3).sum();
-        x.iter().map(|v| (v - 0.3).abs()).sum::<f64>() + 0.1 * sum * sum
+        x.iter().map(|v| (v - 0.3).abs()).sum::<f64>() + 0.1 * sum * sum + 1e-3 * sum.powi(4)
     };
     let start = |n: usize| -> Vec<f64> {
         (0..n)
@@ -3002,7 +3005,7 @@ fn a_model_chosen_by_name() {
     assert_eq!(used, AutoModel::Diagonal);
     let (named, _) = values_of(AutoModel::Diagonal, &mut l1, &start(128), 300).unwrap();
     assert_eq!(by_dimension, named);
-    let test = 12;
+    let test = 14;
     for (f, picked) in [
         (
             &mut l1 as &mut dyn FnMut(&[f64]) -> f64,
@@ -3019,6 +3022,26 @@ fn a_model_chosen_by_name() {
         assert_eq!(by_dimension[0], named[0]);
         assert_eq!(by_dimension[test..], named[1..], "{picked:?}");
     }
+    let mut quadratic = |x: &[f64]| {
+        let sum: f64 = x.iter().map(|v| v - 0.3).sum();
+        let bowl: f64 = x
+            .iter()
+            .enumerate()
+            .map(|(i, v)| (i + 1) as f64 * (v - 0.3).powi(2))
+            .sum();
+        bowl + 0.1 * sum * sum
+    };
+    let (by_dimension, used) = values_of(
+        AutoModel::ByDimension,
+        &mut quadratic,
+        &start(20),
+        test + 299,
+    )
+    .unwrap();
+    assert_eq!(used, AutoModel::Full);
+    let (named, _) = values_of(AutoModel::Full, &mut quadratic, &start(20), 300).unwrap();
+    assert_eq!(by_dimension[0], named[0]);
+    assert_ne!(by_dimension[test..], named[1..]);
     assert_eq!(
         values_of(AutoModel::Full, &mut l1, &[0.0; 128], 300).unwrap_err(),
         Error::InvalidSetting { name: "model" }

@@ -216,6 +216,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let ridge = self.ridge();
         let fitted = model::fit(
             shape,
+            T::from_f64(model::deviation_share(shape, n, self.st.quadratic)),
             n,
             m,
             self.mem.u,

@@ -623,6 +623,9 @@ struct State<T> {
     /// f(θ) as the separability test measured it (possibly non-finite): the first
     /// survey takes it rather than evaluating θ again.
     tested_centre: Option<T>,
+    /// The separability test found f a quadratic along its line, to rounding: the full
+    /// model takes no axis prior ([`model::deviation_share`]).
+    quadratic: bool,
     /// Remembered points.
     count: usize,
     has_prior: bool,
@@ -848,6 +851,7 @@ impl<T: Real> State<T> {
             value: None,
             centre_known: false,
             tested_centre: None,
+            quadratic: false,
             count: 0,
             has_prior: false,
             saved: SavedPrior {

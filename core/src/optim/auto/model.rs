@@ -213,9 +213,14 @@ impl Ridge {
 ///   variance n + 1 against 1 for each entry of D, about as much as its row's n entries
 ///   together: the least change puts the curvature the points show on the axes first,
 ///   as a diagonal model does, and learns a rotation only as far as the points demand.
-fn deviation_share(shape: Shape, n: usize) -> f64 {
+///   Where the curvature changes as θ moves (BBOB's oscillating coordinates, a
+///   least-squares problem's quartic), that leaves less stale curvature in H; on a
+///   quadratic, whose H is one matrix everywhere, it only slows learning the rotation.
+///   So a full model on f found `quadratic` (the separability test's line check) takes
+///   ω = 0 at every n.
+pub(super) fn deviation_share(shape: Shape, n: usize, quadratic: bool) -> f64 {
     match shape {
-        Shape::Full if super::memory_determines_model(shape, n) => 0.0,
+        Shape::Full if quadratic || super::memory_determines_model(shape, n) => 0.0,
         Shape::Full => n as f64,
         Shape::Diagonal => {
             let determined = super::history_len(shape, n) as f64 / (2 * n + 1) as f64;
@@ -349,7 +354,8 @@ const FIT_WIDE_MIN_DIM: usize = 13;
 
 avx2_twin! {
 wide_when(n >= FIT_WIDE_MIN_DIM);
-/// Fits the model's change from its prior. On entry `u` holds m rows of n standardised
+/// Fits the model's change from its prior, `share` the axis weight ω
+/// ([`deviation_share`]). On entry `u` holds m rows of n standardised
 /// offsets, `sw` the m square-root weights √wᵢ, `r` the m weighted residuals of the prior
 /// √wᵢ(vᵢ − m₀(uᵢ)); `g` and `h` hold the prior's g₀ and H₀ (H in `shape`'s layout).
 ///
@@ -387,6 +393,7 @@ wide_when(n >= FIT_WIDE_MIN_DIM);
 #[allow(clippy::too_many_arguments)]
 pub(super) fn fit<T: Real>(
     shape: Shape,
+    share: T,
     n: usize,
     m: usize,
     u: &[T],
@@ -412,7 +419,6 @@ pub(super) fn fit<T: Real>(
     } = scratch;
     let reuse = reuse.min(m);
     let lh = curvature_penalty::<T>();
-    let share = T::from_f64(deviation_share(shape, n));
     let quarter_lh = T::ONE / (T::from_f64(4.0) * lh);
     for (i, norm) in norms[..m].iter_mut().enumerate() {
         *norm = norm_sq(&u[i * n..(i + 1) * n]);
@@ -705,6 +711,7 @@ mod tests {
                         assert!(
                             fit(
                                 shape,
+                                deviation_share(shape, n, false),
                                 n,
                                 13,
                                 &u,
@@ -724,6 +731,7 @@ mod tests {
                     let mut r = values;
                     *noise = fit(
                         shape,
+                        deviation_share(shape, n, false),
                         n,
                         20,
                         &u,
@@ -772,6 +780,7 @@ mod tests {
         assert!(
             fit(
                 Shape::Full,
+                deviation_share(Shape::Full, n, false),
                 n,
                 m,
                 &u,
@@ -815,6 +824,7 @@ mod tests {
         let (mut g, mut h) = ([0.0; 3], [0.0; 3]);
         let noise = fit(
             Shape::Diagonal,
+            deviation_share(Shape::Diagonal, n, false),
             n,
             m,
             &u,
@@ -867,6 +877,7 @@ mod tests {
         };
         let fitted = fit(
             Shape::Full,
+            deviation_share(Shape::Full, N, false),
             N,
             M,
             &u,
@@ -924,6 +935,7 @@ mod tests {
         let (mut g, mut h) = ([0.0; 2], [0.0; 4]);
         let noise = fit(
             Shape::Full,
+            deviation_share(Shape::Full, n, false),
             n,
             m,
             &u,
@@ -961,6 +973,7 @@ mod tests {
         assert!(
             fit(
                 Shape::Full,
+                deviation_share(Shape::Full, n, false),
                 n,
                 3,
                 &u,

@@ -33,8 +33,8 @@ pub enum AutoModel {
     /// [`AutoModel::Full`] up to n = 14, where its memory determines it;
     /// [`AutoModel::Diagonal`] above [`FULL_MODEL_MAX_DIM`](super::FULL_MODEL_MAX_DIM);
     /// in between the full model, unless the first step finds a deterministic f
-    /// separable, f(x) = Σᵢ gᵢ(xᵢ), to rounding — a test of 2 + 2⌈log₂ n⌉ evaluations
-    /// (12 at n = 20), f(x₀) among them, which the run does not evaluate again — and
+    /// separable, f(x) = Σᵢ gᵢ(xᵢ), to rounding — a test of 4 + 2⌈log₂ n⌉ evaluations
+    /// (14 at n = 20), f(x₀) among them, which the run does not evaluate again — and
     /// takes the diagonal one, which holds such an f's curvature exactly
     /// ([`Auto::model`](super::Auto::model) says which). Default.
     #[default]

@@ -11,8 +11,11 @@
 //! quadratic D = Σ_{i∈A, j∈B} H_ij d_i d_j). Splitting the coordinates by each bit of their
 //! index, A_b = {i : bit b of i is 1} and B_b its complement for b < ⌈log₂ n⌉, puts every
 //! pair on opposite sides in at least one split, and every split shares the point
-//! θ + d: the test costs 2 + 2⌈log₂ n⌉ evaluations (12 at n = 20), once, before the first
-//! survey, which takes the test's f(θ) rather than evaluating θ again. Only a D within
+//! θ + d. Two more points, θ + d/2 and θ + d/4, check whether f is a quadratic along the
+//! line θ + t·d to rounding (`quadratic`); a full model then takes no axis prior
+//! (`model::deviation_share`). The test costs 4 + 2⌈log₂ n⌉ evaluations (14 at n = 20),
+//! once, before the first survey, which takes the test's f(θ) rather than evaluating θ
+//! again. Only a D within
 //! rounding of zero in every split — |D| ≤ 4nε(|f(θ + d)| + |f(θ + d_A)| + |f(θ + d_B)| +
 //! |f(θ)|) — passes, so a function whose coordinates
 //! interact anywhere in the test's reach keeps the full model; values all equal to f(θ)
@@ -40,9 +43,10 @@ const fn splits(n: usize) -> usize {
     (usize::BITS - (n - 1).leading_zeros()) as usize
 }
 
-/// Points the test evaluates in dimension n: θ, θ + d and two per split.
+/// Points the test evaluates in dimension n: θ, θ + d, two per split, and θ + d/2 and
+/// θ + d/4 for the line check.
 const fn test_rows(n: usize) -> usize {
-    2 + 2 * splits(n)
+    4 + 2 * splits(n)
 }
 
 impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
@@ -98,17 +102,17 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             let stage = &mut self.mem.stage[row * n..(row + 1) * n];
             for (i, x) in stage.iter_mut().enumerate() {
                 // Row 0 is θ, row 1 θ + d, rows 2 + 2b and 3 + 2b θ + d_A and θ + d_B
-                // for split b.
-                let moved = match row {
-                    0 => false,
-                    1 => true,
-                    _ => (i >> ((row - 2) / 2)) & 1 == (row % 2 == 0) as usize,
+                // for split b, the last two θ + d/2 and θ + d/4 (inside the box, which
+                // holds θ and θ + d).
+                let part = match row {
+                    0 => T::ZERO,
+                    1 => T::ONE,
+                    _ if row == rows - 2 => T::HALF,
+                    _ if row == rows - 1 => T::HALF * T::HALF,
+                    _ if (i >> ((row - 2) / 2)) & 1 == (row % 2 == 0) as usize => T::ONE,
+                    _ => T::ZERO,
                 };
-                *x = if moved {
-                    self.theta[i] + self.mem.rs[i]
-                } else {
-                    self.theta[i]
-                };
+                *x = self.theta[i] + part * self.mem.rs[i];
             }
         }
         let allowed = rows.min(self.remaining());
@@ -132,8 +136,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if allowed < rows {
             return Ok(Some(AutoStep::OutOfBudget));
         }
-        if separable(f, n) {
+        let (splits, line) = f.split_at(rows - 2);
+        if separable(splits, n) {
             self.take_diagonal_model();
+        } else {
+            self.st.quadratic = quadratic([f[0], line[1], line[0], f[1]], n);
         }
         Ok(None)
     }
@@ -168,6 +175,23 @@ fn separable<T: Real>(f: &[T], n: usize) -> bool {
     })
 }
 
+/// Whether f(θ + t·d) at t = 0, ¼, ½ and 1 (`f`, in that order) lies on a quadratic in t
+/// with curvature, to rounding: the quadratic through t = 0, ½ and 1 predicts f at ¼ as
+/// (3f₀ + 6f_½ − f₁)/8, within 4nε of the four values' magnitudes, and its curvature
+/// 2(f₀ − 2f_½ + f₁) exceeds that bound (a piecewise-linear f, an L1 norm between its
+/// kinks, is straight along a line that crosses none). Non-finite values fail.
+fn quadratic<T: Real>(f: [T; 4], n: usize) -> bool {
+    let [at0, quarter, half, at1] = f;
+    if f.iter().any(|v| !v.is_finite()) {
+        return false;
+    }
+    let rounding = T::from_f64(4.0) * T::from_usize(n) * T::EPSILON;
+    let bound = rounding * f.iter().fold(T::ZERO, |s, v| s + v.abs());
+    let predicted = (T::from_f64(3.0) * at0 + T::from_f64(6.0) * half - at1) / T::from_f64(8.0);
+    let curvature = T::TWO * (at0 - T::TWO * half + at1);
+    (quarter - predicted).abs() <= bound && curvature.abs() > bound
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -183,6 +207,19 @@ mod tests {
                 }
             }
         }
-        assert_eq!(test_rows(20), 12);
+        assert_eq!(test_rows(20), 14);
+    }
+
+    #[test]
+    fn the_line_check_takes_quadratics_only() {
+        let along = |g: &dyn Fn(f64) -> f64| [0.0, 0.25, 0.5, 1.0].map(g);
+        assert!(quadratic(along(&|t| 3.0 - 2.0 * t + 0.7 * t * t), 20));
+        assert!(quadratic(along(&|t| 1e8 + (t - 0.3) * (t - 0.3)), 20));
+        // A quartic, a straight piece, a kink and a plateau fail.
+        assert!(!quadratic(along(&|t| 1.0 + t * t + 0.01 * t.powi(4)), 20));
+        assert!(!quadratic(along(&|t| 5.0 - 3.0 * t), 20));
+        assert!(!quadratic(along(&|t| (t - 0.6).abs()), 20));
+        assert!(!quadratic(along(&|_| 2.0), 20));
+        assert!(!quadratic([0.0, f64::NAN, 1.0, 4.0], 20));
     }
 }
