@@ -177,7 +177,7 @@ fn separable<T: Real>(f: &[T], n: usize) -> bool {
 
 /// Whether f(θ + t·d) at t = 0, ¼, ½ and 1 (`f`, in that order) lies on a quadratic in t
 /// with curvature, to rounding: the quadratic through t = 0, ½ and 1 predicts f at ¼ as
-/// (3f₀ + 6f_½ − f₁)/8, within 4nε of the four values' magnitudes, and its curvature
+/// (3f₀ + 6f_½ − f₁)/8, within 4nε of the four values' magnitudes, and its t² coefficient
 /// 2(f₀ − 2f_½ + f₁) exceeds that bound (a piecewise-linear f, an L1 norm between its
 /// kinks, is straight along a line that crosses none). Non-finite values fail.
 fn quadratic<T: Real>(f: [T; 4], n: usize) -> bool {
