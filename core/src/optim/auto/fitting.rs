@@ -101,6 +101,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         if by_columns {
             transpose(self.mem.h, n, self.mem.v);
         }
+        // ω (`model::deviation_share`): none on a quadratic unless θ is on a face. The
+        // system's rows depend on it, so a change keeps none of them.
+        let axis_free = self.st.quadratic && !self.on_face();
+        if axis_free != self.st.factored_axis_free {
+            self.st.factored = 0;
+            self.st.factored_axis_free = axis_free;
+        }
         // Rows of the last fit's system that this fit keeps: those before the first
         // row that differs from the one in its place (`model::fit`'s `reuse`).
         let mut kept = self.st.factored;
@@ -216,7 +223,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let ridge = self.ridge();
         let fitted = model::fit(
             shape,
-            T::from_f64(model::deviation_share(shape, n, self.st.quadratic)),
+            T::from_f64(model::deviation_share(shape, n, axis_free)),
             n,
             m,
             self.mem.u,

@@ -624,8 +624,11 @@ struct State<T> {
     /// survey takes it rather than evaluating θ again.
     tested_centre: Option<T>,
     /// The separability test found f a quadratic along its line, to rounding: the full
-    /// model takes no axis prior ([`model::deviation_share`]).
+    /// model takes no axis prior ([`model::deviation_share`]) while θ is inside the box.
     quadratic: bool,
+    /// The rows [`State::factored`] counts were built with no axis prior: `quadratic`
+    /// with θ inside the box at the last fit.
+    factored_axis_free: bool,
     /// Remembered points.
     count: usize,
     has_prior: bool,
@@ -852,6 +855,7 @@ impl<T: Real> State<T> {
             centre_known: false,
             tested_centre: None,
             quadratic: false,
+            factored_axis_free: false,
             count: 0,
             has_prior: false,
             saved: SavedPrior {

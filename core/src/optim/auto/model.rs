@@ -217,7 +217,10 @@ impl Ridge {
 ///   least-squares problem's quartic), that leaves less stale curvature in H; on a
 ///   quadratic, whose H is one matrix everywhere, it only slows learning the rotation.
 ///   So a full model on f found `quadratic` (the separability test's line check) takes
-///   ω = 0 at every n.
+///   ω = 0 at every n — while θ lies inside the box. On a face, f as the steps see it is
+///   the quadratic cut by the box's faces, which lie along the axes: which coordinates
+///   a step may move, and the curvature left in them, change as θ moves from face to
+///   face, and the caller passes `quadratic` false there.
 pub(super) fn deviation_share(shape: Shape, n: usize, quadratic: bool) -> f64 {
     match shape {
         Shape::Full if quadratic || super::memory_determines_model(shape, n) => 0.0,
