@@ -625,7 +625,10 @@ struct State<T> {
     tested_centre: Option<T>,
     /// The separability test found f a quadratic along its line, to rounding: the full
     /// model takes no axis prior ([`model::deviation_share`]) while θ is inside the box.
+    /// Checked again as σ falls (`Auto::recheck_quadratic`).
     quadratic: bool,
+    /// σ at the last line check (the separability test's or a recheck's).
+    checked_sigma: T,
     /// The rows [`State::factored`] counts were built with no axis prior: `quadratic`
     /// with θ inside the box at the last fit.
     factored_axis_free: bool,
@@ -855,6 +858,7 @@ impl<T: Real> State<T> {
             centre_known: false,
             tested_centre: None,
             quadratic: false,
+            checked_sigma: T::ZERO,
             factored_axis_free: false,
             count: 0,
             has_prior: false,
@@ -1348,6 +1352,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let mut spent = 0;
         let mut kind = if self.tests_separability(noisy) {
             self.test_separability(objective, &mut spent)?
+        } else if self.rechecks_quadratic(noisy) {
+            self.recheck_quadratic(objective, &mut spent)?
         } else {
             None
         };

@@ -264,8 +264,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             wide_end: run.wide_end,
             varied: run.varied,
             explore: run.explore,
-            // What the separability test found of f holds for every descent.
+            // What the line checks found of f holds for every descent.
             quadratic: run.quadratic,
+            checked_sigma: run.checked_sigma,
             ..State::start(run.sigma0, n)
         };
         self.shape_scales();
