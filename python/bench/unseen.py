@@ -49,7 +49,9 @@ cross-in-tray2, shubert2, colville4, perm4, qing5, chung-reynolds10, schwefel222
 powell-sum5), first run on 2026-12-05, and a thirteenth, objectives that fail at random
 (eight earlier rows whose evaluations return NaN with probability 0.1 or 0.3 wherever they
 lie: camera-pose6, gaussian-peaks9, arm10, mgh-wood4, zakharov10, discs9, rastrigin5 and
-walled10, each with -fails10 and -fails30 appended), first run on 2026-12-06.
+walled10, each with -fails10 and -fails30 appended), first run on 2026-12-06, and a fourteenth, a
+quadratic plus an L1 norm whose kinks lie at the minimum, started beyond them
+(ellipsoid-l1-tenth20 and ellipsoid-l1-one20, weights 0.1 and 1), first run on 2026-12-06.
 Each problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
@@ -737,6 +739,27 @@ FLAKY = ["camera-pose6", "gaussian-peaks9", "arm10", "mgh-wood4", "zakharov10", 
          "rastrigin5", "walled10"]
 PROBLEMS.update({f"{name}-fails{round(100 * rate)}": PROBLEMS[name]._replace(failures=rate)
                  for name in FLAKY for rate in (0.1, 0.3)})
+
+
+# The fourteenth set (2026-12-06, eighty-fourth session): an image loss's L2 and L1 parts
+# together, a rotated ellipsoid (condition 100) plus weight times the L1 norm, both about
+# the minimum 0.3, with starts in [2, 4]^n, beyond every kink: f is a quadratic near the
+# start and kinked near the minimum. Made to show what one line check near x0 misses
+# (43ba491 checks again as sigma falls), so not a problem nobody tuned for.
+def ellipsoid_plus_l1(n, weight, seed):
+    ellipsoid = rotated_ellipsoid(n, 100.0, seed, 0.3)
+
+    def f(x):
+        return ellipsoid(x) + weight * l1(x)
+
+    return f
+
+
+PROBLEMS.update({
+    f"ellipsoid-l1-{name}20": Problem(ellipsoid_plus_l1(20, weight, 12), full(20, 0.3), 1.0,
+                                      None, 40_000, 1e-6, (2.0, 4.0))
+    for name, weight in (("tenth", 0.1), ("one", 1.0))
+})
 
 
 def draw_start(problem, rng):
