@@ -51,14 +51,18 @@ powell-sum5), first run on 2026-12-05, and a thirteenth, objectives that fail at
 lie: camera-pose6, gaussian-peaks9, arm10, mgh-wood4, zakharov10, discs9, rastrigin5 and
 walled10, each with -fails10 and -fails30 appended), first run on 2026-12-06, and a fourteenth, a
 quadratic plus an L1 norm whose kinks lie at the minimum, started beyond them
-(ellipsoid-l1-tenth20 and ellipsoid-l1-one20, weights 0.1 and 1), first run on 2026-12-06.
+(ellipsoid-l1-tenth20 and ellipsoid-l1-one20, weights 0.1 and 1), first run on 2026-12-06,
+and a fifteenth, losses made of pieces (piecewise_losses.py: least absolute deviations
+lad10 and lad30, quantile regression quantile10, and the share of points a linear
+classifier gets wrong, misclassified10 and misclassified30), first run on 2026-12-06.
 Each problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
 succeeds when an evaluated point comes within the target of f* (COCO's rule); the table
 gives the successes, and the median evaluations and median wall time to the target of the
-successful runs (the lower of the two middle runs), and hodr's medians over pycma's and
-over BOBYQA's where both solve at least half of the runs. A run's time counts the
+successful runs (the lower of the two middle runs), where fewer than half the runs
+succeed the median of the runs' lowest f - f*, and hodr's medians over pycma's and over
+BOBYQA's where both solve at least half of the runs. A run's time counts the
 solver's own work as well as the objective's: these objectives are cheap, so the time
 ratios say more of the solvers' overhead than a renderer's would.
 
@@ -87,6 +91,7 @@ import constraint_walls
 import hodr
 import least_squares
 import other_fields
+import piecewise_losses
 import raster_losses
 
 warnings.filterwarnings("ignore")
@@ -99,8 +104,9 @@ class Spent(Exception):
 
 class Counted:
     """f with COCO's bookkeeping: evaluations, the first that reached the target (the
-    run ends there; the evaluations after it count for nothing), and the wall time from
-    the object's making (the run's start) to that evaluation's return, in seconds. With
+    run ends there; the evaluations after it count for nothing), the wall time from
+    the object's making (the run's start) to that evaluation's return, in seconds, and
+    the lowest finite value returned (None before the first). With
     `failures` > 0 each evaluation fails (returns NaN, and reaches no target) with that
     probability, whatever the point: draws from a generator seeded by the run's seed, so
     that each solver's k-th evaluation of a run fails alike."""
@@ -112,6 +118,7 @@ class Counted:
         self.evaluations = 0
         self.hit = None
         self.hit_time = None
+        self.best = None
         self.start = time.perf_counter()
 
     def __call__(self, x):
@@ -121,6 +128,8 @@ class Counted:
         value = self.f(np.asarray(x, dtype=float))
         if self.failures > 0.0 and self.failure_draws.random() < self.failures:
             return float("nan")
+        if np.isfinite(value) and (self.best is None or value < self.best):
+            self.best = value
         if self.hit is None and np.isfinite(value) and value - self.f_opt <= self.target:
             self.hit = self.evaluations
             self.hit_time = time.perf_counter() - self.start
@@ -762,6 +771,13 @@ PROBLEMS.update({
 })
 
 
+# The fifteenth set (2026-12-06, eighty-fifth session): losses made of pieces, as a
+# statistician writes them (piecewise_losses.py): least absolute deviations at n = 10 and
+# 30 and quantile regression at n = 10 (convex, piecewise linear, m > n kinks at every
+# angle), and the share of points a linear classifier gets wrong at n = 10 (a staircase of
+# plateaus); first run as Auto stood.
+PROBLEMS.update({name: Problem(*case) for name, case in piecewise_losses.PROBLEMS.items()})
+
 def draw_start(problem, rng):
     """A start uniform in the problem's start range, clipped into its box."""
     low, high = problem.start
@@ -858,7 +874,7 @@ def main():
         problem = problem._replace(sigma0=problem.scales * args.sigma0_factor)
         cells, medians = [], {}
         for solver in solvers:
-            run, hits = runners[solver], []
+            run, hits, gaps = runners[solver], [], []
             for seed in range(args.seeds):
                 x0 = draw_start(problem, np.random.default_rng(seed))
                 counted = Counted(problem.f, problem.f_opt, problem.target, problem.budget,
@@ -868,14 +884,19 @@ def main():
                 except Spent:
                     pass
                 hits.append((counted.hit, counted.hit_time))
+                gaps.append(np.inf if counted.best is None else counted.best - problem.f_opt)
             solved = sorted(h for h, _ in hits if h is not None)
             times = sorted(t for _, t in hits if t is not None)
             median = solved[(len(solved) - 1) // 2] if solved else None
             median_time = times[(len(times) - 1) // 2] if times else None
             if 2 * len(solved) >= args.seeds:
                 medians[solver] = (median, median_time)
+            # Where most runs miss the target, how far they got: the median of the runs'
+            # lowest f - f* (the lower of the two middle runs).
+            missed = (f" (median f − f* {sorted(gaps)[(args.seeds - 1) // 2]:.2g})"
+                      if 2 * len(solved) < args.seeds else "")
             cells.append(f"{len(solved)}/{args.seeds} / {median if median else '—'}"
-                         f" / {seconds(median_time)}")
+                         f" / {seconds(median_time)}{missed}")
         ratios = [f"{medians['hodr'][0] / medians[s][0]:.2f} / "
                   f"{medians['hodr'][1] / medians[s][1]:.2f}"
                   if "hodr" in medians and s in medians else "—" for s in others]
