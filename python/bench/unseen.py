@@ -128,9 +128,11 @@ class Counted:
         value = self.f(np.asarray(x, dtype=float))
         if self.failures > 0.0 and self.failure_draws.random() < self.failures:
             return float("nan")
-        if np.isfinite(value) and (self.best is None or value < self.best):
+        if not np.isfinite(value):
+            return value
+        if self.best is None or value < self.best:
             self.best = value
-        if self.hit is None and np.isfinite(value) and value - self.f_opt <= self.target:
+        if self.hit is None and value - self.f_opt <= self.target:
             self.hit = self.evaluations
             self.hit_time = time.perf_counter() - self.start
         return value
@@ -774,9 +776,10 @@ PROBLEMS.update({
 # The fifteenth set (2026-12-06, eighty-fifth session): losses made of pieces, as a
 # statistician writes them (piecewise_losses.py): least absolute deviations at n = 10 and
 # 30 and quantile regression at n = 10 (convex, piecewise linear, m > n kinks at every
-# angle), and the share of points a linear classifier gets wrong at n = 10 (a staircase of
-# plateaus); first run as Auto stood.
+# angle), and the share of points a linear classifier gets wrong at n = 10 and 30 (a
+# staircase of plateaus); first run as Auto stood.
 PROBLEMS.update({name: Problem(*case) for name, case in piecewise_losses.PROBLEMS.items()})
+
 
 def draw_start(problem, rng):
     """A start uniform in the problem's start range, clipped into its box."""
