@@ -54,7 +54,10 @@ quadratic plus an L1 norm whose kinks lie at the minimum, started beyond them
 (ellipsoid-l1-tenth20 and ellipsoid-l1-one20, weights 0.1 and 1), first run on 2026-12-06,
 and a fifteenth, losses made of pieces (piecewise_losses.py: least absolute deviations
 lad10 and lad30, quantile regression quantile10, and the share of points a linear
-classifier gets wrong, misclassified10 and misclassified30), first run on 2026-12-06.
+classifier gets wrong, misclassified10 and misclassified30), first run on 2026-12-06,
+and a sixteenth, a simulation's parameters fitted to its output (simulations.py: a damped
+oscillation oscillation4, predators and prey predators4, an epidemic epidemic3 and heat in
+a rod heat20), first run on 2026-12-06.
 Each problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
@@ -93,6 +96,7 @@ import least_squares
 import other_fields
 import piecewise_losses
 import raster_losses
+import simulations
 
 warnings.filterwarnings("ignore")
 
@@ -779,6 +783,11 @@ PROBLEMS.update({
 # angle), and the share of points a linear classifier gets wrong at n = 10 and 30 (a
 # staircase of plateaus); first run as Auto stood.
 PROBLEMS.update({name: Problem(*case) for name, case in piecewise_losses.PROBLEMS.items()})
+
+# The sixteenth set (2026-12-06, eighty-sixth session): a simulation's parameters fitted
+# to its own output (simulations.py): a damped oscillation, predators and prey, an
+# epidemic and heat in a rod; first run as Auto stood.
+PROBLEMS.update({name: Problem(*case) for name, case in simulations.PROBLEMS.items()})
 
 
 def draw_start(problem, rng):
