@@ -188,7 +188,9 @@
 //! * **Fresh starts.** A run with a budget on a deterministic objective then starts a
 //!   new descent about its best point (about x₀ while no value has been finite), as
 //!   basin hopping does ([`AutoOptions::fresh_starts`]): each coordinate moves by its
-//!   start scale times 2^(k mod 5) times a normal draw at the k-th fresh start,
+//!   start scale times 2^(k mod 5) times a normal draw at the k-th fresh start (at
+//!   the widest, k mod 5 = 4, by at least its side of the box, so that a σ₀ stated
+//!   far narrower than the bounds still lets the run look beyond the start's basins),
 //!   mirrored into the box; the memory, model and metric start over, and σ starts at
 //!   that restart's scale σ₀·2^(k mod 5), continuation allowed, so that successive
 //!   descents look at ever wider smoothings, as IPOP-CMA-ES's growing populations

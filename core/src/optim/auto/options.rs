@@ -122,7 +122,8 @@ pub struct AutoOptions<T> {
     /// (converged, or stagnated after its [`AutoOptions::restarts`]), another starts
     /// from a point about the best one, as basin hopping does (each coordinate moved
     /// by its start scale times 2^(k mod 5) times a standard normal draw at the k-th
-    /// fresh start, mirrored into the box), with its memory, model and metric started
+    /// fresh start, at the widest (k mod 5 = 4) by at least its side of the box, and
+    /// mirrored into the box), with its memory, model and metric started
     /// over and σ at the same σ₀·2^(k mod 5) (at most 16σ₀ or half the box's widest
     /// side), where continuation applies as after a restart: the wider the jump, the
     /// wider its descent's first look at the smoothed objective, whose minimum lies

@@ -164,8 +164,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
 
     /// Begins a new descent from a fresh start about the run's best point, as basin
     /// hopping does: each coordinate moved by its start scale times 2^(k mod
-    /// [`RESTART_SCALES`]) times a standard normal draw for the k-th fresh start, and
-    /// mirrored into the box. The best point so far is kept as the record; the jump is
+    /// [`RESTART_SCALES`]) times a standard normal draw for the k-th fresh start (the
+    /// cycle's widest by at least the coordinate's side of the box), and mirrored into
+    /// the box. The best point so far is kept as the record; the jump is
     /// from where its descent left it ([`Memory::origin`](super::memory::Memory::origin),
     /// before `Auto::centre` moved it). The memory,
     /// the model and the metric start over as in [`Auto::new`]; σ starts at the k-th
@@ -199,8 +200,22 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let widen = T::from_f64(libm::pow(2.0, f64::from(k)));
         self.st.fresh = self.st.fresh.wrapping_add(1);
         let least = self.least_start_scale();
+        // The widest jump of the cycle reaches across the box: where a caller's σ₀ is
+        // far narrower than the bounds they gave, the search still looks beyond the
+        // basins about its start.
+        let widest = k + 1 == RESTART_SCALES;
         for i in 0..n {
-            self.theta[i] = self.jumped(i, self.theta[i], widen, least);
+            let x = self.theta[i];
+            let spread = self.start_scale(i).max(least) * widen;
+            // Without a bound, `Auto::new` leaves ±T::MAX: no side to reach.
+            let (lower, upper) = (self.mem.lower[i], self.mem.upper[i]);
+            let boxed = lower > -T::MAX && upper < T::MAX && (upper - lower).is_finite();
+            let spread = if widest && boxed {
+                spread.max(upper - lower)
+            } else {
+                spread
+            };
+            self.theta[i] = self.jumped_by(i, x, spread);
         }
         self.new_descent();
         self.st.explore.fresh_started(self.st.evaluations);
@@ -216,6 +231,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// probe's move.
     pub(super) fn jumped(&mut self, i: usize, from: T, widen: T, least: T) -> T {
         let spread = self.start_scale(i).max(least) * widen;
+        self.jumped_by(i, from, spread)
+    }
+
+    /// Coordinate i moved from `from` by `spread` times a standard normal draw, mirrored
+    /// into the box.
+    fn jumped_by(&mut self, i: usize, from: T, spread: T) -> T {
         let x = from + spread * normal::quantile(T::uniform_open(&mut self.rng));
         reflect(x, self.mem.lower[i], self.mem.upper[i])
     }
