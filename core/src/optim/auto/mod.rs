@@ -213,8 +213,9 @@
 //! * **Probes.** Before each fresh start, up to [`AutoOptions::probes`] points per
 //!   coordinate ([`AutoStep::Probed`], n per iteration), each the best point with one
 //!   contiguous block of 1, 2, 4, … ≤ n/2 coordinates moved: uniformly over the box
-//!   (within 32 start scales) where a coordinate has one, else by its start scale times
-//!   2^k·N(0, 1), k uniform over 0 … 4 (the `probe` module). The first batch with a
+//!   (within 32 start scales, or at k = 4 anywhere in it) where a coordinate has one,
+//!   else by its start scale times 2^k·N(0, 1), k uniform over 0 … 4 (the `probe`
+//!   module). The first batch with a
 //!   point below the best starts the next descent there. A descent that ends with one
 //!   object wrong and the rest right — a shape hidden under another or stranded off its
 //!   target, one coordinate in the wrong cell of a lattice — is left by moving that

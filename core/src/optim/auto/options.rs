@@ -163,7 +163,7 @@ pub struct AutoOptions<T> {
     /// point so far with one contiguous block of 1, 2, 4, … ≤ n/2 of its coordinates
     /// (its length and then its place, aligned to the length, drawn uniformly) moved: a
     /// coordinate boxed on both sides drawn uniformly over its box within 32 start
-    /// scales of the best point's, any other moved by its start scale times 2^k (k
+    /// scales of the best point's (anywhere in it at k = 4), any other moved by its start scale times 2^k (k
     /// uniform over 0 … 4) times a standard normal draw, mirrored into a bound it has.
     /// The first batch with a point below the best one moves θ
     /// there and starts the next descent from it; where none is, the fresh start

@@ -13,10 +13,11 @@
 //! multiples of L. Each
 //! coordinate i of the block that is boxed on both sides is drawn uniformly over its box
 //! within 32·sᵢ of the record's (sᵢ its start scale, 32 the widest fresh start's two
-//! spreads): a hidden object may belong anywhere in the box, and a draw centred on where
-//! it is hidden reaches a target some spreads away too rarely. Any other coordinate moves
-//! by sᵢ·2^k·ξᵢ, k uniform over 0 … 4 (as a restart's and a fresh start's scales cycle)
-//! and ξᵢ ~ N(0, 1), mirrored into a bound it has.
+//! spreads), or over the whole box at k = 4 (below): a hidden object may belong anywhere
+//! in the box, and a draw centred on where it is hidden reaches a target some spreads
+//! away too rarely. Any other coordinate moves by sᵢ·2^k·ξᵢ, k uniform over 0 … 4 (as a
+//! restart's and a fresh start's scales cycle) and ξᵢ ~ N(0, 1), mirrored into a bound
+//! it has.
 //!
 //! Once a descent has ended, `Auto::begin_probes` keeps the best point as the record
 //! and allots the probes: [`AutoOptions::probes`](super::AutoOptions::probes) per
@@ -124,7 +125,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 
     /// Coordinate i of a probe. Boxed on both sides: uniform over the box within
-    /// 2^[`RESTART_SCALES`] start scales (at least `least`) of the record's coordinate.
+    /// 2^[`RESTART_SCALES`] start scales (at least `least`) of the record's coordinate,
+    /// or over the whole box where `widen` is the widest, 2^([`RESTART_SCALES`] − 1).
     /// Otherwise: the record's coordinate [`jumped`](Auto::jumped) by `widen` start
     /// scales.
     fn probed(&mut self, i: usize, widen: T, least: T) -> T {
@@ -135,7 +137,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             return self.jumped(i, from, widen, least);
         }
         let reach = self.start_scale(i).max(least) * T::from_f64(f64::from(1u32 << RESTART_SCALES));
-        let (lo, hi) = (lower.max(from - reach), upper.min(from + reach));
+        // The widest probes draw over the whole box (as the widest fresh start jumps
+        // across it): a σ₀ far narrower than the bounds still lets them look there.
+        let widest = widen >= T::from_f64(f64::from(1u32 << (RESTART_SCALES - 1)));
+        let (lo, hi) = if widest {
+            (lower, upper)
+        } else {
+            (lower.max(from - reach), upper.min(from + reach))
+        };
         let u = T::uniform_open(&mut self.rng);
         let width = hi - lo;
         let x = if width.is_finite() {
