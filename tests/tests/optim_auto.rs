@@ -1565,13 +1565,13 @@ fn rastrigin(x: &[f64]) -> f64 {
         .sum()
 }
 
-/// A run of [`fresh_starts_leave_a_local_minimum`].
 /// A scale stated far narrower than the box: two wells in [−5, 5]², the deeper
 /// (f = 0) about (3, 3), the other (f = 1/2) about (−3, −3), where the run starts, with
 /// σ₀ = 10⁻³ and a budget of 3 000 evaluations. Every fresh start but the widest of
 /// each cycle jumps by at most 16σ₀ and stays in the start's well; the widest reaches
 /// across the box. Measured on seeds 0–399: 392 of 400, the same once the widest
-/// probes drew over the whole box too (0 of 400 while the widest jump was 16σ₀). Bound: P(X < 34 | p = 0.98, N = 40) = 1.3e-5.
+/// probes drew over the whole box too (0 of 400 while the widest jump was 16σ₀).
+/// Bound: P(X < 34 | p = 0.98, N = 40) = 1.3e-5.
 #[test]
 fn the_widest_fresh_start_crosses_the_box() {
     let seeds = 40;
@@ -1625,6 +1625,7 @@ fn double_wells_run(seed: u64) -> bool {
     value.is_some_and(|v| v < 1e-8)
 }
 
+/// A run of [`fresh_starts_leave_a_local_minimum`].
 fn rastrigin_run(
     budget: Option<usize>,
     fresh_starts: bool,

@@ -1654,6 +1654,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
     }
 
+    /// Whether coordinate i has a bound on both sides (`Auto::new` leaves ±T::MAX
+    /// where it has none).
+    fn boxed(&self, i: usize) -> bool {
+        self.mem.lower[i] > -T::MAX && self.mem.upper[i] < T::MAX
+    }
+
     /// The least scale a coordinate starts with: √[`metric::floor`] of the largest
     /// [`Auto::start_scale`], which keeps C within what T whitens.
     fn least_start_scale(&self) -> T {

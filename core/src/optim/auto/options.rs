@@ -123,8 +123,7 @@ pub struct AutoOptions<T> {
     /// from a point about the best one, as basin hopping does (each coordinate moved
     /// by its start scale times 2^(k mod 5) times a standard normal draw at the k-th
     /// fresh start, at the widest (k mod 5 = 4) by at least its side of the box, and
-    /// mirrored into the box), with its memory, model and metric started
-    /// over and σ at the same σ₀·2^(k mod 5) (at most 16σ₀ or half the box's widest
+    /// mirrored into the box), with its memory, model and metric started over and σ at the same σ₀·2^(k mod 5) (at most 16σ₀ or half the box's widest
     /// side), where continuation applies as after a restart: the wider the jump, the
     /// wider its descent's first look at the smoothed objective, whose minimum lies
     /// past the wells of a bowl's multi-modal surface. Once a probe
@@ -163,8 +162,9 @@ pub struct AutoOptions<T> {
     /// point so far with one contiguous block of 1, 2, 4, … ≤ n/2 of its coordinates
     /// (its length and then its place, aligned to the length, drawn uniformly) moved: a
     /// coordinate boxed on both sides drawn uniformly over its box within 32 start
-    /// scales of the best point's (anywhere in it at k = 4), any other moved by its start scale times 2^k (k
-    /// uniform over 0 … 4) times a standard normal draw, mirrored into a bound it has.
+    /// scales of the best point's (anywhere in it at k = 4), any other moved by its
+    /// start scale times 2^k (k uniform over 0 … 4) times a standard normal draw,
+    /// mirrored into a bound it has.
     /// The first batch with a point below the best one moves θ
     /// there and starts the next descent from it; where none is, the fresh start
     /// follows. A descent that ends with one object wrong and the rest right (a shape

@@ -132,8 +132,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     fn probed(&mut self, i: usize, widen: T, least: T) -> T {
         let (lower, upper) = (self.mem.lower[i], self.mem.upper[i]);
         let from = self.mem.record[i];
-        // Without a bound, `Auto::new` leaves ±T::MAX.
-        if lower <= -T::MAX || upper >= T::MAX {
+        if !self.boxed(i) {
             return self.jumped(i, from, widen, least);
         }
         let reach = self.start_scale(i).max(least) * T::from_f64(f64::from(1u32 << RESTART_SCALES));

@@ -207,11 +207,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         for i in 0..n {
             let x = self.theta[i];
             let spread = self.start_scale(i).max(least) * widen;
-            // Without a bound, `Auto::new` leaves ±T::MAX: no side to reach.
-            let (lower, upper) = (self.mem.lower[i], self.mem.upper[i]);
-            let boxed = lower > -T::MAX && upper < T::MAX && (upper - lower).is_finite();
-            let spread = if widest && boxed {
-                spread.max(upper - lower)
+            let side = self.mem.upper[i] - self.mem.lower[i];
+            let spread = if widest && self.boxed(i) && side.is_finite() {
+                spread.max(side)
             } else {
                 spread
             };
