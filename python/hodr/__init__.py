@@ -380,10 +380,10 @@ def minimize(
         ``upper``, pass ``list(zip(lower, upper))``: a pair of two arrays reads as
         per-coordinate pairs when n = 2, as in scipy. Every evaluated point lies inside
         (an x0 outside is projected into the box, as scipy clips it); each pair must
-        hold a finite point (low <= high, low < inf, high > -inf). A side bounded on
-        both ends is searched: with a budget, one fresh start and one probe in five
-        draw across the whole box, so give None or inf for a side that is no bound
-        rather than a large number such as 1e20.
+        hold a finite point (low <= high, low < inf, high > -inf). A coordinate bounded
+        on both sides is searched across its box: with a budget, one fresh start and
+        one probe in five draw anywhere in it, so give None or inf for a side that is
+        no bound rather than a large number such as 1e20.
     budget : int, optional
         At most this many evaluations (never exceeded; 1 to 2**64 - 1). With a
         budget, a deterministic ``fun`` gets it all: once a descent converges or
