@@ -170,8 +170,10 @@
 //!   rounding alone at a minimum the model confirmed, or values that settle: a window
 //!   of [`CREEP_WINDOWS`]·patience iterations that lowers f(θ) by at most ε of the
 //!   descent's fall, as along an asymptote to an infimum at infinity), or after
-//!   [`AutoOptions::patience`] iterations without a lower f(θ), or once it creeps (a
-//!   window of [`CREEP_WINDOWS`]·patience iterations that follows another, both without
+//!   [`AutoOptions::patience`] iterations without a lower f(θ) (before the run's first
+//!   gain, on a deterministic objective, without a rejected trial that took σ to a new
+//!   low either: there σ₀ overstates the scale, and σ is still shrinking to it), or once
+//!   it creeps (a window of [`CREEP_WINDOWS`]·patience iterations that follows another, both without
 //!   a confirmed model step or σ converging, and lowers f(θ) by at most [`CREEP_GAIN`]
 //!   of the descent's fall and by more than half the window before), the run restarts from
 //!   the best point with a survey of pairs, as the first iteration's, at the next scale of the cycle σ₀, 2σ₀,
@@ -652,8 +654,20 @@ struct State<T> {
     /// The model claimed its minimum at θ before enough points around θ validated it:
     /// the next iteration draws the pairs the validation lacks at once (with `resample`).
     validate: bool,
-    /// Iterations since f(θ) last fell.
+    /// Iterations since f(θ) last fell or, before the run's first gain, since a rejected
+    /// step to the trust region's boundary took σ below its lowest
+    /// ([`State::lowest_sigma`]).
     stale: usize,
+    /// The lowest σ a rejected step to the trust region's boundary has left in the run's
+    /// first descent before its first gain ([`State::improved`]), on a deterministic
+    /// objective. Where σ₀ overstates the scale at which f is a quadratic (Rosenbrock's
+    /// valley seen from σ₀ = 500), the model extrapolates to the region's boundary and
+    /// its steps fail until σ shrinks to that scale: each shrink below the lowest is that
+    /// search going on, not a stagnant descent, and a restart would send σ back to
+    /// σ₀·2^k to search again. Nothing else counts: at a minimum x₀ already holds (on a
+    /// face of the box too) the model's steps end inside the region, or fail to fit,
+    /// and σ would shrink without end.
+    lowest_sigma: T,
     /// f(θ) fell since the last restart (or the run began): a stagnation restarts
     /// instead of ending the run.
     may_restart: bool,
@@ -875,6 +889,7 @@ impl<T: Real> State<T> {
             resample: false,
             validate: false,
             stale: 0,
+            lowest_sigma: sigma0,
             may_restart: false,
             bounded: false,
             survey: false,
@@ -1194,6 +1209,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         metric::axes(self.shape, m.tmp, m.c, m.l, m.li);
         self.st.sigma = sigma0;
         self.st.sigma0 = sigma0;
+        self.st.lowest_sigma = sigma0;
     }
 
     /// Replaces the options (see [`AutoOptions`]).

@@ -335,6 +335,19 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             sigma
         };
+        if !accepted
+            && boundary
+            && self.st.descent == 1
+            && !self.st.improved
+            && !self.st.noisy
+            && !self.st.unseeded
+            && self.st.sigma < self.st.lowest_sigma
+        {
+            // σ₀ overstated the scale at which f is a quadratic, and σ is still shrinking
+            // to it: the patience counts from here (`State::lowest_sigma`).
+            self.st.lowest_sigma = self.st.sigma;
+            self.st.stale = 0;
+        }
         self.st.unconfirmed = self.st.unconfirmed.saturating_add(1);
         if accepted && ratio >= T::from_f64(0.1) {
             // The model predicted the decrease: trust its curvature's shape.
