@@ -423,7 +423,8 @@ def minimize(
         sigma < tolerance * sigma0; default 1e-9, or 1e-3 with ``noisy``);
         ``patience`` (int >= 1): iterations without a lower value before a restart
         (default 20 + 10n; before the run's first gain, on a deterministic f,
-        counted from the last rejected step that shrank the scale to a new low); ``restarts`` (int >= 0): restarts without a gain,
+        counted from the last rejected step to the trust region's edge that shrank
+        the scale to a new low); ``restarts`` (int >= 0): restarts without a gain,
         beyond the first, before the descent ends (default 0 where a fresh start
         follows, else 8);
         ``fresh_starts`` (bool): with a ``budget``, spend what the first descent

@@ -170,10 +170,11 @@
 //!   rounding alone at a minimum the model confirmed, or values that settle: a window
 //!   of [`CREEP_WINDOWS`]·patience iterations that lowers f(θ) by at most ε of the
 //!   descent's fall, as along an asymptote to an infimum at infinity), or after
-//!   [`AutoOptions::patience`] iterations without a lower f(θ) (before the run's first
-//!   gain, on a deterministic objective, without a rejected trial that took σ to a new
-//!   low either: there σ₀ overstates the scale, and σ is still shrinking to it), or once
-//!   it creeps (a window of [`CREEP_WINDOWS`]·patience iterations that follows another, both without
+//!   [`AutoOptions::patience`] iterations without a lower f(θ) (in the first descent
+//!   before its first gain, on a deterministic objective, without a rejected step to the
+//!   trust region's boundary that took σ to a new low either: there σ₀ overstates the
+//!   scale, and σ is still shrinking to it), or once it creeps (a window of
+//!   [`CREEP_WINDOWS`]·patience iterations that follows another, both without
 //!   a confirmed model step or σ converging, and lowers f(θ) by at most [`CREEP_GAIN`]
 //!   of the descent's fall and by more than half the window before), the run restarts from
 //!   the best point with a survey of pairs, as the first iteration's, at the next scale of the cycle σ₀, 2σ₀,

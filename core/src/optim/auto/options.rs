@@ -97,10 +97,11 @@ pub struct AutoOptions<T> {
     /// [`NOISY_TOLERANCE`](super::NOISY_TOLERANCE) for a noisy one.
     pub tolerance: Option<T>,
     /// Iterations without a lower f(θ) after which the run restarts from the best point
-    /// (see [`AutoOptions::restarts`]) or ends stagnated. Before the run's first gain on
-    /// a deterministic objective, the count also starts again whenever a rejected trial
-    /// step takes σ below its lowest so far: σ₀ overstates the scale at which f is a
-    /// quadratic, and σ is still shrinking to it. Default: `None`, meaning 20 + 10n.
+    /// (see [`AutoOptions::restarts`]) or ends stagnated. In the first descent before its
+    /// first gain, on a deterministic objective, the count also starts again whenever a
+    /// rejected step to the trust region's boundary takes σ below its lowest so far: σ₀
+    /// overstates the scale at which f is a quadratic, and σ is still shrinking to it.
+    /// Default: `None`, meaning 20 + 10n.
     pub patience: Option<usize>,
     /// A descent restarts from its best point whenever it converges or stagnates with a
     /// lower f(θ) since its last restart (or its start); once a restart has found none,
