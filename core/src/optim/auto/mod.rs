@@ -135,7 +135,11 @@
 //!   that it rests on its prior or on points from wider scales, where a kink's
 //!   smoothed curvature is flatter (a cone's falls as 1/σ) and the model would
 //!   mispredict alike at every smaller σ (on a declared-noisy objective: at most 2n
-//!   within reach and no more points fitted than coefficients) — or, on an unseeded
+//!   within reach and no more points fitted than coefficients; but in the first descent
+//!   before the run's first gain, on a deterministic objective, a rejected step to the
+//!   boundary shrinks σ however few points lie within reach: every point so far saw f
+//!   at σ₀'s scale, and where σ₀ overstates the scale at which f is a quadratic each
+//!   step extrapolates to the boundary and fails) — or, on an unseeded
 //!   objective whose draws never agree exactly, the trial fell short by less than
 //!   [`NOISE_MARGIN`] times the noise's scale (below): then σ stays, and the next fit
 //!   takes in the trial, which lies where the model erred, as Powell's methods take in

@@ -272,19 +272,35 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // remembered points, which a noisy run, whose accepted steps move θ by about the
         // radius, seldom has within reach: σ stayed at σ₀/4 while steps the noise
         // accepted walked θ uphill (CAUSTIC, n = 256).
+        //
+        // Before the run's first gain, in its first descent, on a deterministic
+        // objective, a trial to the trust region's boundary that f rejects is blamed on
+        // σ however few points lie near θ: every point so far was drawn about x₀ at
+        // σ₀'s scale, and where σ₀ overstates the scale at which f is a quadratic the
+        // fit takes f's higher-order terms there for slope and curvature (Rosenbrock's
+        // cubic terms seen from 0 at σ₀ = 0.5), so that each step extrapolates to the
+        // boundary and fails while σ waits for a determined model. A kink, whose
+        // shortfalls look alike at every scale, meets this only at x₀ itself.
+        let overstated = !accepted
+            && boundary
+            && self.st.descent == 1
+            && !self.st.improved
+            && !self.st.noisy
+            && !self.st.unseeded;
         let blames_scale = poor
-            && if self.st.noisy {
-                determined
-                    || validated
-                    || self.shape == Shape::Diagonal
-                        && self.count_around(T::from_f64(REACH)) > nearby_needed(self.shape, n)
-            } else if memory_determines_model(self.shape, n) {
-                self.count_around(T::from_f64(REACH)) > self.shape.coefficients(n)
-            } else if self.shape == Shape::Full {
-                self.count_around(T::from_f64(REACH)) > blaming(n, self.st.blamed)
-            } else {
-                validated
-            };
+            && (overstated
+                || if self.st.noisy {
+                    determined
+                        || validated
+                        || self.shape == Shape::Diagonal
+                            && self.count_around(T::from_f64(REACH)) > nearby_needed(self.shape, n)
+                } else if memory_determines_model(self.shape, n) {
+                    self.count_around(T::from_f64(REACH)) > self.shape.coefficients(n)
+                } else if self.shape == Shape::Full {
+                    self.count_around(T::from_f64(REACH)) > blaming(n, self.st.blamed)
+                } else {
+                    validated
+                });
         // On an unseeded objective whose every draw is noisy, a trial whose draw is
         // higher by less than NOISE_MARGIN times the noise's scale may have been rejected
         // by the noise rather than the model: halving σ on its word shrinks the steps
@@ -335,14 +351,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         } else {
             sigma
         };
-        if !accepted
-            && boundary
-            && self.st.descent == 1
-            && !self.st.improved
-            && !self.st.noisy
-            && !self.st.unseeded
-            && self.st.sigma < self.st.lowest_sigma
-        {
+        if overstated && self.st.sigma < self.st.lowest_sigma {
             // σ₀ overstated the scale at which f is a quadratic, and σ is still shrinking
             // to it: the patience counts from here (`State::lowest_sigma`).
             self.st.lowest_sigma = self.st.sigma;
