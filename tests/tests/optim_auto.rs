@@ -1621,17 +1621,8 @@ fn the_widest_probes_search_the_whole_box() {
 /// Bound: P(X < 38 | p = 0.99875, N = 40) = 1.9e-5.
 #[test]
 fn an_overstated_scale_shrinks_without_restarting() {
-    let seeds = 40;
-    let solved = (0..seeds)
-        .filter(|&seed| {
-            let (_, v, _) = minimise(&mut rosenbrock, &[0.0; 10], 500.0, None, 2500, seed);
-            v.is_some_and(|v| v < 1e-8)
-        })
-        .count();
-    assert!(
-        solved >= 38,
-        "Rosenbrock-10 from σ₀ = 500: {solved} of {seeds}"
-    );
+    let solved = rosenbrock_from_zero_solved(500.0, 2500, 40);
+    assert!(solved >= 38, "Rosenbrock-10 from σ₀ = 500: {solved} of 40");
 }
 
 /// A scale stated somewhat too wide: Rosenbrock's function at n = 10 from 0 with
@@ -1644,17 +1635,19 @@ fn an_overstated_scale_shrinks_without_restarting() {
 /// Bound: P(X < 34 | p = 0.975, N = 40) = 5.5e-5.
 #[test]
 fn an_overstated_scale_shrinks_before_the_first_gain() {
-    let seeds = 40;
-    let solved = (0..seeds)
+    let solved = rosenbrock_from_zero_solved(0.5, 1200, 40);
+    assert!(solved >= 34, "Rosenbrock-10 from σ₀ = 0.5: {solved} of 40");
+}
+
+/// How many of seeds 0 to `seeds` − 1 take Rosenbrock's function at n = 10, from 0 with
+/// scale `sigma0`, below f = 10⁻⁸ within `budget` evaluations.
+fn rosenbrock_from_zero_solved(sigma0: f64, budget: usize, seeds: u64) -> usize {
+    (0..seeds)
         .filter(|&seed| {
-            let (_, v, _) = minimise(&mut rosenbrock, &[0.0; 10], 0.5, None, 1200, seed);
+            let (_, v, _) = minimise(&mut rosenbrock, &[0.0; 10], sigma0, None, budget, seed);
             v.is_some_and(|v| v < 1e-8)
         })
-        .count();
-    assert!(
-        solved >= 34,
-        "Rosenbrock-10 from σ₀ = 0.5: {solved} of {seeds}"
-    );
+        .count()
 }
 
 /// Whether the run of [`the_widest_probes_search_the_whole_box`] on `seed` reaches
