@@ -121,15 +121,16 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let Some(v) = self.st.value else {
             return;
         };
+        let grain = self.grain();
         let factors = &mut self.mem.gx[..n];
         factors.fill(T::ONE);
         let (mut flat, mut moving) = (0, 0);
         for p in 0..pairs {
             let halves = &self.mem.stage_f[centre + 2 * p..centre + 2 * p + 2];
-            if halves.iter().all(|&f| ties_with(f, v)) {
+            if halves.iter().all(|&f| ties_with(f, v, grain)) {
                 factors[(first_axis + p) % n] = T::from_f64(FLAT_STRETCH);
                 flat += 1;
-            } else if !halves.iter().any(|&f| ties_with(f, v)) {
+            } else if !halves.iter().any(|&f| ties_with(f, v, grain)) {
                 moving += 1;
             }
         }

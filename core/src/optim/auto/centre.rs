@@ -104,8 +104,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let Some(value) = self.st.value else {
             return false;
         };
+        let grain = self.grain();
         let tied = (0..self.st.count)
-            .filter(|&k| ties_with(self.mem.fs[k], value))
+            .filter(|&k| ties_with(self.mem.fs[k], value, grain))
             .fold(T::ZERO, |d, k| d.max(self.scaled_distance(self.theta, k)));
         tied > T::ZERO && self.rounding_explains(self.theta, value, tied)
     }
@@ -130,7 +131,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 (d > T::ZERO && d <= reach).then(|| (self.mem.fs[k] - value).abs() / d.sq())
             })
             .fold(T::MAX, T::min);
-        let width = tie_width(value);
+        let width = tie_width(value, self.grain());
         least < T::MAX
             && width > T::ZERO
             && tied <= T::from_f64(ROUNDING_SLACK) * (width / least).sqrt()

@@ -26,8 +26,9 @@
 //! flat direction so that no coordinate's spread converges. Its values have settled
 //! once a window of [`CREEP_WINDOWS`]·patience iterations (counted from the descent's
 //! start or its last restart, whatever its model or σ did) lowers f(θ) by at most
-//! ε·(f₀ − f(θ)), ε the machine epsilon of T and f₀ the descent's first finite f(θ):
-//! a fall below what T resolves of the values the descent began from
+//! ε·(f₀ − f(θ)), ε the precision of f's values (T's machine epsilon, or f32's where
+//! f computes in single precision, `Auto::grain`) and f₀ the descent's first finite
+//! f(θ): a fall below what f's arithmetic resolves of the values the descent began from
 //! ([`Creep::negligible`]). The descent then counts as converged.
 
 use crate::real::Real;
@@ -82,18 +83,20 @@ impl<T: Real> Creep<T> {
     }
 
     /// Whether a fall of f(θ) by `gain` is negligible for a descent now at `value`: at
-    /// most ε·(f₀ − `value`), f₀ its first finite f(θ) (see the module's header); false
-    /// before anything has been observed.
-    pub fn negligible(&self, gain: T, value: T) -> bool {
+    /// most `grain`·(f₀ − `value`), f₀ its first finite f(θ) and `grain` the relative
+    /// precision of f's values (see the module's header); false before anything has
+    /// been observed.
+    pub fn negligible(&self, gain: T, value: T, grain: T) -> bool {
         self.first
-            .is_some_and(|first| gain <= T::EPSILON * (first - value))
+            .is_some_and(|first| gain <= grain * (first - value))
     }
 
     /// Observes the end of `iteration`, with f(θ) `value`, for the settling test (the
     /// module's header), in windows of `window` iterations; returns whether the window
-    /// that ends here lowered f(θ) negligibly (and then begins the next one). Called
-    /// after [`Creep::observe`], which records the descent's first value.
-    pub fn settled(&mut self, value: T, iteration: usize, window: usize) -> bool {
+    /// that ends here lowered f(θ) negligibly at f's precision `grain`
+    /// ([`Creep::negligible`]), and then begins the next one. Called after
+    /// [`Creep::observe`], which records the descent's first value.
+    pub fn settled(&mut self, value: T, iteration: usize, window: usize, grain: T) -> bool {
         let Some((begun, start)) = self.settling else {
             self.settling = Some((iteration, value));
             return false;
@@ -102,7 +105,7 @@ impl<T: Real> Creep<T> {
             return false;
         }
         self.settling = Some((iteration, value));
-        self.negligible(start - value, value)
+        self.negligible(start - value, value, grain)
     }
 
     /// Observes the end of `iteration`, with f(θ) `value`, σ `sigma`, whether the last
@@ -202,7 +205,7 @@ mod tests {
                 let value = if k == 0 { 1.0 } else { 1e-10 - fall * k as f64 };
                 let sigma = 0.25f64.powi((k / 150) as i32);
                 creep.observe(value, sigma, k, true, 100);
-                if creep.settled(value, k, 100) {
+                if creep.settled(value, k, 100, f64::EPSILON) {
                     return Some(k);
                 }
             }

@@ -31,11 +31,11 @@ use crate::real::Real;
 /// The most a probe phase may grow beyond its default allotment: 8 times.
 pub const SHARE_RANGE: usize = 8;
 
-/// Whether `a` lies below `b` by more than √ε of their magnitude (ε of T): a win of
-/// the module's header. (Polishing a minimum that an earlier descent found moves its value
-/// by far less.)
-pub(super) fn clearly_below<T: Real>(a: T, b: T) -> bool {
-    a < b && b - a > T::EPSILON.sqrt() * a.abs().max(b.abs())
+/// Whether `a` lies below `b` by more than √`grain` of their magnitude (`grain` the
+/// relative precision of f's values, `Auto::grain`): a win of the module's header.
+/// (Polishing a minimum that an earlier descent found moves its value by far less.)
+pub(super) fn clearly_below<T: Real>(a: T, b: T, grain: T) -> bool {
+    a < b && b - a > grain.sqrt() * a.abs().max(b.abs())
 }
 
 /// Each way's wins and evaluations over a run (see the module's header).
@@ -59,19 +59,21 @@ pub(super) struct Exploration {
 impl Exploration {
     /// A descent ends after `evaluations` of the run, the run's best value `before` it
     /// and `after` it (`None`: none finite); a fresh descent won where `after` is
-    /// [`clearly_below`] `before`, or finite where `before` was not.
+    /// [`clearly_below`] `before` (at f's precision `grain`), or finite where `before`
+    /// was not.
     pub(super) fn descent_ended<T: Real>(
         &mut self,
         evaluations: usize,
         before: Option<T>,
         after: Option<T>,
+        grain: T,
     ) {
         if self.first == 0 {
             self.first = evaluations.max(1);
         }
         if let Some(began) = self.fresh_began.take() {
             let won = match (before, after) {
-                (Some(b), Some(a)) => clearly_below(a, b),
+                (Some(b), Some(a)) => clearly_below(a, b, grain),
                 (None, after) => after.is_some(),
                 (Some(_), None) => false,
             };
@@ -115,7 +117,7 @@ mod tests {
     #[test]
     fn before_any_evidence_the_default() {
         let mut e = Exploration::default();
-        e.descent_ended(1_234, None, Some(1.0));
+        e.descent_ended(1_234, None, Some(1.0), f64::EPSILON);
         assert_eq!(e.allotment(10, 20), 200);
         assert_eq!(e.allotment(1, 20), 20);
     }
@@ -123,21 +125,21 @@ mod tests {
     #[test]
     fn probes_that_win_grow_and_probes_that_fail_keep_the_default() {
         let mut wins = Exploration::default();
-        wins.descent_ended(1_000, None, Some(1.0));
+        wins.descent_ended(1_000, None, Some(1.0), f64::EPSILON);
         for _ in 0..4 {
             wins.probed(50, true);
-            wins.descent_ended(2_000, Some(1.0), Some(0.5));
+            wins.descent_ended(2_000, Some(1.0), Some(0.5), f64::EPSILON);
         }
         wins.fresh_started(3_000);
-        wins.descent_ended(4_000, Some(0.5), Some(0.5));
+        wins.descent_ended(4_000, Some(0.5), Some(0.5), f64::EPSILON);
         assert_eq!(wins.allotment(10, 20), 200 * SHARE_RANGE);
 
         let mut fails = Exploration::default();
-        fails.descent_ended(1_000, None, Some(1.0));
+        fails.descent_ended(1_000, None, Some(1.0), f64::EPSILON);
         for k in 0..8 {
             fails.probed(200, false);
             fails.fresh_started(1_000 * k);
-            fails.descent_ended(1_000 * k + 1_000, Some(1.0), Some(0.5));
+            fails.descent_ended(1_000 * k + 1_000, Some(1.0), Some(0.5), f64::EPSILON);
         }
         assert_eq!(fails.allotment(10, 20), 200);
     }
@@ -145,7 +147,7 @@ mod tests {
     #[test]
     fn zero_probes_stay_zero() {
         let mut e = Exploration::default();
-        e.descent_ended(10, None, Some(1.0));
+        e.descent_ended(10, None, Some(1.0), f64::EPSILON);
         assert_eq!(e.allotment(5, 0), 0);
     }
 }

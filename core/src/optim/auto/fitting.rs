@@ -121,6 +121,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         // leaves every point near the limit to the fit's own z).
         let known_far = self.reach_is_current().then(|| limit * T::from_f64(1.001));
         let wall = T::from_f64(WALL_GROUP);
+        let grain = self.grain();
         for j in 0..self.st.count {
             let k = self.slot(j);
             if known_far.is_some_and(|far| self.mem.zs[k] > far) {
@@ -160,6 +161,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                         gs: self.mem.gs,
                         count: self.st.count,
                         reach: known_far.map(|_| (&*self.mem.zs, sigma * root_n)),
+                        grain,
                     };
                     let y = &self.mem.ys[k * n..(k + 1) * n];
                     match points.floor_beside(y, z, limit * sigma * root_n, level) {

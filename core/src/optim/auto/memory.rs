@@ -9,7 +9,8 @@ use rand_core::Rng;
 
 use super::model::{self, Shape};
 use super::{
-    Auto, FULL_MEMORY_PER_DIM, MAX_MEMORY, REACH, WALL_GROUP, metric, tie_width, ties_with,
+    Auto, FULL_MEMORY_PER_DIM, MAX_MEMORY, REACH, WALL_GROUP, metric, significant_bits, tie_width,
+    ties_with,
 };
 use crate::optim::vector::{distance, norm};
 use crate::real::Real;
@@ -450,7 +451,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                     None => continue,
                 }
             };
-            if group != T::from_f64(WALL_GROUP) && self.st.value.is_some_and(|v| !ties_with(f, v)) {
+            if group != T::from_f64(WALL_GROUP) {
+                self.st.value_bits = self.st.value_bits.max(significant_bits(f));
+            }
+            let grain = self.grain();
+            if group != T::from_f64(WALL_GROUP)
+                && self.st.value.is_some_and(|v| !ties_with(f, v, grain))
+            {
                 self.st.varied = true;
             }
             let count = self.st.count;
@@ -538,6 +545,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             gs: self.mem.gs,
             count: self.st.count,
             reach: None,
+            grain: self.grain(),
         };
         points.floor_beside(self.mem.gx, T::ZERO, limit, T::MAX)
     }
@@ -714,13 +722,17 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             return (0, 0);
         };
         self.refresh_reach();
+        let grain = self.grain();
         (0..self.st.count)
             .filter(|&k| {
                 let reach = self.mem.zs[k];
                 reach > T::ZERO && reach <= z
             })
             .fold((0, 0), |(near, ties), k| {
-                (near + 1, ties + usize::from(ties_with(self.mem.fs[k], v)))
+                (
+                    near + 1,
+                    ties + usize::from(ties_with(self.mem.fs[k], v, grain)),
+                )
             })
     }
 
@@ -761,6 +773,8 @@ pub(super) struct Points<'a, T> {
     pub(super) gs: &'a [T],
     pub(super) count: usize,
     pub(super) reach: Option<(&'a [T], T)>,
+    /// The relative precision of f's values ([`Auto::grain`]).
+    pub(super) grain: T,
 }
 
 impl<T: Real> Points<'_, T> {
@@ -789,7 +803,7 @@ impl<T: Real> Points<'_, T> {
             }
         }
         let value = value?;
-        let above = value + T::TWO * tie_width(value);
+        let above = value + T::TWO * tie_width(value, self.grain);
         above.is_finite().then_some(above)
     }
 }

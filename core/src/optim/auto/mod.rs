@@ -169,11 +169,12 @@
 //!   (never exceeded, even inside an iteration) — and, by being set, lets it start
 //!   fresh descents (below). When every coordinate's spread σ√Cᵢᵢ falls
 //!   below [`AutoOptions::tolerance`] of its start (σ below it times σ₀ on a noisy
-//!   objective; or σ below what T resolves at θ, or the model's promised decrease below
-//!   what T resolves of f(θ), [`UNRESOLVED_FITS`], or samples that tie with f(θ) by
-//!   rounding alone at a minimum the model confirmed, or values that settle: a window
-//!   of [`CREEP_WINDOWS`]·patience iterations that lowers f(θ) by at most ε of the
-//!   descent's fall, as along an asymptote to an infimum at infinity), or after
+//!   objective; or σ below what f's arithmetic resolves at θ, or the model's promised
+//!   decrease below what it resolves of f(θ), [`UNRESOLVED_FITS`], or samples that tie
+//!   with f(θ) by rounding alone at a minimum the model confirmed, or values that
+//!   settle: a window of [`CREEP_WINDOWS`]·patience iterations that lowers f(θ) by at
+//!   most ε of the descent's fall, as along an asymptote to an infimum at infinity; ε
+//!   is T's, or f32's where f's values show single precision, `Auto::grain`), or after
 //!   [`AutoOptions::patience`] iterations without a lower f(θ) (in the first descent
 //!   before its first gain, on a deterministic objective, without a rejected step to the
 //!   trust region's boundary that took σ to a new low either: there σ₀ overstates the
@@ -548,7 +549,8 @@ pub const HOPELESS_FITS: u32 = 3;
 
 /// Model steps in a row after which a descent counts as converged because f's
 /// arithmetic no longer resolves what its model promises: each step's predicted
-/// decrease at most the width within which values tie (16 ulps of f(θ), `tie_width`).
+/// decrease at most the width within which values tie (`tie_width`: 16 ulps of f(θ),
+/// 8 of f32's where f's values are single precision).
 /// Below that the ratio test compares rounding errors: σ would shrink on a rejection
 /// and widen again where the model turns blind, at a minimum whose value is far from
 /// zero, until [`AutoOptions::patience`] ran out (20 + 10n iterations). Steps that end
@@ -803,6 +805,10 @@ struct State<T> {
     /// Model steps in a row whose predicted decrease f's arithmetic does not resolve
     /// ([`UNRESOLVED_FITS`]).
     unresolved: u32,
+    /// The most significant bits of any finite value f has returned
+    /// ([`significant_bits`]; 0 before the first), which tells the precision of f's
+    /// arithmetic ([`Auto::grain`]). Kept for the whole run.
+    value_bits: u32,
     /// The last iteration's model, its points validating it, put its minimum at θ and
     /// σ halved (`Auto::model_step`). Cleared once this iteration's samples are read.
     confirmed: bool,
@@ -934,6 +940,7 @@ impl<T: Real> State<T> {
             record: None,
             hopeless: 0,
             unresolved: 0,
+            value_bits: 0,
             confirmed: false,
             settled: 0,
             blamed: 0,
@@ -1075,7 +1082,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         // A scale below what x₀'s floats resolve samples x₀ itself: every value ties.
         let largest = theta.iter().fold(T::ZERO, |m, x| m.max(x.abs()));
-        let sigma0 = sigma0.max(T::TWO * resolution(largest));
+        let sigma0 = sigma0.max(T::TWO * resolution(largest, T::EPSILON));
         let shape = match model {
             AutoModel::ByDimension => Shape::for_dim(n),
             AutoModel::Full if n > FULL_MODEL_MAX_DIM => {
@@ -1419,10 +1426,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 if let (Some(before), Some(value)) = (best_before, self.st.value) {
                     self.st.fallen += before - value;
                 }
-                let fallen = self
-                    .st
-                    .value
-                    .is_some_and(|value| !self.st.creep.negligible(self.st.fallen, value));
+                let fallen = self.st.value.is_some_and(|value| {
+                    !self
+                        .st
+                        .creep
+                        .negligible(self.st.fallen, value, self.grain())
+                });
                 self.st.may_restart |=
                     self.may_start_fresh() || (self.st.travelled >= self.tolerance() && fallen);
             }
@@ -1447,7 +1456,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 || self.st.unresolved >= UNRESOLVED_FITS
                 || self.st.rounded
                 || settled)
-            || self.st.sigma <= resolution(scale)
+            || self.st.sigma <= resolution(scale, self.grain())
             || self.st.hopeless >= HOPELESS_FITS;
         // A descent that has found no finite value has nothing to wait for once σ has
         // widened to its cap: a fresh start about x₀ looks at the finer scales again.
@@ -1600,11 +1609,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// point and f(θ) is finite.
     fn values_settled(&mut self, patience: usize) -> bool {
         let exact = !self.st.noisy && !self.st.unseeded;
+        let grain = self.grain();
         match self.st.value {
             Some(value) if exact && self.st.best_value.is_none() => {
                 self.st
                     .creep
-                    .settled(value, self.st.iteration, CREEP_WINDOWS * patience)
+                    .settled(value, self.st.iteration, CREEP_WINDOWS * patience, grain)
             }
             _ => false,
         }
@@ -1688,6 +1698,22 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         largest * metric::floor::<T>().sqrt()
     }
 
+    /// The relative precision of f's values: f32's ε (2⁻²³) once some finite value has had
+    /// 24 significant bits and none more ([`State::value_bits`]) — an objective computed
+    /// in single precision, as a GPU renderer's or a float32 loss's is, whose parameters
+    /// are rounded to f32 on their way in too — else T's ε. Values tie within 8 of f32's
+    /// ulps ([`tie_width`]), σ converges at 8 ([`resolution`]), a trial point that moves
+    /// no coordinate by more is θ's own (`Auto::model_step`) and a descent's values
+    /// settle at a fall of one ([`Creep::negligible`]): below these the run would
+    /// compare f's rounding, not f.
+    fn grain(&self) -> T {
+        if self.st.value_bits == f32::MANTISSA_DIGITS {
+            T::from_f64(f64::from(f32::EPSILON)).max(T::EPSILON)
+        } else {
+            T::EPSILON
+        }
+    }
+
     /// The tolerance of [`Auto::sigma_converged`] ([`AutoOptions::tolerance`]).
     fn tolerance(&self) -> T {
         let default = if self.st.noisy {
@@ -1714,10 +1740,11 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     }
 }
 
-/// The smallest σ that moves a parameter of magnitude `scale`: 8ε·scale. A σ at or
-/// below it has converged, and σ₀ starts at twice it at least ([`Auto::new`]).
-fn resolution<T: Real>(scale: T) -> T {
-    T::from_f64(8.0) * T::EPSILON * scale
+/// The smallest σ that moves a parameter of magnitude `scale` in arithmetic of relative
+/// precision `grain` (ε of T, or [`Auto::grain`]): 8·grain·scale. A σ at or below it
+/// has converged, and σ₀ starts at twice it at least for T's ε ([`Auto::new`]).
+fn resolution<T: Real>(scale: T, grain: T) -> T {
+    T::from_f64(8.0) * grain * scale
 }
 
 /// The element of rank ⌊len/2⌋ (from 0) of `xs` in ascending order, by counting: O(len²)
@@ -1736,15 +1763,32 @@ fn lower_median<T: Real>(xs: &[T]) -> T {
     T::MAX
 }
 
-/// f ties with v: equal to within 16 ulps of v, `tie_width(v)` (a smooth f almost
-/// never does).
-fn ties_with<T: Real>(f: T, v: T) -> bool {
-    (f - v).abs() <= tie_width(v)
+/// f ties with v: equal to within `tie_width(v, grain)` of it, `grain` the precision
+/// of f's values ([`Auto::grain`]) (a smooth f almost never does).
+fn ties_with<T: Real>(f: T, v: T, grain: T) -> bool {
+    (f - v).abs() <= tie_width(v, grain)
 }
 
-/// 16ε·|v|: values closer than this to v tie with it ([`ties_with`]).
-fn tie_width<T: Real>(v: T) -> T {
-    T::from_f64(16.0) * T::EPSILON * v.abs()
+/// Values closer than this to v tie with it ([`ties_with`]): 16 ulps of v in T,
+/// 16ε·|v|, or 8 of f32's, 8·grain·|v|, where f's values are single precision
+/// (`grain` from [`Auto::grain`] above T's ε). A loss summed in f32 carries a few ulps
+/// of rounding; 16 of them put the width above the 10⁻⁶ a user asks of a loss near 1,
+/// and a descent ended short of it.
+fn tie_width<T: Real>(v: T, grain: T) -> T {
+    let ulps = if grain > T::EPSILON { 8.0 } else { 16.0 };
+    T::from_f64(ulps) * grain * v.abs()
+}
+
+/// The significant bits of v's value as an f64: 53 less the trailing zeros of its
+/// significand (an f32 value has at most 24, an integer below 2¹⁶ at most 16); 0 for
+/// zero and for subnormal or non-finite values, which say nothing of f's precision.
+fn significant_bits<T: Real>(v: T) -> u32 {
+    let v = v.to_f64();
+    if !v.is_normal() {
+        return 0;
+    }
+    let significand = (v.to_bits() & ((1 << 52) - 1)) | (1 << 52);
+    53 - significand.trailing_zeros()
 }
 
 /// The largest t ≥ 0 with θ + t·sign·d inside [lower, upper] (`T::MAX` where d never
@@ -1800,6 +1844,22 @@ mod tests {
         }
         assert_eq!(lower_median(&xs), 50.0);
         assert_eq!(lower_median(&[f64::NAN, 1.0]), f64::MAX);
+    }
+
+    /// An f32 value has at most 24 significant bits, a value of f64 arithmetic nearly
+    /// always more (0.1 has 52); zero, subnormal and non-finite values count none.
+    #[test]
+    fn significant_bits_tell_single_precision() {
+        assert_eq!(significant_bits(1.0f64), 1);
+        assert_eq!(significant_bits(9.0f64), 4);
+        assert_eq!(significant_bits(f64::from(0.1f32)), 24);
+        assert_eq!(significant_bits(f64::from(f32::MAX)), 24);
+        assert_eq!(significant_bits(0.1f64), 52);
+        assert_eq!(significant_bits(1.0f64 / 3.0), 53);
+        assert_eq!(significant_bits(0.1f32), 24);
+        for v in [0.0f64, -0.0, 1e-310, f64::NAN, f64::INFINITY] {
+            assert_eq!(significant_bits(v), 0);
+        }
     }
 
     /// The room along a line is set by the first face it meets, on either side of θ.

@@ -12,7 +12,7 @@ use super::options::AutoStep;
 use super::{
     Auto, CONTINUATION_SCALE, DETERMINED_METRIC_WEIGHT, GROWTH_WIDTH, NOISE_MARGIN, PAIRS_PAY,
     PAIRS_SKIPPED, PLATEAU_WIDTH, REACH, ROUGH, SETTLED_FIT, SETTLED_HALVINGS, SHRINK, SMOOTH,
-    STRIDE, THETA_DRAWS, lower_median, metric, tie_width,
+    STRIDE, THETA_DRAWS, lower_median, metric, resolution, tie_width,
 };
 use crate::error::Error;
 use crate::objective::Objective;
@@ -114,7 +114,18 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 && (validated || fitted > self.shape.coefficients(n))
                 && length < T::from_f64(0.9) * radius,
         );
-        if predicted <= T::ZERO || !predicted.is_finite() || length <= T::from_f64(1e-3) * radius {
+        // A trial point that moves no coordinate by more than f's arithmetic resolves
+        // there ([`resolution`] at |θᵢ|, [`Auto::grain`]) is θ as far as f can tell:
+        // the model's minimum lies within θ's rounding.
+        let grain = self.grain();
+        let unresolved_step = (0..n).all(|i| {
+            (self.mem.stage[i] - self.theta[i]).abs() <= resolution(self.theta[i].abs(), grain)
+        });
+        if predicted <= T::ZERO
+            || !predicted.is_finite()
+            || length <= T::from_f64(1e-3) * radius
+            || unresolved_step
+        {
             if validated {
                 // σ halves once, or more where the model confirmed at the scale above
                 // predicted the points drawn since (SETTLED_HALVINGS). A confirmation on
@@ -141,7 +152,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             return Ok((AutoStep::AtModelMinimum, None));
         }
         // The step promises a decrease that f's arithmetic resolves (UNRESOLVED_FITS).
-        let resolved = scale * predicted > tie_width(value);
+        let resolved = scale * predicted > tie_width(value, self.grain());
         self.st.unresolved = if self.st.noisy || self.st.unseeded || resolved {
             0
         } else {

@@ -46,9 +46,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let before = self.st.record;
         self.keep_record();
         let evaluations = self.st.evaluations;
+        let grain = self.grain();
         self.st
             .explore
-            .descent_ended(evaluations, before, self.st.record);
+            .descent_ended(evaluations, before, self.st.record, grain);
         let allotted = self
             .st
             .explore
@@ -90,7 +91,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                 lowest = Some((row, f));
             }
         }
-        let won = lowest.is_some_and(|(_, f)| clearly_below(f, record));
+        let grain = self.grain();
+        let won = lowest.is_some_and(|(_, f)| clearly_below(f, record, grain));
         self.st.explore.probed(spent, won);
         let mut step_length = T::ZERO;
         if let Some((row, _)) = lowest {

@@ -188,7 +188,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.keep_record();
         if self.st.fresh_wide {
             if let (Some(v), Some(w)) = (self.st.value, self.st.wide_end)
-                && (v - w).abs() <= T::EPSILON.sqrt() * v.abs().max(w.abs())
+                && (v - w).abs() <= self.grain().sqrt() * v.abs().max(w.abs())
             {
                 self.st.fresh_narrow = true;
             }

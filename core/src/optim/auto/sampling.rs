@@ -213,11 +213,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             self.ties_within(T::from_f64(REACH))
         } else {
             let v = self.st.value.unwrap_or(T::MAX);
+            let grain = self.grain();
             self.mem.stage_f[fresh]
                 .iter()
                 .filter(|f| f.is_finite())
                 .fold((0, 0), |(near, ties), &f| {
-                    (near + 1, ties + usize::from(ties_with(f, v)))
+                    (near + 1, ties + usize::from(ties_with(f, v, grain)))
                 })
         };
         self.st.lattice = ties > 0 && ties < near;
@@ -235,13 +236,17 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
         if self.st.value.is_none() || 2 * ties > near || ties == near {
             // Ties say that f is flat here only where the values around θ differ by far
-            // more than the 16 ulps within which they tie: at a smooth minimum they tie
+            // more than the width within which they tie (`tie_width`): by √ε of f(θ),
+            // ε the precision of f's values (`Auto::grain`), and by at least 2¹⁴ ulps
+            // (f32's √ε is only a few hundred tie widths). At a smooth minimum they tie
             // once σ is small enough that the arithmetic no longer resolves f. There,
             // right after the model at the scale above confirmed θ as its minimum, the
             // descent has converged where the rise of f about θ explains the ties (not
             // before: the models at the scales between may still move θ closer).
             if let Some(v) = self.st.value {
-                if self.spread(T::from_f64(2.0 * REACH), None) > T::EPSILON.sqrt() * v.abs() {
+                let grain = self.grain();
+                let flat = grain.sqrt().max(T::from_f64(16384.0) * grain);
+                if self.spread(T::from_f64(2.0 * REACH), None) > flat * v.abs() {
                     self.st.tie_scale = self.st.tie_scale.max(sigma);
                 } else {
                     self.st.rounded = self.st.confirmed && self.ties_are_rounding();
