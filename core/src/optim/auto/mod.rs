@@ -549,8 +549,10 @@ pub const HOPELESS_FITS: u32 = 3;
 
 /// Model steps in a row after which a descent counts as converged because f's
 /// arithmetic no longer resolves what its model promises: each step's predicted
-/// decrease at most the width within which values tie (`tie_width`: 16 ulps of f(θ),
-/// 8 of f32's where f's values are single precision).
+/// decrease at most the width within which values tie in T (16 ulps of f(θ),
+/// `tie_width`; T's, not f's: at 16 of f32's ulps a descent that still gained ended
+/// short of the 10⁻⁶ a user asks of a single-precision loss near 1, where the plateau
+/// and resolution rules of `Auto::grain` end it without this count).
 /// Below that the ratio test compares rounding errors: σ would shrink on a rejection
 /// and widen again where the model turns blind, at a minimum whose value is far from
 /// zero, until [`AutoOptions::patience`] ran out (20 + 10n iterations). Steps that end
@@ -1701,7 +1703,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// The relative precision of f's values: f32's ε (2⁻²³) once some finite value has had
     /// 24 significant bits and none more ([`State::value_bits`]) — an objective computed
     /// in single precision, as a GPU renderer's or a float32 loss's is, whose parameters
-    /// are rounded to f32 on their way in too — else T's ε. Values tie within 8 of f32's
+    /// are rounded to f32 on their way in too — else T's ε. Values tie within 16 of its
     /// ulps ([`tie_width`]), σ converges at 8 ([`resolution`]), a trial point that moves
     /// no coordinate by more is θ's own (`Auto::model_step`) and a descent's values
     /// settle at a fall of one ([`Creep::negligible`]): below these the run would
@@ -1769,14 +1771,10 @@ fn ties_with<T: Real>(f: T, v: T, grain: T) -> bool {
     (f - v).abs() <= tie_width(v, grain)
 }
 
-/// Values closer than this to v tie with it ([`ties_with`]): 16 ulps of v in T,
-/// 16ε·|v|, or 8 of f32's, 8·grain·|v|, where f's values are single precision
-/// (`grain` from [`Auto::grain`] above T's ε). A loss summed in f32 carries a few ulps
-/// of rounding; 16 of them put the width above the 10⁻⁶ a user asks of a loss near 1,
-/// and a descent ended short of it.
+/// 16·grain·|v|: values closer than this to v tie with it ([`ties_with`]), 16 ulps of v
+/// at f's precision `grain` ([`Auto::grain`]).
 fn tie_width<T: Real>(v: T, grain: T) -> T {
-    let ulps = if grain > T::EPSILON { 8.0 } else { 16.0 };
-    T::from_f64(ulps) * grain * v.abs()
+    T::from_f64(16.0) * grain * v.abs()
 }
 
 /// The significant bits of v's value as an f64: 53 less the trailing zeros of its

@@ -151,8 +151,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             }
             return Ok((AutoStep::AtModelMinimum, None));
         }
-        // The step promises a decrease that f's arithmetic resolves (UNRESOLVED_FITS).
-        let resolved = scale * predicted > tie_width(value, self.grain());
+        // The step promises a decrease that T's arithmetic resolves (UNRESOLVED_FITS).
+        let resolved = scale * predicted > tie_width(value, T::EPSILON);
         self.st.unresolved = if self.st.noisy || self.st.unseeded || resolved {
             0
         } else {

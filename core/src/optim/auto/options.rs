@@ -143,8 +143,8 @@ pub struct AutoOptions<T> {
     /// Whether a descent that ends on a flat piece of f — some remembered point other
     /// than θ has exactly f(θ)'s value, farther from θ than f's rounding explains (a
     /// smooth f's values round to f(θ) within √(w/q) of its minimum, w the width within
-    /// which values tie (16 ulps of f(θ), 8 of f32's where f's values are single
-    /// precision), q the least rise per squared distance of the untied points near θ),
+    /// which values tie (16 ulps of f(θ) at f's precision, T's or f32's), q the least
+    /// rise per squared distance of the untied points near θ),
     /// on an objective whose values are exact, and f(θ) is below every earlier descent's —
     /// moves θ to the piece's centre before the run goes on:
     /// along each parameter axis, the midpoint of the piece's two edges, each found by
