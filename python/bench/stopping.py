@@ -6,11 +6,15 @@ that, and one that stops early leaves accuracy behind.
 
     pip install ./python cma nlopt
     python python/bench/stopping.py [--seeds 5] [--dims 2,5,10,20] [--solvers hodr,pycma,BOBYQA]
+        [--problems sphere,...]
 
 Problems (f* known): the sphere about c with f* = 0 and with f* = 10 (an offset makes
 f's rounding 16 ulps of 10 instead of 0's, so no run resolves the last 10^-15 of f - f*),
-a rotated ellipsoid (condition 10^6, f* = 10) and Rosenbrock's function (f* = 0), at
-n = 2, 5, 10 and 20, from a start uniform in [-3, 3]^n with sigma0 = 1, no bounds.
+a rotated ellipsoid (condition 10^6, f* = 10) and Rosenbrock's function (f* = 0), and
+three computed in single precision, as a GPU renderer's loss is (x rounded to float32 on
+its way in, f on its way out): the sphere about 0.3, which float32 does not hold (f* the
+least value on float32's grid), the sphere + 10 about 0.5, and Rosenbrock's function + 1;
+at n = 2, 5, 10 and 20, from a start uniform in [-3, 3]^n with sigma0 = 1, no bounds.
 
 Solvers, each left to stop by itself (a cap of 10^6 evaluations marks a run that does
 not): hodr's default; `cma.fmin2` with pycma's default options (tolfun 1e-11, tolx 1e-11,
@@ -50,12 +54,26 @@ def rosenbrock(x):
     return float(np.sum(100.0 * (x[1:] - x[:-1] ** 2) ** 2 + (1.0 - x[:-1]) ** 2))
 
 
-# name: (make f for n, f*)
+def single(f):
+    """f of x rounded to float32, rounded to float32."""
+    return lambda x: float(np.float32(f(np.asarray(x, dtype=np.float32).astype(np.float64))))
+
+
+def sphere_at(centre):
+    return lambda x: float(np.sum((x - centre) ** 2))
+
+
+# name: (make f for n, f* for n)
 PROBLEMS = {
-    "sphere": (lambda n: sphere(0.0), 0.0),
-    "sphere + 10": (lambda n: sphere(10.0), 10.0),
-    "rotated ellipsoid + 10": (ellipsoid, 10.0),
-    "Rosenbrock": (lambda n: rosenbrock, 0.0),
+    "sphere": (lambda n: sphere(0.0), lambda n: 0.0),
+    "sphere + 10": (lambda n: sphere(10.0), lambda n: 10.0),
+    "rotated ellipsoid + 10": (ellipsoid, lambda n: 10.0),
+    "Rosenbrock": (lambda n: rosenbrock, lambda n: 0.0),
+    "sphere about 0.3 in float32": (lambda n: single(sphere_at(0.3)),
+                                    lambda n: single(sphere_at(0.3))(np.full(n, 0.3))),
+    "sphere + 10 in float32": (lambda n: single(sphere(10.0)), lambda n: 10.0),
+    "Rosenbrock + 1 in float32": (lambda n: single(lambda x: 1.0 + rosenbrock(x)),
+                                  lambda n: 1.0),
 }
 
 
@@ -115,13 +133,20 @@ def main():
     parser.add_argument("--seeds", type=int, default=5)
     parser.add_argument("--dims", default="2,5,10,20")
     parser.add_argument("--solvers", default=",".join(SOLVERS))
+    parser.add_argument("--problems", default=",".join(PROBLEMS),
+                        help="comma-separated names as in the table")
     args = parser.parse_args()
+    names = args.problems.split(",")
+    for name in names:
+        if name not in PROBLEMS:
+            parser.error(f"unknown problem {name!r} (choose from {', '.join(PROBLEMS)})")
     solvers = [SOLVERS[name] for name in args.solvers.split(",")]
     print("| problem | n | " + " | ".join(args.solvers.split(",")) + " |")
     print("|---|---|" + "---|" * len(solvers))
-    for name, (make, f_opt) in PROBLEMS.items():
+    for name in names:
+        make, optimum = PROBLEMS[name]
         for n in (int(d) for d in args.dims.split(",")):
-            f = make(n)
+            f, f_opt = make(n), optimum(n)
             cells = []
             for solver in solvers:
                 ends, hits, gaps = [], [], []
