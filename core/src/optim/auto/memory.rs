@@ -451,14 +451,13 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
                     None => continue,
                 }
             };
+            // A value f returned, not a stand-in for a failed one.
             if group != T::from_f64(WALL_GROUP) {
                 self.st.value_bits = self.st.value_bits.max(significant_bits(f));
-            }
-            let grain = self.grain();
-            if group != T::from_f64(WALL_GROUP)
-                && self.st.value.is_some_and(|v| !ties_with(f, v, grain))
-            {
-                self.st.varied = true;
+                let grain = self.grain();
+                if self.st.value.is_some_and(|v| !ties_with(f, v, grain)) {
+                    self.st.varied = true;
+                }
             }
             let count = self.st.count;
             let slot = if count >= cap {
