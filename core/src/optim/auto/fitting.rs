@@ -70,8 +70,14 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// when it is the fit and no system is solved. Values above `cliff` ([`Auto::cliff`])
     /// are read as failed evaluations' stand-ins are: floors just above the nearest
     /// point's below it. Returns the fit's noise level (the weighted RMS residual, as
-    /// `model::fit` gives it) and the number of points fitted; `None` when the fit failed.
+    /// `model::fit` gives it) and the number of points fitted; `None` when the fit failed,
+    /// or when `scale` is not positive and finite: values that do not spread (no point
+    /// within 2ρ, or every one at f(θ)) give nothing to fit, and the prior moved to the
+    /// scale F = 0 would be infinite — saved, it would fail every later fit.
     pub(super) fn fit(&mut self, value: T, scale: T, cliff: Option<T>) -> Option<(T, usize)> {
+        if !(scale > T::ZERO && scale.is_finite()) {
+            return None;
+        }
         let n = self.theta.len();
         let sigma = self.st.sigma;
         let shape = self.shape;
@@ -322,9 +328,20 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
 
     /// Keeps this iteration's model, at θ in the standardised units of σ, the scale F and
     /// the metric, as the next prior. Its parameter units, which a change of the metric
-    /// needs, wait for [`Auto::prior_to_parameters`].
+    /// needs, wait for [`Auto::prior_to_parameters`]. A model with a coefficient that is
+    /// not finite is no prior: every fit from it would fail.
     pub(super) fn save_prior(&mut self, scale: T, sigma: T) {
         let hl = self.shape.hessian_len(self.theta.len());
+        if self
+            .mem
+            .g
+            .iter()
+            .chain(&self.mem.h[..hl])
+            .any(|c| !c.is_finite())
+        {
+            self.st.has_prior = false;
+            return;
+        }
         self.mem.c0.copy_from_slice(self.theta);
         self.mem.gp.copy_from_slice(self.mem.g);
         self.mem.hp.copy_from_slice(&self.mem.h[..hl]);

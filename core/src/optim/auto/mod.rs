@@ -1941,6 +1941,44 @@ mod tests {
         assert!(checked > 1000, "{checked} offsets checked");
     }
 
+    /// A fit with no point within 2ρ (their spread F = 0) fails: the prior moved to F = 0
+    /// would be infinite, and saved, it would fail every later fit of the descent. And a
+    /// model that is not finite is never kept as a prior.
+    #[test]
+    fn a_fit_without_points_fails_and_no_prior_is_infinite() {
+        let mut checked = 0;
+        on_ellipsoid(|auto| {
+            let Some(value) = auto.st.value else {
+                return;
+            };
+            if !auto.st.has_prior {
+                return;
+            }
+            let count = auto.st.count;
+            auto.st.count = 0;
+            let scale = auto.spread(2.0 * REACH, None);
+            let fitted = auto.fit(value, scale, None);
+            auto.st.count = count;
+            assert_eq!(scale, 0.0);
+            assert!(fitted.is_none());
+            let n = auto.theta.len();
+            assert!(
+                auto.mem.gp[..n]
+                    .iter()
+                    .chain(&auto.mem.hp[..n * n])
+                    .all(|c| c.is_finite())
+            );
+            let sigma = auto.st.sigma;
+            let kept = auto.mem.g[0];
+            auto.mem.g[0] = f64::INFINITY;
+            auto.save_prior(1.0, sigma);
+            auto.mem.g[0] = kept;
+            assert!(!auto.st.has_prior);
+            checked += 1;
+        });
+        assert!(checked > 10, "{checked} fits checked");
+    }
+
     /// A prior moved to θ and σ within the metric it was saved under (O(n²)) is the one
     /// moved through parameter units (O(n³)), up to rounding.
     #[test]
