@@ -59,7 +59,10 @@ and a sixteenth, a simulation's parameters fitted to its output (simulations.py:
 oscillation oscillation4, predators and prey predators4, an epidemic epidemic3 and heat in
 a rod heat20), first run on 2026-12-06, and a seventeenth, ten earlier rows computed in
 single precision (x and f rounded to float32, and the same with 1 added to f: the -f32
-and -f32+1 names), made to show a failure and measured with its fix on 2026-12-07.
+and -f32+1 names), made to show a failure and measured with its fix on 2026-12-07,
+and an eighteenth, parameters that span decades passed in their own units (decades.py: a
+bowl in the logarithms of every second coordinate, decades2 to decades10, and the rate
+constants of consecutive reactions, kinetics3), first run on 2026-12-07.
 Each problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
@@ -93,6 +96,7 @@ import numpy as np
 import bound_constrained
 import classics
 import constraint_walls
+import decades
 import hodr
 import least_squares
 import other_fields
@@ -814,6 +818,13 @@ SINGLE = ["zakharov10", "camera-pose6", "gaussian-peaks9", "hartmann6", "mgh-woo
 PROBLEMS.update({f"{name}-f32{suffix}": PROBLEMS[name]._replace(
     f=single_precision(PROBLEMS[name].f, offset))
     for name in SINGLE for suffix, offset in (("", 0.0), ("+1", 1.0))})
+
+
+# The eighteenth set (2026-12-07, ninety-first session): parameters that span decades,
+# passed in their own units (decades.py): a bowl in the logarithms of the even
+# coordinates at n = 2, 4, 6 and 10, and the rate constants of consecutive reactions;
+# first run as Auto stood.
+PROBLEMS.update({name: Problem(*case) for name, case in decades.PROBLEMS.items()})
 
 
 def draw_start(problem, rng):
