@@ -705,6 +705,11 @@ struct State<T> {
     /// (`Auto::model_step`) widens σ only below it: θ lies near where f stops being
     /// defined, and the samples of the wider σ fail again.
     fail_scale: T,
+    /// The least σ at which a model step on a rough fit (η > `ROUGH`) fell short
+    /// (ρ̂ < 0.1, no tie) and σ was not widened for it, since f(θ) last fell or the run
+    /// last restarted, on a deterministic objective; zero when none did. The rough rule
+    /// (`Auto::model_step`) widens σ only below it.
+    poor_scale: T,
     /// The objective is noisy ([`Objective::deterministic`] is false): values are
     /// compared, and fitted, only within a noise group — the points evaluated on one
     /// seed.
@@ -912,6 +917,7 @@ impl<T: Real> State<T> {
             tie_scale: T::ZERO,
             rough_scale: T::ZERO,
             fail_scale: T::ZERO,
+            poor_scale: T::ZERO,
             scatter: T::ZERO,
             floor: None,
             theta_spreads: [(T::ZERO, T::ZERO); noise::THETA_SPREADS],

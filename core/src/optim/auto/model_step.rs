@@ -248,17 +248,26 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         };
         let widened = self.widened_sigma(PLATEAU_WIDTH);
         let fails_wider = self.st.fail_scale > T::ZERO && widened >= self.st.fail_scale;
+        let poor_wider = self.st.poor_scale > T::ZERO && widened >= self.st.poor_scale;
         if judged_by_noise
             || !accepted
                 && noise > T::from_f64(ROUGH)
                 && trial - reference <= T::TWO * noise * scale
                 && !fails_wider
+                && !poor_wider
         {
             // f is rough at this scale — the fit leaves scatter comparable to the values'
             // spread, or the step's promise is within the noise — and the trial is no
             // worse than that scatter: look wider, where the smoothed function has a
             // slope to see. Not as wide as a scale whose samples all failed about this θ
             // (`State::fail_scale`): there they fail again, and σ halves back to here.
+            // Nor as wide as a scale whose fit was rough too and whose step fell short
+            // since f(θ) last fell (`State::poor_scale`): there widening made the fit no
+            // smoother — a smooth f seen from far up its flank, a parameter whose scale
+            // shrinks with its size near a small optimum — so σ is too wide, not too
+            // narrow, and the step is judged as any other that fell short. (Where the
+            // wider fit was smooth, as Rastrigin's is once σ spans its wells, widening
+            // goes on: a step there that falls short says nothing of roughness.)
             self.st.rough_scale = self.st.rough_scale.max(sigma);
             self.st.sigma = widened;
             return Ok((AutoStep::Plateau, Some(ratio)));
@@ -267,6 +276,10 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let determined = fitted > self.shape.coefficients(n);
         // The step fell short of its prediction (ρ̂ < 0.1) without being a tie.
         let poor = ratio < T::from_f64(0.1) && !tie;
+        let least_poor = self.st.poor_scale <= T::ZERO || sigma < self.st.poor_scale;
+        if poor && least_poor && noise > T::from_f64(ROUGH) && !self.st.noisy && !self.st.unseeded {
+            self.st.poor_scale = sigma;
+        }
         // Whether a shortfall may be blamed on σ: the points near θ determine the model
         // at this scale. Points farther out (z ≤ 2ρ fits them) do not count: they saw f
         // at wider scales, and a kink's smoothed curvature falls with the scale (a

@@ -61,6 +61,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.tie_scale = T::ZERO;
         self.st.rough_scale = T::ZERO;
         self.st.fail_scale = T::ZERO;
+        self.st.poor_scale = T::ZERO;
     }
 
     /// The widest σ: `width`·σ₀, at most [`Auto::max_scale`] and, with bounds, half the
