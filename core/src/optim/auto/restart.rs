@@ -54,9 +54,9 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         }
     }
 
-    /// Clears the tie, rough and failure scales (`Auto::hold_sigma`, `State::fail_scale`):
-    /// f(θ) fell, or the run restarts, so what they recorded no longer describes θ's
-    /// surroundings.
+    /// Clears the tie, rough, failure and short-step scales (`Auto::hold_sigma`,
+    /// `State::fail_scale`, `State::poor_scale`): f(θ) fell, or the run restarts, so
+    /// what they recorded no longer describes θ's surroundings.
     pub(super) fn forget_scales(&mut self) {
         self.st.tie_scale = T::ZERO;
         self.st.rough_scale = T::ZERO;
