@@ -83,3 +83,8 @@ def kinetics():
 
 PROBLEMS = {f"decades{n}": decades(n) for n in (2, 4, 6, 10)}
 PROBLEMS["kinetics3"] = kinetics()
+
+#: The coordinates that span decades, for a run that declares them (unseen.py's
+#: --log-scale): the even ones of decadesN, every rate constant of kinetics3.
+LOG_SCALE = {name: np.arange(len(case.x_opt)) % 2 == 0 for name, case in PROBLEMS.items()}
+LOG_SCALE["kinetics3"] = np.ones(3, dtype=bool)

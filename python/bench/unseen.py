@@ -3,7 +3,7 @@ against pycma and BOBYQA, each at its defaults, for BENCHMARKS.md.
 
     pip install ./python cma nlopt
     python python/bench/unseen.py [--seeds 10] [--problems ackley10,griewank10]
-        [--solvers hodr,pycma,BOBYQA] [--sigma0-factor 1]
+        [--solvers hodr,pycma,BOBYQA] [--sigma0-factor 1] [--log-scale]
 
 Classic test functions from their published definitions (Ackley, Griewank, Levy,
 Styblinski-Tang, Rastrigin, Rosenbrock, a rotated ellipsoid, the sum of different powers,
@@ -415,7 +415,9 @@ class Problem(NamedTuple):
     values, -inf or inf for an open side; or None), the budget, the target on f - f*, and
     the range the starts are drawn from, uniformly in each coordinate (scalars or n
     values) and then clipped into the box; and the probability with which an evaluation
-    fails at random, returning NaN (0 on all but the thirteenth set's rows)."""
+    fails at random, returning NaN (0 on all but the thirteenth set's rows); and which
+    coordinates span decades, for a run that declares them (--log-scale; the eighteenth
+    set's), or None."""
 
     f: Callable[[np.ndarray], float]
     x_opt: np.ndarray
@@ -425,6 +427,7 @@ class Problem(NamedTuple):
     target: float
     start: tuple = (-3.0, 3.0)
     failures: float = 0.0
+    log_scale: Optional[np.ndarray] = None
 
     @property
     def n(self):
@@ -824,7 +827,33 @@ PROBLEMS.update({f"{name}-f32{suffix}": PROBLEMS[name]._replace(
 # passed in their own units (decades.py): a bowl in the logarithms of the even
 # coordinates at n = 2, 4, 6 and 10, and the rate constants of consecutive reactions;
 # first run as Auto stood.
-PROBLEMS.update({name: Problem(*case) for name, case in decades.PROBLEMS.items()})
+PROBLEMS.update({name: Problem(*case, log_scale=decades.LOG_SCALE[name])
+                 for name, case in decades.PROBLEMS.items()})
+
+
+def in_decades(problem):
+    """With --log-scale, a problem that has log coordinates as each solver is given it:
+    hodr the problem itself, its scales in decades at those coordinates (a quarter of the
+    box's span there), to pass with ``log_scale``; pycma and BOBYQA the problem in log10
+    of those coordinates, f composed with 10**u, as their users write it by hand. Returns
+    (hodr's problem, the others', the map of a start x0 to the others' start)."""
+    mask = problem.log_scale
+    low, high = problem.limits
+    with np.errstate(divide="ignore"):
+        low_u = np.where(mask, np.log10(np.where(mask, low, 1.0)), low)
+        high_u = np.where(mask, np.log10(np.where(mask, high, 1.0)), high)
+    scales = np.where(mask, (high_u - low_u) / 4.0, problem.scales)
+
+    def outer(u):
+        return np.where(mask, 10.0 ** np.asarray(u, dtype=float), u)
+
+    def f(u):
+        return problem.f(outer(u))
+
+    logs = problem._replace(f=f, x_opt=np.where(mask, np.log10(problem.x_opt), problem.x_opt),
+                            sigma0=scales, box=(low_u, high_u), log_scale=None)
+    return (problem._replace(sigma0=scales), logs,
+            lambda x0: np.where(mask, np.log10(x0), x0))
 
 
 def draw_start(problem, rng):
@@ -833,10 +862,10 @@ def draw_start(problem, rng):
     return np.clip(rng.uniform(low, high, problem.n), *problem.limits)
 
 
-def run_hodr(f, x0, problem, seed, options=None):
+def run_hodr(f, x0, problem, seed, options=None, log_scale=False):
     bounds = None if problem.box is None else list(zip(*problem.limits))
     hodr.minimize(f, x0, problem.scales, bounds=bounds, budget=problem.budget, seed=seed,
-                  options=options)
+                  options=options, log_scale=problem.log_scale if log_scale else None)
 
 
 def run_cma(f, x0, problem, seed):
@@ -898,10 +927,14 @@ def main():
                         help="multiply every problem's sigma0 by this (a mis-stated scale)")
     parser.add_argument("--hodr-model", choices=("full", "diagonal"),
                         help="hodr's options['model'] (default: Auto's own by dimension)")
+    parser.add_argument("--log-scale", action="store_true",
+                        help="declare the coordinates that span decades (the eighteenth "
+                        "set's): hodr's log_scale, the others the problem in log10")
     args = parser.parse_args()
     runners = dict(SOLVERS)
-    if args.hodr_model is not None:
-        runners["hodr"] = functools.partial(run_hodr, options={"model": args.hodr_model})
+    runners["hodr"] = functools.partial(
+        run_hodr, options=None if args.hodr_model is None else {"model": args.hodr_model},
+        log_scale=args.log_scale)
     if not (np.isfinite(args.sigma0_factor) and args.sigma0_factor > 0):
         parser.error(f"--sigma0-factor must be positive and finite, got {args.sigma0_factor}")
     names = args.problems.split(",")
@@ -924,12 +957,18 @@ def main():
         cells, medians = [], {}
         for solver in solvers:
             run, hits, gaps = runners[solver], [], []
+            posed = problem
+            if args.log_scale and problem.log_scale is not None:
+                declared, logs, start_of = in_decades(problem)
+                posed = declared if solver == "hodr" else logs
             for seed in range(args.seeds):
                 x0 = draw_start(problem, np.random.default_rng(seed))
-                counted = Counted(problem.f, problem.f_opt, problem.target, problem.budget,
+                if posed is not problem and solver != "hodr":
+                    x0 = start_of(x0)
+                counted = Counted(posed.f, problem.f_opt, problem.target, problem.budget,
                                   problem.failures, seed)
                 try:
-                    run(counted, x0, problem, seed)
+                    run(counted, x0, posed, seed)
                 except Spent:
                     pass
                 hits.append((counted.hit, counted.hit_time))

@@ -216,6 +216,55 @@ def test_bounds_are_respected_in_every_form():
     assert not outside
 
 
+def rate_bowl(x):
+    """A bowl in log10 of a rate x[0] (minimum 1e-5, in [1e-8, 1]) and in x[1] (0.5)."""
+    return float((np.log10(x[0]) + 5.0) ** 2 + (x[1] - 0.5) ** 2)
+
+
+def test_log_scale_is_the_run_on_log10_and_fun_sees_x_itself():
+    mask, x0 = [True, False], [0.3, 0.9]
+    in_logs = [
+        hodr.minimize(lambda u: rate_bowl([10.0 ** u[0], u[1]]), [np.log10(0.3), 0.9], [2.0, 0.25],
+                      bounds=[(-8.0, 0.0), (0.0, 1.0)], budget=80, seed=3),
+    ]
+    seen, called = [], []
+    declared = hodr.minimize(
+        lambda x: seen.append(x.copy()) or rate_bowl(x), x0, [2.0, 0.25], log_scale=mask,
+        bounds=[(1e-8, 1.0), (0.0, 1.0)], budget=80, seed=3,
+        callback=lambda x, f: called.append(x.copy()),
+    )
+    assert declared.nfev == in_logs[0].nfev and declared.fun == in_logs[0].fun
+    assert np.array_equal(declared.history["sigma"], in_logs[0].history["sigma"])
+    assert np.allclose(declared.x, [10.0 ** in_logs[0].x[0], in_logs[0].x[1]], rtol=1e-14)
+    assert np.allclose(declared.x, [1e-5, 0.5], rtol=1e-4, atol=1e-4)
+    points = np.array(seen)
+    assert np.all(points[:, 0] >= 1e-8 * (1 - 1e-12)) and np.all(points[:, 0] <= 1.0)
+    assert len(called) == declared.nit and np.all(np.array(called)[:, 0] > 0.0)
+    # Batches, and ask/tell: the same points, in x.
+    batched = hodr.minimize(lambda X: [rate_bowl(x) for x in X], x0, [2.0, 0.25], log_scale=mask,
+                            bounds=[(1e-8, 1.0), (0.0, 1.0)], budget=80, seed=3, batch=True)
+    assert batched.nfev == declared.nfev and np.array_equal(batched.x, declared.x)
+    opt = hodr.Optimizer(x0, [2.0, 0.25], log_scale=mask, bounds=[(1e-8, 1.0), (0.0, 1.0)],
+                         budget=80, seed=3)
+    asked = []
+    while not opt.stop():
+        batch = opt.ask()
+        asked.extend(batch)
+        opt.tell(batch, [rate_bowl(x) for x in batch])
+    assert np.array_equal(np.array(asked), points) and np.array_equal(opt.result.x, declared.x)
+
+
+def test_log_scale_finds_a_rate_decades_below_its_start():
+    # The rate starts near the top of its box, where a scale in its own units that fits
+    # the box is 10^4 times the distance over which f changes at the optimum.
+    solved = sum(
+        hodr.minimize(rate_bowl, [0.5, 0.1], 2.0, log_scale=[True, False],
+                      bounds=[(0.0, 1.0), (0.0, 1.0)], budget=60, seed=s).fun <= 1e-8
+        for s in range(10)
+    )
+    assert solved >= 9  # measured 10 of 10
+
+
 def test_the_callback_sees_iterations_and_can_stop_the_run():
     seen = []
     res = hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, callback=lambda x, f: seen.append(f) or len(seen) == 5)
@@ -488,6 +537,12 @@ def test_options_change_the_run():
         (lambda: hodr.minimize(quadratic, X, 1.0, bounds=[(np.inf, np.inf)] + [(0, 3)] * 2), ValueError, "bounds[0] = (inf, inf)"),
         (lambda: hodr.minimize(quadratic, X, 1.0, bounds=[(0, 3), (-np.inf, -np.inf), (0, 3)]), ValueError, "bounds[1] = (-inf, -inf)"),
         (lambda: hodr.Optimizer(X, 1.0, bounds=[(np.inf, None)] * 3), ValueError, "bounds[0]"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, log_scale=[True, False]), ValueError, "log_scale must be a bool or 3 bools"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, log_scale=[1, 0, 0]), TypeError, "log_scale must be a bool or 3 bools (one per coordinate), got list of dtype int64"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, log_scale="yes"), TypeError, "log_scale"),
+        (lambda: hodr.minimize(quadratic, X, 1.0, log_scale=[False, True, False]), ValueError, "x0[1] = -0.7 must be > 0: log_scale[1] is True"),
+        (lambda: hodr.minimize(quadratic, [1.0, 1.0, 1.0], 1.0, log_scale=True, bounds=[(-1.0, 0.0)] * 3), ValueError, "bounds[0] = (-1.0, 0.0) holds no x > 0, which log_scale[0] needs"),
+        (lambda: hodr.Optimizer(X, 1.0, log_scale=True), ValueError, "x0[1]"),
         (lambda: hodr.minimize(quadratic, X, None), TypeError, "sigma0"),
         (lambda: hodr.minimize(quadratic, X, "1"), TypeError, "sigma0"),
         (lambda: hodr.minimize(quadratic, X, ["1", "1", "1"]), TypeError, "sigma0"),
