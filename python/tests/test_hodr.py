@@ -265,6 +265,23 @@ def test_log_scale_finds_a_rate_decades_below_its_start():
     assert solved >= 9  # measured 10 of 10
 
 
+def test_the_rate_constants_example_recovers_the_rates():
+    import importlib.util
+    import pathlib
+
+    path = pathlib.Path(__file__).parents[1] / "examples" / "rate_constants.py"
+    spec = importlib.util.spec_from_file_location("rate_constants", path)
+    example = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(example)
+    declared, plain = example.main()
+    assert np.allclose(declared.x, example.TRUTH, rtol=1e-6)
+    # Declared, the misfit falls below 1e-12 sooner (measured 36-51 evaluations against
+    # 92-195 on ten seeds).
+    first = [next(e for e, f in zip(r.history["nfev"], r.history["fun"]) if f <= 1e-12)
+             for r in (declared, plain)]
+    assert first[0] < first[1]
+
+
 def test_the_callback_sees_iterations_and_can_stop_the_run():
     seen = []
     res = hodr.minimize(quadratic, [2.0, 2.0, -1.0], 1.0, callback=lambda x, f: seen.append(f) or len(seen) == 5)
