@@ -44,6 +44,7 @@
 //! * [`optim`]: gradient descent, Adam, Newton, NCG and Newton-CG as step machines, σ
 //!   schedules, budgets, and the paper's method presets;
 //! * [`trace`]: a fixed-memory convergence trace;
+//! * [`log_scale`]: coordinates searched in log₁₀ (a parameter whose box spans decades);
 //! * [`Objective`], [`Workspace`], [`Error`];
 //! * [`set_wide_kernels`]: on x86, the dense kernels of Auto's fit (Gram matrix,
 //!   factorisations, metric products) run an AVX2 copy where the CPU has it (detected
@@ -67,6 +68,7 @@ mod cholesky;
 mod error;
 pub mod estimate;
 pub mod kernel;
+pub mod log_scale;
 mod objective;
 pub mod optim;
 pub mod real;

@@ -62,6 +62,8 @@ pub trait Real:
     const MIN_POSITIVE: Self;
     /// The largest finite value.
     const MAX: Self;
+    /// +∞.
+    const INFINITY: Self;
     /// Number of significand bits (24 for `f32`, 53 for `f64`).
     const MANTISSA_DIGITS: u32;
 
@@ -139,6 +141,7 @@ impl Real for f64 {
     const EPSILON: Self = f64::EPSILON;
     const MIN_POSITIVE: Self = f64::MIN_POSITIVE;
     const MAX: Self = f64::MAX;
+    const INFINITY: Self = f64::INFINITY;
     const MANTISSA_DIGITS: u32 = f64::MANTISSA_DIGITS;
 
     #[inline]
@@ -221,6 +224,7 @@ impl Real for f32 {
     const EPSILON: Self = f32::EPSILON;
     const MIN_POSITIVE: Self = f32::MIN_POSITIVE;
     const MAX: Self = f32::MAX;
+    const INFINITY: Self = f32::INFINITY;
     const MANTISSA_DIGITS: u32 = f32::MANTISSA_DIGITS;
 
     #[inline]

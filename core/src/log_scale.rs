@@ -1,0 +1,370 @@
+//! Coordinates searched in log₁₀: a parameter that matters in proportion to its size (a
+//! rate constant, a learning rate, a regularisation weight) and whose box spans decades.
+//!
+//! An optimiser searches u, with uᵢ = log₁₀ xᵢ on the coordinates a mask marks and
+//! uᵢ = xᵢ on the others, so that a step along a marked coordinate is a factor and a
+//! scale there is in decades (1: a factor of 10). [`to_log`] and [`bounds_to_log`] put
+//! the start and the box in u, [`LogScaled`] hands the objective x = 10^u, and
+//! [`from_log`] turns the optimiser's result back into x:
+//!
+//! ```
+//! use hodr_core::log_scale::{LogScaled, bounds_to_log, from_log, to_log};
+//! use hodr_core::optim::{Auto, AutoOptions};
+//! use rand_xoshiro::{Xoshiro256PlusPlus, rand_core::SeedableRng};
+//!
+//! // A rate k in [1e-8, 1] whose best value is 1e-5, and a share in [0, 1].
+//! let f = |x: &[f64]| (x[0].log10() + 5.0).powi(2) + (x[1] - 0.5).powi(2);
+//! let mask = [true, false];
+//! let (mut lower, mut upper) = ([1e-8, 0.0], [1.0, 1.0]);
+//! bounds_to_log(&mask, &mut lower, &mut upper)?;
+//! let mut theta = [0.3, 0.9];
+//! to_log(&mask, &mut theta)?;
+//! let mut points = [0.0; 2];
+//! let mut objective = LogScaled::new(f, &mask, &mut points)?;
+//! let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(2)];
+//! // σ₀: two decades for the rate, 0.25 for the share.
+//! let mut auto = Auto::new(&mut theta, 1.0, &mut buffer, Xoshiro256PlusPlus::seed_from_u64(1))?
+//!     .with_scales(&[2.0, 0.25])?
+//!     .with_bounds(&lower, &upper)?
+//!     .with_options(AutoOptions::default().with_max_evaluations(200)?);
+//! auto.run(&mut objective, |_report, _theta| {})?;
+//! drop(auto);
+//! from_log(&mask, &mut theta);
+//! assert!((theta[0] / 1e-5 - 1.0).abs() < 1e-4 && (theta[1] - 0.5).abs() < 1e-4);
+//! # Ok::<(), hodr_core::Error>(())
+//! ```
+
+use crate::error::Error;
+use crate::objective::{Batch, NoiseSeed, Objective};
+use crate::real::Real;
+
+/// ln 10, for 10^u = e^(u ln 10) and log₁₀ x = ln x / ln 10.
+fn ln_10<T: Real>() -> T {
+    T::from_f64(core::f64::consts::LN_10)
+}
+
+/// Whether x > 0 (false for NaN).
+fn positive<T: Real>(x: T) -> bool {
+    x.partial_cmp(&T::ZERO) == Some(core::cmp::Ordering::Greater)
+}
+
+/// Checks that `len` (a slice's length) is the mask's n.
+fn same_dim(mask: &[bool], len: usize) -> Result<(), Error> {
+    if len == mask.len() {
+        Ok(())
+    } else {
+        Err(Error::DimensionMismatch {
+            expected: mask.len(),
+            found: len,
+        })
+    }
+}
+
+/// Writes u for the point `x` in place: log₁₀ xᵢ where `mask[i]`, xᵢ elsewhere.
+///
+/// # Errors
+/// [`Error::DimensionMismatch`] when `x` and `mask` differ in length;
+/// [`Error::InvalidEntry`] (`"x"`, the coordinate) for a marked xᵢ that is not > 0 and
+/// finite. `x` is unchanged on error.
+pub fn to_log<T: Real>(mask: &[bool], x: &mut [T]) -> Result<(), Error> {
+    same_dim(mask, x.len())?;
+    if let Some(index) = (0..x.len()).find(|&i| mask[i] && !(positive(x[i]) && x[i].is_finite())) {
+        return Err(Error::InvalidEntry { name: "x", index });
+    }
+    for (xi, _) in x.iter_mut().zip(mask).filter(|(_, m)| **m) {
+        *xi = xi.ln() / ln_10();
+    }
+    Ok(())
+}
+
+/// Writes x for the point `u` in place: 10^uᵢ where `mask[i]`, uᵢ elsewhere (a slice
+/// shorter or longer than the mask is transformed as far as both reach).
+pub fn from_log<T: Real>(mask: &[bool], u: &mut [T]) {
+    for (ui, _) in u.iter_mut().zip(mask).filter(|(_, m)| **m) {
+        *ui = (*ui * ln_10()).exp();
+    }
+}
+
+/// Writes a box in u in place: a marked coordinate's lower limit at or below 0 becomes
+/// −∞ (x > 0 stays open), any other its log₁₀; its upper limit its log₁₀ (+∞ stays +∞).
+///
+/// # Errors
+/// [`Error::DimensionMismatch`] when a side and `mask` differ in length;
+/// [`Error::InvalidEntry`] (`"upper"`, the coordinate) for a marked upper limit at or
+/// below 0 or NaN, which leaves no x > 0. The box is unchanged on error.
+pub fn bounds_to_log<T: Real>(
+    mask: &[bool],
+    lower: &mut [T],
+    upper: &mut [T],
+) -> Result<(), Error> {
+    same_dim(mask, lower.len())?;
+    same_dim(mask, upper.len())?;
+    if let Some(index) = (0..upper.len()).find(|&i| mask[i] && !positive(upper[i])) {
+        return Err(Error::InvalidEntry {
+            name: "upper",
+            index,
+        });
+    }
+    for i in (0..mask.len()).filter(|&i| mask[i]) {
+        lower[i] = if positive(lower[i]) {
+            lower[i].ln() / ln_10()
+        } else {
+            -T::INFINITY
+        };
+        upper[i] = upper[i].ln() / ln_10();
+    }
+    Ok(())
+}
+
+/// An objective over u that evaluates `inner` at x = 10^u on the coordinates `mask`
+/// marks ([`from_log`]). A batch goes to `inner`'s [`Objective::evaluate_batch`] in
+/// chunks of as many points as `points` holds (n floats each), so that an objective that
+/// evaluates a batch in parallel still does; [`Objective::deterministic`] and
+/// [`Objective::cancelled`] are `inner`'s.
+pub struct LogScaled<'a, T, O> {
+    inner: O,
+    mask: &'a [bool],
+    points: &'a mut [T],
+}
+
+impl<'a, T: Real, O: Objective<T>> LogScaled<'a, T, O> {
+    /// `inner` seen through `mask` (one entry per coordinate), with `points` the scratch
+    /// for the points it receives: at least n floats, one point; a multiple of n holds
+    /// that many points of a batch at once.
+    ///
+    /// # Errors
+    /// [`Error::WorkspaceTooSmall`] when `points` holds fewer than n floats.
+    pub fn new(inner: O, mask: &'a [bool], points: &'a mut [T]) -> Result<Self, Error> {
+        if points.len() < mask.len() {
+            return Err(Error::WorkspaceTooSmall {
+                needed: mask.len(),
+                available: points.len(),
+            });
+        }
+        Ok(LogScaled {
+            inner,
+            mask,
+            points,
+        })
+    }
+
+    /// The objective it wraps.
+    pub fn into_inner(self) -> O {
+        self.inner
+    }
+
+    /// Points of a batch `points` holds at once: ⌊len/n⌋, at least 1 (n = 0: any).
+    fn rows(&self) -> usize {
+        match self.mask.len() {
+            0 => usize::MAX,
+            n => self.points.len() / n,
+        }
+    }
+}
+
+impl<T: Real, O: Objective<T>> Objective<T> for LogScaled<'_, T, O> {
+    fn evaluate(&mut self, u: &[T], seed: NoiseSeed) -> T {
+        let x = &mut self.points[..u.len()];
+        x.copy_from_slice(u);
+        from_log(self.mask, x);
+        self.inner.evaluate(x, seed)
+    }
+
+    fn evaluate_batch(&mut self, batch: &Batch<'_, T>, out: &mut [T]) {
+        let n = batch.dim();
+        let rows = self.rows();
+        let mut first = 0;
+        while first < batch.len() {
+            let count = rows.min(batch.len() - first);
+            let x = &mut self.points[..count * n];
+            x.copy_from_slice(&batch.points()[first * n..(first + count) * n]);
+            for point in x.chunks_exact_mut(n.max(1)) {
+                from_log(self.mask, point);
+            }
+            let seeds = &batch.seeds()[first..first + count];
+            // x holds count·n floats for count seeds, as `Batch::new` asks.
+            if let Ok(chunk) = Batch::new(x, seeds, n) {
+                self.inner
+                    .evaluate_batch(&chunk, &mut out[first..first + count]);
+            }
+            first += count;
+        }
+    }
+
+    fn deterministic(&self) -> bool {
+        self.inner.deterministic()
+    }
+
+    fn cancelled(&mut self) -> bool {
+        self.inner.cancelled()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use std::vec;
+    use std::vec::Vec;
+
+    use super::*;
+    use crate::optim::{Auto, AutoOptions};
+    use rand_xoshiro::Xoshiro256PlusPlus;
+    use rand_xoshiro::rand_core::SeedableRng;
+
+    const MASK: [bool; 3] = [true, false, true];
+
+    fn bowl(x: &[f64]) -> f64 {
+        (x[0].log10() + 5.0).powi(2) + (x[1] - 0.5).powi(2) + (x[2].log10() + 1.0).powi(2)
+    }
+
+    /// (θ, evaluations, value) of Auto from u₀ on `objective` (budget 150).
+    fn run<O: Objective<f64>>(objective: &mut O) -> (Vec<f64>, usize, Option<f64>) {
+        let (mut lower, mut upper) = ([1e-8, 0.0, 1e-6], [1.0, 1.0, 10.0]);
+        bounds_to_log(&MASK, &mut lower, &mut upper).unwrap();
+        let mut theta = [0.3, 0.9, 2.0];
+        to_log(&MASK, &mut theta).unwrap();
+        let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(3)];
+        let mut auto = Auto::new(
+            &mut theta,
+            1.0,
+            &mut buffer,
+            Xoshiro256PlusPlus::seed_from_u64(7),
+        )
+        .unwrap()
+        .with_bounds(&lower, &upper)
+        .unwrap()
+        .with_options(AutoOptions::default().with_max_evaluations(150).unwrap());
+        auto.run(objective, |_, _| {}).unwrap();
+        (auto.theta().to_vec(), auto.evaluations(), auto.value())
+    }
+
+    #[test]
+    fn a_run_through_log_scaled_is_the_run_on_f_of_ten_to_the_u() {
+        let mut by_hand = |u: &[f64]| {
+            let mut x = u.to_vec();
+            from_log(&MASK, &mut x);
+            bowl(&x)
+        };
+        let expected = run(&mut by_hand);
+        // One point of scratch, and room for a whole batch: the same run.
+        for rows in [1, 64] {
+            let mut points = vec![0.0; 3 * rows];
+            let mut seen = Vec::new();
+            let record = |x: &[f64]| {
+                seen.push(x.to_vec());
+                bowl(x)
+            };
+            let mut scaled = LogScaled::new(record, &MASK, &mut points).unwrap();
+            assert_eq!(run(&mut scaled), expected);
+            // f saw x itself: inside the box, the share untransformed.
+            assert!(
+                seen.iter()
+                    .all(|x| x[0] > 0.0 && x[0] <= 1.0 && (0.0..=1.0).contains(&x[1]))
+            );
+        }
+        let mut x = expected.0.clone();
+        from_log(&MASK, &mut x);
+        assert!(
+            (x[0] / 1e-5 - 1.0).abs() < 1e-3 && (x[2] / 0.1 - 1.0).abs() < 1e-3,
+            "{x:?}"
+        );
+    }
+
+    /// Records the size of each batch it is handed.
+    struct Sizes(Vec<usize>);
+
+    impl Objective<f64> for Sizes {
+        fn evaluate(&mut self, x: &[f64], _: NoiseSeed) -> f64 {
+            x[0]
+        }
+        fn evaluate_batch(&mut self, batch: &Batch<'_, f64>, out: &mut [f64]) {
+            self.0.push(batch.len());
+            for (k, v) in out.iter_mut().enumerate() {
+                *v = batch.point(k)[0] + batch.seed(k) as f64;
+            }
+        }
+    }
+
+    #[test]
+    fn a_batch_goes_to_the_objective_in_chunks_the_scratch_holds() {
+        let u: Vec<f64> = (0..7).flat_map(|k| [k as f64 - 3.0, 0.5, 0.0]).collect();
+        let seeds: Vec<u64> = (0..7).map(|k| 100 * k).collect();
+        let batch = Batch::new(&u, &seeds, 3).unwrap();
+        let mut points = [0.0; 10];
+        let mut scaled = LogScaled::new(Sizes(Vec::new()), &MASK, &mut points).unwrap();
+        let mut out = [0.0; 7];
+        scaled.evaluate_batch(&batch, &mut out);
+        for (k, &v) in out.iter().enumerate() {
+            let x = 10f64.powi(k as i32 - 3);
+            assert!(
+                (v - (x + 100.0 * k as f64)).abs() <= 1e-12 * (1.0 + v.abs()),
+                "{k}: {v}"
+            );
+        }
+        assert_eq!(scaled.into_inner().0, [3, 3, 1]);
+    }
+
+    #[test]
+    fn coordinates_round_trip_in_both_precisions() {
+        let mut x = [1e-300, 3.0, 7e12];
+        let start = x;
+        to_log(&MASK, &mut x).unwrap();
+        assert!(
+            (x[0] + 300.0).abs() < 1e-12 && x[1] == 3.0 && (x[2] - 7e12f64.log10()).abs() < 1e-12
+        );
+        from_log(&MASK, &mut x);
+        for (a, b) in x.iter().zip(start) {
+            assert!((a / b - 1.0).abs() < 1e-12, "{a} against {b}");
+        }
+        let mut y = [2.5e-30f32, -1.0, 4e20];
+        to_log(&MASK, &mut y).unwrap();
+        from_log(&MASK, &mut y);
+        assert!(
+            (y[0] / 2.5e-30 - 1.0).abs() < 1e-5 && y[1] == -1.0 && (y[2] / 4e20 - 1.0).abs() < 1e-5
+        );
+    }
+
+    #[test]
+    fn bad_input_is_a_typed_error_and_changes_nothing() {
+        for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let mut x = [1.0, 1.0, bad];
+            assert_eq!(
+                to_log(&MASK, &mut x),
+                Err(Error::InvalidEntry {
+                    name: "x",
+                    index: 2
+                })
+            );
+            assert_eq!(x[..2], [1.0, 1.0]);
+        }
+        // A negative value where the mask is false is any coordinate's.
+        assert!(to_log(&MASK, &mut [1.0, -4.0, 1.0]).is_ok());
+        let (mut lower, mut upper) = ([0.0, -1.0, -5.0], [1.0, 1.0, 0.0]);
+        assert_eq!(
+            bounds_to_log(&MASK, &mut lower, &mut upper),
+            Err(Error::InvalidEntry {
+                name: "upper",
+                index: 2
+            })
+        );
+        assert_eq!((lower, upper), ([0.0, -1.0, -5.0], [1.0, 1.0, 0.0]));
+        upper[2] = f64::INFINITY;
+        bounds_to_log(&MASK, &mut lower, &mut upper).unwrap();
+        assert_eq!(lower, [f64::NEG_INFINITY, -1.0, f64::NEG_INFINITY]);
+        assert_eq!(upper, [0.0, 1.0, f64::INFINITY]);
+        assert_eq!(
+            to_log(&MASK, &mut [1.0, 1.0]),
+            Err(Error::DimensionMismatch {
+                expected: 3,
+                found: 2
+            })
+        );
+        assert!(matches!(
+            LogScaled::new(bowl, &MASK, &mut [0.0; 2]),
+            Err(Error::WorkspaceTooSmall {
+                needed: 3,
+                available: 2
+            })
+        ));
+    }
+}
