@@ -202,10 +202,6 @@ impl<T: Real, O: Objective<T>> Objective<T> for LogScaled<'_, T, O> {
 
 #[cfg(test)]
 mod tests {
-    extern crate std;
-    use std::vec;
-    use std::vec::Vec;
-
     use super::*;
     use crate::optim::{Auto, AutoOptions};
     use rand_xoshiro::Xoshiro256PlusPlus;
@@ -214,16 +210,19 @@ mod tests {
     const MASK: [bool; 3] = [true, false, true];
 
     fn bowl(x: &[f64]) -> f64 {
-        (x[0].log10() + 5.0).powi(2) + (x[1] - 0.5).powi(2) + (x[2].log10() + 1.0).powi(2)
+        (libm::log10(x[0]) + 5.0).powi(2) + (x[1] - 0.5).powi(2) + (libm::log10(x[2]) + 1.0).powi(2)
     }
 
+    /// Floats of Auto's buffer at n = 3.
+    const BUFFER: usize = Auto::<f64, Xoshiro256PlusPlus>::buffer_len(3);
+
     /// (θ, evaluations, value) of Auto from u₀ on `objective` (budget 150).
-    fn run<O: Objective<f64>>(objective: &mut O) -> (Vec<f64>, usize, Option<f64>) {
+    fn run<O: Objective<f64>>(objective: &mut O) -> ([f64; 3], usize, Option<f64>) {
         let (mut lower, mut upper) = ([1e-8, 0.0, 1e-6], [1.0, 1.0, 10.0]);
         bounds_to_log(&MASK, &mut lower, &mut upper).unwrap();
         let mut theta = [0.3, 0.9, 2.0];
         to_log(&MASK, &mut theta).unwrap();
-        let mut buffer = vec![0.0; Auto::<f64, Xoshiro256PlusPlus>::buffer_len(3)];
+        let mut buffer = [0.0; BUFFER];
         let mut auto = Auto::new(
             &mut theta,
             1.0,
@@ -235,34 +234,33 @@ mod tests {
         .unwrap()
         .with_options(AutoOptions::default().with_max_evaluations(150).unwrap());
         auto.run(objective, |_, _| {}).unwrap();
-        (auto.theta().to_vec(), auto.evaluations(), auto.value())
+        let (evaluations, value) = (auto.evaluations(), auto.value());
+        (theta, evaluations, value)
     }
 
     #[test]
     fn a_run_through_log_scaled_is_the_run_on_f_of_ten_to_the_u() {
         let mut by_hand = |u: &[f64]| {
-            let mut x = u.to_vec();
+            let mut x = [u[0], u[1], u[2]];
             from_log(&MASK, &mut x);
             bowl(&x)
         };
         let expected = run(&mut by_hand);
-        // One point of scratch, and room for a whole batch: the same run.
+        // One point of scratch, and room for a whole batch: the same run, in which f
+        // sees x itself: inside the box, the share untransformed.
         for rows in [1, 64] {
-            let mut points = vec![0.0; 3 * rows];
-            let mut seen = Vec::new();
-            let record = |x: &[f64]| {
-                seen.push(x.to_vec());
+            let mut points = [0.0; 3 * 64];
+            let inside = |x: &[f64]| {
+                assert!(
+                    x[0] > 0.0 && x[0] <= 1.0 && (0.0..=1.0).contains(&x[1]),
+                    "{x:?}"
+                );
                 bowl(x)
             };
-            let mut scaled = LogScaled::new(record, &MASK, &mut points).unwrap();
+            let mut scaled = LogScaled::new(inside, &MASK, &mut points[..3 * rows]).unwrap();
             assert_eq!(run(&mut scaled), expected);
-            // f saw x itself: inside the box, the share untransformed.
-            assert!(
-                seen.iter()
-                    .all(|x| x[0] > 0.0 && x[0] <= 1.0 && (0.0..=1.0).contains(&x[1]))
-            );
         }
-        let mut x = expected.0.clone();
+        let mut x = expected.0;
         from_log(&MASK, &mut x);
         assert!(
             (x[0] / 1e-5 - 1.0).abs() < 1e-3 && (x[2] / 0.1 - 1.0).abs() < 1e-3,
@@ -270,15 +268,16 @@ mod tests {
         );
     }
 
-    /// Records the size of each batch it is handed.
-    struct Sizes(Vec<usize>);
+    /// Records the size of each batch it is handed (at most four batches).
+    struct Sizes([usize; 4], usize);
 
     impl Objective<f64> for Sizes {
         fn evaluate(&mut self, x: &[f64], _: NoiseSeed) -> f64 {
             x[0]
         }
         fn evaluate_batch(&mut self, batch: &Batch<'_, f64>, out: &mut [f64]) {
-            self.0.push(batch.len());
+            self.0[self.1] = batch.len();
+            self.1 += 1;
             for (k, v) in out.iter_mut().enumerate() {
                 *v = batch.point(k)[0] + batch.seed(k) as f64;
             }
@@ -287,21 +286,25 @@ mod tests {
 
     #[test]
     fn a_batch_goes_to_the_objective_in_chunks_the_scratch_holds() {
-        let u: Vec<f64> = (0..7).flat_map(|k| [k as f64 - 3.0, 0.5, 0.0]).collect();
-        let seeds: Vec<u64> = (0..7).map(|k| 100 * k).collect();
+        let mut u = [0.0; 21];
+        for (k, point) in u.chunks_exact_mut(3).enumerate() {
+            point.copy_from_slice(&[k as f64 - 3.0, 0.5, 0.0]);
+        }
+        let seeds: [u64; 7] = core::array::from_fn(|k| 100 * k as u64);
         let batch = Batch::new(&u, &seeds, 3).unwrap();
         let mut points = [0.0; 10];
-        let mut scaled = LogScaled::new(Sizes(Vec::new()), &MASK, &mut points).unwrap();
+        let mut scaled = LogScaled::new(Sizes([0; 4], 0), &MASK, &mut points).unwrap();
         let mut out = [0.0; 7];
         scaled.evaluate_batch(&batch, &mut out);
         for (k, &v) in out.iter().enumerate() {
-            let x = 10f64.powi(k as i32 - 3);
+            let x = libm::pow(10.0, k as f64 - 3.0);
             assert!(
                 (v - (x + 100.0 * k as f64)).abs() <= 1e-12 * (1.0 + v.abs()),
                 "{k}: {v}"
             );
         }
-        assert_eq!(scaled.into_inner().0, [3, 3, 1]);
+        let sizes = scaled.into_inner();
+        assert_eq!(sizes.0[..sizes.1], [3, 3, 1]);
     }
 
     #[test]
@@ -309,9 +312,8 @@ mod tests {
         let mut x = [1e-300, 3.0, 7e12];
         let start = x;
         to_log(&MASK, &mut x).unwrap();
-        assert!(
-            (x[0] + 300.0).abs() < 1e-12 && x[1] == 3.0 && (x[2] - 7e12f64.log10()).abs() < 1e-12
-        );
+        assert!((x[0] + 300.0).abs() < 1e-12 && x[1] == 3.0);
+        assert!((x[2] - libm::log10(7e12)).abs() < 1e-12);
         from_log(&MASK, &mut x);
         for (a, b) in x.iter().zip(start) {
             assert!((a / b - 1.0).abs() < 1e-12, "{a} against {b}");
@@ -319,9 +321,8 @@ mod tests {
         let mut y = [2.5e-30f32, -1.0, 4e20];
         to_log(&MASK, &mut y).unwrap();
         from_log(&MASK, &mut y);
-        assert!(
-            (y[0] / 2.5e-30 - 1.0).abs() < 1e-5 && y[1] == -1.0 && (y[2] / 4e20 - 1.0).abs() < 1e-5
-        );
+        assert!((y[0] / 2.5e-30 - 1.0).abs() < 1e-5 && y[1] == -1.0);
+        assert!((y[2] / 4e20 - 1.0).abs() < 1e-5);
     }
 
     #[test]
