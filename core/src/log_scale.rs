@@ -120,7 +120,8 @@ pub fn bounds_to_log<T: Real>(
 /// marks ([`from_log`]). A batch goes to `inner`'s [`Objective::evaluate_batch`] in
 /// chunks of as many points as `points` holds (n floats each), so that an objective that
 /// evaluates a batch in parallel still does; [`Objective::deterministic`] and
-/// [`Objective::cancelled`] are `inner`'s.
+/// [`Objective::cancelled`] are `inner`'s. The points it is asked for must have the
+/// mask's n coordinates (longer ones panic, as slice indexing does).
 pub struct LogScaled<'a, T, O> {
     inner: O,
     mask: &'a [bool],
