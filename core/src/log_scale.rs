@@ -34,11 +34,6 @@ use crate::error::Error;
 use crate::objective::{Batch, NoiseSeed, Objective};
 use crate::real::Real;
 
-/// ln 10, for 10^u = e^(u ln 10) and log₁₀ x = ln x / ln 10.
-fn ln_10<T: Real>() -> T {
-    T::from_f64(core::f64::consts::LN_10)
-}
-
 /// Whether x > 0 (false for NaN).
 fn positive<T: Real>(x: T) -> bool {
     x.partial_cmp(&T::ZERO) == Some(core::cmp::Ordering::Greater)
@@ -68,7 +63,7 @@ pub fn to_log<T: Real>(mask: &[bool], x: &mut [T]) -> Result<(), Error> {
         return Err(Error::InvalidEntry { name: "x", index });
     }
     for (xi, _) in x.iter_mut().zip(mask).filter(|(_, m)| **m) {
-        *xi = xi.ln() / ln_10();
+        *xi = xi.log10();
     }
     Ok(())
 }
@@ -77,7 +72,7 @@ pub fn to_log<T: Real>(mask: &[bool], x: &mut [T]) -> Result<(), Error> {
 /// shorter or longer than the mask is transformed as far as both reach).
 pub fn from_log<T: Real>(mask: &[bool], u: &mut [T]) {
     for (ui, _) in u.iter_mut().zip(mask).filter(|(_, m)| **m) {
-        *ui = (*ui * ln_10()).exp();
+        *ui = ui.exp10();
     }
 }
 
@@ -103,11 +98,11 @@ pub fn bounds_to_log<T: Real>(
     }
     for i in (0..mask.len()).filter(|&i| mask[i]) {
         lower[i] = if positive(lower[i]) {
-            lower[i].ln() / ln_10()
+            lower[i].log10()
         } else {
             -T::INFINITY
         };
-        upper[i] = upper[i].ln() / ln_10();
+        upper[i] = upper[i].log10();
     }
     Ok(())
 }
@@ -148,6 +143,16 @@ impl<'a, T: Real, O: Objective<T>> LogScaled<'a, T, O> {
     /// The objective it wraps.
     pub fn into_inner(self) -> O {
         self.inner
+    }
+
+    /// The objective it wraps, to read what it kept between evaluations.
+    pub fn inner(&self) -> &O {
+        &self.inner
+    }
+
+    /// The objective it wraps, mutably.
+    pub fn inner_mut(&mut self) -> &mut O {
+        &mut self.inner
     }
 
     /// Points of a batch `points` holds at once: ⌊len/n⌋, at least 1 (n = 0: any).

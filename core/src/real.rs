@@ -82,6 +82,11 @@ pub trait Real:
     fn exp(self) -> Self;
     /// Natural logarithm.
     fn ln(self) -> Self;
+    /// log₁₀ x.
+    fn log10(self) -> Self;
+    /// 10ˣ; at an integer x from −15 to 15 (`f32`: −7 to 7) the float nearest 10ˣ, so
+    /// that it and [`Real::log10`] take decimal powers to their exponents and back.
+    fn exp10(self) -> Self;
     /// ln(1 + x), accurate for small x.
     fn ln_1p(self) -> Self;
     /// ln x for x in [½, 1], to full relative precision near 1.
@@ -171,6 +176,14 @@ impl Real for f64 {
     #[inline]
     fn ln(self) -> Self {
         libm::log(self)
+    }
+    #[inline]
+    fn log10(self) -> Self {
+        libm::log10(self)
+    }
+    #[inline]
+    fn exp10(self) -> Self {
+        libm::exp10(self)
     }
     #[inline]
     fn ln_1p(self) -> Self {
@@ -266,6 +279,14 @@ impl Real for f32 {
     #[inline]
     fn ln(self) -> Self {
         libm::logf(self)
+    }
+    #[inline]
+    fn log10(self) -> Self {
+        libm::log10f(self)
+    }
+    #[inline]
+    fn exp10(self) -> Self {
+        libm::exp10f(self)
     }
     #[inline]
     fn ln_1p(self) -> Self {
@@ -497,6 +518,26 @@ mod tests {
 
     /// `f32`'s `ln_near_one` (libm's `logf`) against `log1pf(x − 1)`, which `f64`'s
     /// form takes: equal for every x in [½, 1].
+    #[test]
+    fn decimal_powers_go_to_their_exponents_and_back() {
+        let powers: [f64; 31] = [
+            1e-15, 1e-14, 1e-13, 1e-12, 1e-11, 1e-10, 1e-9, 1e-8, 1e-7, 1e-6, 1e-5, 1e-4, 1e-3,
+            1e-2, 1e-1, 1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13,
+            1e14, 1e15,
+        ];
+        for (k, &p) in (-15..=15).zip(powers.iter()) {
+            assert_eq!(p.log10(), k as f64, "{p:e}");
+            assert_eq!((k as f64).exp10(), p, "{k}");
+        }
+        let powers: [f32; 15] = [
+            1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1, 1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7,
+        ];
+        for (k, &p) in (-7..=7).zip(powers.iter()) {
+            assert_eq!(p.log10(), k as f32, "{p:e}");
+            assert_eq!((k as f32).exp10(), p, "{k}");
+        }
+    }
+
     #[test]
     fn ln_near_one_is_log1p_in_f32() {
         for bits in 0.5f32.to_bits()..=1.0f32.to_bits() {

@@ -232,80 +232,29 @@ def _scales(sigma0: Any, n: int) -> list:
     return array.tolist()
 
 
-class _LogScale:
-    """The coordinates ``log_scale`` names, searched in log10: Auto's point u holds
-    log10 x_i there and x_i elsewhere; ``fun``, the callback, ``ask`` and the result see
-    x = ``outer(u)``."""
-
-    def __init__(self, mask: np.ndarray) -> None:
-        self.mask = mask
-
-    @staticmethod
-    def parse(log_scale: Any, n: int) -> Optional["_LogScale"]:
-        """The mask ``log_scale`` gives (a bool for every coordinate, or n bools), None
-        where it names no coordinate; TypeError/ValueError naming it."""
-        if log_scale is None:
-            return None
-        array = np.asarray(log_scale)
-        if array.dtype != np.bool_:
-            what = type(log_scale).__name__
-            if isinstance(log_scale, (list, tuple, np.ndarray)):
-                what += f" of dtype {array.dtype}"
-            raise TypeError(
-                f"log_scale must be a bool or {n} bools (one per coordinate), got {what}"
-            )
-        if array.ndim == 0:
-            array = np.full(n, bool(array))
-        if array.shape != (n,):
-            raise ValueError(
-                f"log_scale must be a bool or {n} bools (one per coordinate), got shape "
-                f"{array.shape}"
-            )
-        return _LogScale(array.copy()) if array.any() else None
-
-    def start(self, x0: list) -> list:
-        """x0 as Auto's point; ValueError where a log coordinate is not > 0."""
-        for i in np.flatnonzero(self.mask):
-            if not x0[i] > 0.0:
-                raise ValueError(f"x0[{i}] = {x0[i]!r} must be > 0: log_scale[{i}] is True")
-        return self.inner(x0).tolist()
-
-    def box(self, bounds: Optional[Tuple[list, list]]) -> Optional[Tuple[list, list]]:
-        """The box in Auto's coordinates: a log coordinate's lower limit at or below 0
-        opens its side (x > 0 is searched); an upper limit at or below 0 holds no point
-        it can take, a ValueError."""
-        if bounds is None:
-            return None
-        lower, upper = (np.array(side, dtype=float) for side in bounds)
-        for i in np.flatnonzero(self.mask):
-            if not upper[i] > 0.0:
-                low, high = float(lower[i]), float(upper[i])
-                raise ValueError(
-                    f"bounds[{i}] = ({low!r}, {high!r}) holds no x > 0, which log_scale[{i}] needs"
-                )
-        with np.errstate(divide="ignore", invalid="ignore"):
-            lower[self.mask] = np.where(
-                lower[self.mask] > 0.0, np.log10(lower[self.mask]), -np.inf
-            )
-            upper[self.mask] = np.log10(upper[self.mask])
-        return lower.tolist(), upper.tolist()
-
-    def inner(self, x: Any) -> np.ndarray:
-        """Auto's coordinates of x (a point, or points in rows)."""
-        u = np.array(x, dtype=float)
-        u[..., self.mask] = np.log10(u[..., self.mask])
-        return u
-
-    def outer(self, u: Any) -> np.ndarray:
-        """The caller's point(s) for Auto's u: 10**u_i at a log coordinate."""
-        x = np.array(u, dtype=float)
-        x[..., self.mask] = 10.0 ** x[..., self.mask]
-        return x
-
-
-def _in_user_units(fun: Callable[..., Any], scale: _LogScale, point: Any, *rest: Any) -> Any:
-    """``fun`` at the caller's point(s) for Auto's ``point`` (the seed(s) after it)."""
-    return fun(scale.outer(point), *rest)
+def _log_scale(log_scale: Any, n: int) -> Optional[list]:
+    """The coordinates ``log_scale`` marks for a search in log10 (a bool for every
+    coordinate, or n bools), as n bools, or None where it marks none; TypeError/ValueError
+    naming it. The extension checks x0 and the bounds against it and does the search in
+    log10 (``hodr_core::log_scale``)."""
+    if log_scale is None:
+        return None
+    array = np.asarray(log_scale)
+    if array.dtype != np.bool_:
+        what = type(log_scale).__name__
+        if isinstance(log_scale, (list, tuple, np.ndarray)):
+            what += f" of dtype {array.dtype}"
+        raise TypeError(
+            f"log_scale must be a bool or {n} bools (one per coordinate), got {what}"
+        )
+    if array.ndim == 0:
+        array = np.full(n, bool(array))
+    if array.shape != (n,):
+        raise ValueError(
+            f"log_scale must be a bool or {n} bools (one per coordinate), got shape "
+            f"{array.shape}"
+        )
+    return array.tolist() if array.any() else None
 
 
 OPTIONS = (
@@ -384,17 +333,15 @@ def _seed(seed: Any) -> int:
     return _count("seed", seed, 0, 64)
 
 
-def _with_result(
-    error: BaseException, seed: int, result: Any = None, scale: Optional[_LogScale] = None
-) -> None:
+def _with_result(error: BaseException, seed: int, result: Any = None) -> None:
     """Gives ``error`` the run so far as an OptimizeResult: ``result``, or the fields the
-    extension attached (with the run's ``seed``, x in the caller's coordinates)."""
+    extension attached (with the run's ``seed``)."""
     if result is not None:
         error.result = result
     elif isinstance(getattr(error, "result", None), dict) and not isinstance(
         error.result, OptimizeResult
     ):
-        error.result = _result(error.result, seed, scale)
+        error.result = _result(error.result, seed)
 
 
 def minimize(
@@ -565,16 +512,12 @@ def minimize(
     x0 = _vector("x0", x0)
     sigma0 = _scales(sigma0, len(x0))
     box = _bounds(bounds, len(x0))
-    scale = _LogScale.parse(log_scale, len(x0))
-    if scale is not None:
-        x0, box = scale.start(x0), scale.box(box)
+    log_scale = _log_scale(log_scale, len(x0))
     if budget is not None:
         budget = _count("budget", budget, 1)
     seed = _seed(seed)
     if callback is not None:
         callback = _callback(callback)
-        if scale is not None:
-            callback = functools.partial(_in_user_units, callback, scale)
     if tol is not None:
         tol = _real("tol", tol)
         if not 0.0 < tol < 1.0:
@@ -588,21 +531,19 @@ def minimize(
     settings = _settings(options)
     if not isinstance(args, tuple):
         args = (args,)
-    if args or scale is not None:
+    if args:
         if not callable(fun):
             raise TypeError("fun must be callable")
-    if args:
         fun = functools.partial(_with_args, fun, args)
-    if scale is not None:
-        fun = functools.partial(_in_user_units, fun, scale)
     try:
         raw = _hodr.minimize_auto(
-            fun, x0, sigma0, box, budget, seed, bool(batch), bool(noisy), callback, settings,
+            fun, x0, sigma0, box, log_scale, budget, seed, bool(batch), bool(noisy), callback,
+            settings,
         )
     except (KeyboardInterrupt, ValueError) as stopped:
-        _with_result(stopped, seed, scale=scale)
+        _with_result(stopped, seed)
         raise
-    return _result(raw, seed, scale)
+    return _result(raw, seed)
 
 
 def _callback(callback: Any) -> Callable[[np.ndarray, float], bool]:
@@ -648,11 +589,9 @@ def _with_args(fun: Callable[..., Any], args: tuple, *point: Any) -> Any:
     return fun(*point, *args)
 
 
-def _result(raw: dict, seed: int, scale: Optional[_LogScale] = None) -> OptimizeResult:
+def _result(raw: dict, seed: int) -> OptimizeResult:
     """An OptimizeResult from the extension's fields, the history grouped, with the run's
-    ``seed``; x in the caller's coordinates (``scale``: the run's log coordinates)."""
-    if scale is not None:
-        raw["x"] = scale.outer(raw["x"])
+    ``seed``."""
     history = {k: raw.pop(f"history_{k}") for k in ("nfev", "fun", "sigma", "descent")}
     result = OptimizeResult(raw)
     result.history = history
@@ -702,15 +641,13 @@ class Optimizer:
         x0 = _vector("x0", x0)
         sigma0 = _scales(sigma0, len(x0))
         box = _bounds(bounds, len(x0))
-        self._scale = _LogScale.parse(log_scale, len(x0))
-        if self._scale is not None:
-            x0, box = self._scale.start(x0), self._scale.box(box)
+        log_scale = _log_scale(log_scale, len(x0))
         if budget is not None:
             budget = _count("budget", budget, 1)
         self._seed = _seed(seed)
         self._asked: Optional[np.ndarray] = None
         self._run = _hodr.AskTell(
-            x0, sigma0, box, budget, self._seed, bool(noisy), _settings(options),
+            x0, sigma0, box, log_scale, budget, self._seed, bool(noisy), _settings(options),
         )
 
     def _call(self, method: Callable, *args: Any) -> Any:
@@ -722,7 +659,7 @@ class Optimizer:
             _with_result(stopped, self._seed, self.result)
             raise
         except (ValueError, RuntimeError) as failed:
-            _with_result(failed, self._seed, scale=self._scale)
+            _with_result(failed, self._seed)
             raise
 
     def ask(self) -> np.ndarray:
@@ -730,8 +667,6 @@ class Optimizer:
         last, again, until its values are told; (0, n) once the run has ended
         (``tell([])`` then takes its values)."""
         points = self._call(self._run.ask)
-        if self._scale is not None:
-            points = self._scale.outer(points)
         self._asked = points.copy()
         return points
 
@@ -771,7 +706,7 @@ class Optimizer:
     @property
     def result(self) -> OptimizeResult:
         """The run's ``OptimizeResult`` (while running: the best point so far)."""
-        return _result(self._run.result(), self._seed, self._scale)
+        return _result(self._run.result(), self._seed)
 
 
 def gradient(

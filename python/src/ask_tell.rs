@@ -35,8 +35,8 @@ enum FromAuto {
     /// Points to evaluate, row-major, and their noise seeds.
     Batch(Vec<f64>, Vec<NoiseSeed>),
     /// An iteration ended: evaluations so far, f at the best point (where Auto has seen
-    /// a finite one), σ, the descent the run is in, the best point, the model the run
-    /// uses.
+    /// a finite one), σ, the descent the run is in, the best point (in the caller's
+    /// coordinates), the model the run uses.
     Iteration {
         evaluations: usize,
         value: Option<f64>,
@@ -125,7 +125,8 @@ pub struct AskTell {
     pending: Option<(Vec<f64>, Vec<NoiseSeed>)>,
     /// The noise seeds of the batch last asked.
     seeds: Vec<NoiseSeed>,
-    /// Auto's best point and its value at its last iteration.
+    /// Auto's best point (in the caller's coordinates) and its value at its last
+    /// iteration.
     best: (Vec<f64>, Option<f64>),
     /// The values told.
     seen: Seen,
@@ -211,44 +212,51 @@ impl AskTell {
 #[pymethods]
 impl AskTell {
     #[new]
-    #[pyo3(signature = (x0, sigma0, bounds, budget, seed, noisy, settings))]
+    #[pyo3(signature = (x0, sigma0, bounds, log_scale, budget, seed, noisy, settings))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         x0: Vec<f64>,
         sigma0: Vec<f64>,
         bounds: Option<(Vec<f64>, Vec<f64>)>,
+        log_scale: Option<Vec<bool>>,
         budget: Option<usize>,
         seed: u64,
         noisy: bool,
         settings: Settings,
     ) -> PyResult<Self> {
         let non_finite_error = settings.6.as_deref() == Some("error");
-        let problem = Problem::new(x0, sigma0, bounds, budget, seed, settings)?;
+        let problem = Problem::new(x0, sigma0, bounds, log_scale, budget, seed, settings)?;
         let n = problem.dim();
-        let best = (problem.memory().0, None);
+        let best = (problem.start().to_vec(), None);
         let model = problem.starting_model();
         let (to_caller, from_auto) = channel();
         let (values, from_caller) = channel();
         let thread = std::thread::spawn(move || {
-            let mut objective = Channel {
+            let channel = Channel {
                 to_caller: to_caller.clone(),
                 values: from_caller,
                 noisy,
                 closed: false,
             };
+            let mut points = Vec::new();
             let (mut theta, mut buffer) = problem.memory();
             let mut error = None;
-            let (termination, evaluations, iterations) = match problem.auto(&mut theta, &mut buffer)
-            {
-                Ok(mut auto) => {
+            let run = problem
+                .objective(channel, &mut points)
+                .and_then(|objective| Ok((objective, problem.auto(&mut theta, &mut buffer)?)));
+            let (termination, evaluations, iterations) = match run {
+                Ok((mut objective, mut auto)) => {
                     loop {
                         match auto.step(&mut objective) {
                             Ok(Some(report)) => {
+                                let mut theta = auto.theta().to_vec();
+                                problem.to_caller(&mut theta);
                                 let iteration = FromAuto::Iteration {
                                     evaluations: report.evaluations,
                                     value: report.value,
                                     sigma: report.sigma,
                                     descent: report.descent,
-                                    theta: auto.theta().to_vec(),
+                                    theta,
                                     model: auto.model(),
                                 };
                                 if to_caller.send(iteration).is_err() {
@@ -257,7 +265,7 @@ impl AskTell {
                             }
                             Ok(None) => break,
                             Err(e) => {
-                                if !objective.closed {
+                                if !objective.inner().closed {
                                     error = Some(e);
                                 }
                                 break;

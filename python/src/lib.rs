@@ -14,6 +14,7 @@
 //! numpy's C API is loaded when the module is imported ([`load_numpy`]): loaded on first
 //! use, its import would fail on a pending KeyboardInterrupt, and rust-numpy panics then.
 
+use hodr_core::log_scale::{LogScaled, bounds_to_log, from_log, to_log};
 use hodr_core::optim::auto::FULL_MODEL_MAX_DIM;
 use hodr_core::optim::{Auto, AutoModel, AutoOptions, AutoTermination, NonFinite};
 use hodr_core::{
@@ -35,7 +36,8 @@ mod ask_tell;
 mod history;
 mod values;
 
-/// Points per batch handed to the objective (with `batch`, rows per call).
+/// Points per batch handed to the objective (with `batch`, rows per call): the
+/// estimators' batches, and the most Auto hands over at once.
 const ROWS: usize = 64;
 
 /// A Python callable as a hodr-core objective. It holds no GIL: every call attaches to
@@ -260,11 +262,19 @@ fn apply_settings(settings: Settings, mut options: AutoOptions<f64>) -> PyResult
 }
 
 /// A problem statement for Auto, checked: x₀, σ₀ (one scale per coordinate), bounds,
-/// budget and seed.
+/// the coordinates searched in log₁₀, budget and seed. Auto runs in its own
+/// coordinates u (log₁₀ xᵢ where `log_scale[i]`, xᵢ elsewhere:
+/// [`hodr_core::log_scale`]); the objective, the callback and the result see x.
 pub(crate) struct Problem {
+    /// x₀ as the caller gave it.
+    start: Vec<f64>,
+    /// x₀ in Auto's coordinates.
     x0: Vec<f64>,
     sigma0: Vec<f64>,
+    /// The box in Auto's coordinates.
     bounds: Option<(Vec<f64>, Vec<f64>)>,
+    /// One flag per coordinate: searched in log₁₀.
+    log_scale: Vec<bool>,
     options: AutoOptions<f64>,
     model: AutoModel,
     seed: u64,
@@ -291,7 +301,8 @@ impl Problem {
     pub(crate) fn new(
         x0: Vec<f64>,
         sigma0: Vec<f64>,
-        bounds: Option<(Vec<f64>, Vec<f64>)>,
+        mut bounds: Option<(Vec<f64>, Vec<f64>)>,
+        log_scale: Option<Vec<bool>>,
         budget: Option<usize>,
         seed: u64,
         settings: Settings,
@@ -340,10 +351,43 @@ impl Problem {
                 )));
             }
         }
+        let log_scale = log_scale.unwrap_or_else(|| vec![false; n]);
+        if log_scale.len() != n {
+            return Err(PyValueError::new_err(format!(
+                "log_scale must be a bool or {n} bools (one per coordinate), got {}",
+                log_scale.len()
+            )));
+        }
+        let start = x0.clone();
+        let mut x0 = x0;
+        to_log(&log_scale, &mut x0).map_err(|_| {
+            let i = (0..n)
+                .find(|&i| log_scale[i] && start[i] <= 0.0)
+                .unwrap_or(0);
+            PyValueError::new_err(format!(
+                "x0[{i}] = {} must be > 0: log_scale[{i}] is True",
+                fmt_float(start[i])
+            ))
+        })?;
+        if let Some((lower, upper)) = &mut bounds {
+            let given = (lower.clone(), upper.clone());
+            bounds_to_log(&log_scale, lower, upper).map_err(|_| {
+                let i = (0..n)
+                    .find(|&i| log_scale[i] && given.1[i] <= 0.0)
+                    .unwrap_or(0);
+                PyValueError::new_err(format!(
+                    "bounds[{i}] = ({}, {}) holds no x > 0, which log_scale[{i}] needs",
+                    fmt_float(given.0[i]),
+                    fmt_float(given.1[i])
+                ))
+            })?;
+        }
         let problem = Problem {
+            start,
             x0,
             sigma0,
             bounds,
+            log_scale,
             options,
             model,
             seed,
@@ -370,7 +414,28 @@ impl Problem {
         }
     }
 
-    /// θ (x₀) and Auto's buffer.
+    /// x₀ as the caller gave it.
+    pub(crate) fn start(&self) -> &[f64] {
+        &self.start
+    }
+
+    /// The caller's point for Auto's point `u`, in place (10^uᵢ on the log coordinates).
+    pub(crate) fn to_caller(&self, u: &mut [f64]) {
+        from_log(&self.log_scale, u);
+    }
+
+    /// `inner`, an objective over the caller's x, as one over Auto's coordinates, with
+    /// `points` (resized here) the scratch that holds a batch's points in x.
+    pub(crate) fn objective<'a, O: Objective<f64>>(
+        &'a self,
+        inner: O,
+        points: &'a mut Vec<f64>,
+    ) -> Result<LogScaled<'a, f64, O>, Error> {
+        points.resize(ROWS * self.dim(), 0.0);
+        LogScaled::new(inner, &self.log_scale, points)
+    }
+
+    /// θ (x₀ in Auto's coordinates) and Auto's buffer.
     pub(crate) fn memory(&self) -> (Vec<f64>, Vec<f64>) {
         let n = self.dim();
         (self.x0.clone(), vec![0.0; self.model.buffer_len(n)])
@@ -396,7 +461,7 @@ impl Problem {
 /// Minimises `fun` with Auto; returns the result's fields as a dict (the Python half
 /// makes it an `OptimizeResult`).
 #[pyfunction]
-#[pyo3(signature = (fun, x0, sigma0, bounds, budget, seed, batch, noisy, callback, settings))]
+#[pyo3(signature = (fun, x0, sigma0, bounds, log_scale, budget, seed, batch, noisy, callback, settings))]
 #[allow(clippy::too_many_arguments)]
 fn minimize_auto<'py>(
     py: Python<'py>,
@@ -404,6 +469,7 @@ fn minimize_auto<'py>(
     x0: Vec<f64>,
     sigma0: Vec<f64>,
     bounds: Option<(Vec<f64>, Vec<f64>)>,
+    log_scale: Option<Vec<bool>>,
     budget: Option<usize>,
     seed: u64,
     batch: bool,
@@ -411,20 +477,28 @@ fn minimize_auto<'py>(
     callback: Option<Bound<'py, PyAny>>,
     settings: Settings,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let problem = Problem::new(x0, sigma0, bounds, budget, seed, settings)?;
-    let mut objective = PyObjective::new(fun, batch, noisy)?;
+    let problem = Problem::new(x0, sigma0, bounds, log_scale, budget, seed, settings)?;
+    let mut points = Vec::new();
+    let mut objective = problem
+        .objective(PyObjective::new(fun, batch, noisy)?, &mut points)
+        .map_err(core_error)?;
     let (mut theta, mut buffer) = problem.memory();
     let mut auto = problem.auto(&mut theta, &mut buffer).map_err(core_error)?;
     let callback = callback.map(Bound::unbind);
     let mut history = History::default();
     let mut failure = None;
+    // θ in the caller's coordinates.
+    let mut theta_x = problem.start().to_vec();
     // The run holds no GIL; the objective and the callback attach for their calls.
     let end = py.detach(|| -> PyResult<End> {
         loop {
             match auto.step(&mut objective) {
                 Ok(Some(report)) => {
-                    objective.seen.settle();
-                    let (x, value) = objective.seen.best(report.value, auto.theta());
+                    let seen = &mut objective.inner_mut().seen;
+                    seen.settle();
+                    theta_x.copy_from_slice(auto.theta());
+                    problem.to_caller(&mut theta_x);
+                    let (x, value) = seen.best(report.value, &theta_x);
                     history.push(report.evaluations, value, report.sigma, report.descent);
                     if let Some(cb) = &callback {
                         let stop = Python::attach(|py| {
@@ -440,7 +514,7 @@ fn minimize_auto<'py>(
                 Err(error) => {
                     // The callable's own exception (its NaN is what Auto refused) goes
                     // back as it was raised.
-                    if let Some(raised) = objective.error.take() {
+                    if let Some(raised) = objective.inner_mut().error.take() {
                         return Err(raised);
                     }
                     if matches!(error, Error::NonFiniteObjective { .. }) {
@@ -451,7 +525,10 @@ fn minimize_auto<'py>(
             }
         }
     });
-    let (x, value) = objective.seen.best(auto.value(), auto.theta());
+    theta_x.copy_from_slice(auto.theta());
+    problem.to_caller(&mut theta_x);
+    let objective = objective.inner();
+    let (x, value) = objective.seen.best(auto.value(), &theta_x);
     let outcome = match (&end, failure) {
         (Ok(end), _) => *end,
         (Err(_), Some(error)) => End::Failed(error),

@@ -222,22 +222,28 @@ def rate_bowl(x):
 
 
 def test_log_scale_is_the_run_on_log10_and_fun_sees_x_itself():
+    # The run searches log10 x[0] (hodr_core::log_scale, libm's log10 and exp10); numpy's
+    # log10 and 10.0 ** u differ from those in the last bit at some points, and the two
+    # runs' points drift apart by rounding only (measured: 2.3e-12 relative).
     mask, x0 = [True, False], [0.3, 0.9]
-    in_logs = [
-        hodr.minimize(lambda u: rate_bowl([10.0 ** u[0], u[1]]), [np.log10(0.3), 0.9], [2.0, 0.25],
+    in_logs, seen_u = [], []
+    in_logs.append(
+        hodr.minimize(lambda u: seen_u.append(u.copy()) or rate_bowl([10.0 ** u[0], u[1]]),
+                      [np.log10(0.3), 0.9], [2.0, 0.25],
                       bounds=[(-8.0, 0.0), (0.0, 1.0)], budget=80, seed=3),
-    ]
+    )
     seen, called = [], []
     declared = hodr.minimize(
         lambda x: seen.append(x.copy()) or rate_bowl(x), x0, [2.0, 0.25], log_scale=mask,
         bounds=[(1e-8, 1.0), (0.0, 1.0)], budget=80, seed=3,
         callback=lambda x, f: called.append(x.copy()),
     )
-    assert declared.nfev == in_logs[0].nfev and declared.fun == in_logs[0].fun
-    assert np.array_equal(declared.history["sigma"], in_logs[0].history["sigma"])
-    assert np.allclose(declared.x, [10.0 ** in_logs[0].x[0], in_logs[0].x[1]], rtol=1e-14)
+    assert declared.nfev == in_logs[0].nfev and abs(declared.fun - in_logs[0].fun) <= 1e-20
+    assert np.allclose(declared.history["sigma"], in_logs[0].history["sigma"], rtol=1e-9)
+    assert np.allclose(declared.x, [10.0 ** in_logs[0].x[0], in_logs[0].x[1]], rtol=1e-9)
     assert np.allclose(declared.x, [1e-5, 0.5], rtol=1e-4, atol=1e-4)
-    points = np.array(seen)
+    points, u = np.array(seen), np.array(seen_u)
+    assert np.allclose(points, np.column_stack([10.0 ** u[:, 0], u[:, 1]]), rtol=1e-9, atol=1e-12)
     assert np.all(points[:, 0] >= 1e-8 * (1 - 1e-12)) and np.all(points[:, 0] <= 1.0)
     assert len(called) == declared.nit and np.all(np.array(called)[:, 0] > 0.0)
     # Batches, and ask/tell: the same points, in x.
