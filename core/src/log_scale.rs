@@ -69,10 +69,20 @@ pub fn to_log<T: Real>(mask: &[bool], x: &mut [T]) -> Result<(), Error> {
 }
 
 /// Writes x for the point `u` in place: 10^uᵢ where `mask[i]`, uᵢ elsewhere (a slice
-/// shorter or longer than the mask is transformed as far as both reach).
+/// shorter or longer than the mask is transformed as far as both reach). 10^uᵢ is held
+/// within the positive normal floats, [`Real::MIN_POSITIVE`] to [`Real::MAX`], so that
+/// however far a search strays in u (σ₀ in the hundreds of decades, a start at 10³⁰⁰)
+/// the objective sees a finite x > 0, never 0 or ∞; a NaN stays NaN.
 pub fn from_log<T: Real>(mask: &[bool], u: &mut [T]) {
     for (ui, _) in u.iter_mut().zip(mask).filter(|(_, m)| **m) {
-        *ui = ui.exp10();
+        let x = ui.exp10();
+        *ui = if x < T::MIN_POSITIVE {
+            T::MIN_POSITIVE
+        } else if x > T::MAX {
+            T::MAX
+        } else {
+            x
+        };
     }
 }
 
@@ -325,6 +335,19 @@ mod tests {
         from_log(&MASK, &mut y);
         assert!((y[0] / 2.5e-30 - 1.0).abs() < 1e-5 && y[1] == -1.0);
         assert!((y[2] / 4e20 - 1.0).abs() < 1e-5);
+    }
+
+    #[test]
+    fn the_objective_sees_a_finite_positive_x_however_far_u_strays() {
+        let mut u = [-400.0, 5.0, 400.0];
+        from_log(&MASK, &mut u);
+        assert_eq!(u, [f64::MIN_POSITIVE, 5.0, f64::MAX]);
+        let mut v = [-60.0f32, 0.0, 60.0];
+        from_log(&MASK, &mut v);
+        assert_eq!(v, [f32::MIN_POSITIVE, 0.0, f32::MAX]);
+        let mut w = [f64::NAN, 0.0, 2.0];
+        from_log(&MASK, &mut w);
+        assert!(w[0].is_nan() && w[2] == 100.0);
     }
 
     #[test]

@@ -416,8 +416,8 @@ def minimize(
         spans decades. Auto's point holds log10 x_i there, so a step is a factor, and
         its sigma0 is in decades (1: a factor of 10); x0 must be > 0 there, a lower
         bound at or below 0 (or None) leaves x_i > 0 open, and an upper bound must be
-        > 0. ``fun``, ``callback`` and the result see x itself. True: every
-        coordinate; default: none.
+        > 0. ``fun``, ``callback`` and the result see x itself, finite and > 0 there
+        however far the search strays. True: every coordinate; default: none.
     budget : int, optional
         At most this many evaluations (never exceeded; 1 to 2**64 - 1). With a
         budget, a deterministic ``fun`` gets it all: once a descent converges or
