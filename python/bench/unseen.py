@@ -3,7 +3,7 @@ against pycma and BOBYQA, each at its defaults, for BENCHMARKS.md.
 
     pip install ./python cma nlopt
     python python/bench/unseen.py [--seeds 10] [--problems ackley10,griewank10]
-        [--solvers hodr,pycma,BOBYQA] [--sigma0-factor 1] [--log-scale]
+        [--solvers hodr,pycma,BOBYQA] [--sigma0-factor 1] [--log-scale] [--no-budget]
 
 Classic test functions from their published definitions (Ackley, Griewank, Levy,
 Styblinski-Tang, Rastrigin, Rosenbrock, a rotated ellipsoid, the sum of different powers,
@@ -862,9 +862,10 @@ def draw_start(problem, rng):
     return np.clip(rng.uniform(low, high, problem.n), *problem.limits)
 
 
-def run_hodr(f, x0, problem, seed, options=None, log_scale=False):
+def run_hodr(f, x0, problem, seed, options=None, log_scale=False, budgeted=True):
     bounds = None if problem.box is None else list(zip(*problem.limits))
-    hodr.minimize(f, x0, problem.scales, bounds=bounds, budget=problem.budget, seed=seed,
+    hodr.minimize(f, x0, problem.scales, bounds=bounds,
+                  budget=problem.budget if budgeted else None, seed=seed,
                   options=options, log_scale=problem.log_scale if log_scale else None)
 
 
@@ -930,11 +931,14 @@ def main():
     parser.add_argument("--log-scale", action="store_true",
                         help="declare the coordinates that span decades (the eighteenth "
                         "set's): hodr's log_scale, the others the problem in log10")
+    parser.add_argument("--no-budget", action="store_true",
+                        help="call hodr without its budget: each run ends by Auto's own "
+                        "stopping rule (the row's budget still cuts it off, a miss)")
     args = parser.parse_args()
     runners = dict(SOLVERS)
     runners["hodr"] = functools.partial(
         run_hodr, options=None if args.hodr_model is None else {"model": args.hodr_model},
-        log_scale=args.log_scale)
+        log_scale=args.log_scale, budgeted=not args.no_budget)
     if not (np.isfinite(args.sigma0_factor) and args.sigma0_factor > 0):
         parser.error(f"--sigma0-factor must be positive and finite, got {args.sigma0_factor}")
     names = args.problems.split(",")
