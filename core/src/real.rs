@@ -516,8 +516,6 @@ mod tests {
         }
     }
 
-    /// `f32`'s `ln_near_one` (libm's `logf`) against `log1pf(x − 1)`, which `f64`'s
-    /// form takes: equal for every x in [½, 1].
     #[test]
     fn decimal_powers_go_to_their_exponents_and_back() {
         let powers: [f64; 31] = [
@@ -538,6 +536,8 @@ mod tests {
         }
     }
 
+    /// `f32`'s `ln_near_one` (libm's `logf`) against `log1pf(x − 1)`, which `f64`'s
+    /// form takes: equal for every x in [½, 1].
     #[test]
     fn ln_near_one_is_log1p_in_f32() {
         for bits in 0.5f32.to_bits()..=1.0f32.to_bits() {

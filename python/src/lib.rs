@@ -358,28 +358,24 @@ impl Problem {
                 log_scale.len()
             )));
         }
+        // Both transforms leave their input as it was on error: the messages quote it.
         let start = x0.clone();
         let mut x0 = x0;
-        to_log(&log_scale, &mut x0).map_err(|_| {
-            let i = (0..n)
-                .find(|&i| log_scale[i] && start[i] <= 0.0)
-                .unwrap_or(0);
-            PyValueError::new_err(format!(
+        to_log(&log_scale, &mut x0).map_err(|error| match error {
+            Error::InvalidEntry { index: i, .. } => PyValueError::new_err(format!(
                 "x0[{i}] = {} must be > 0: log_scale[{i}] is True",
-                fmt_float(start[i])
-            ))
+                fmt_float(x0[i])
+            )),
+            other => core_error(other),
         })?;
         if let Some((lower, upper)) = &mut bounds {
-            let given = (lower.clone(), upper.clone());
-            bounds_to_log(&log_scale, lower, upper).map_err(|_| {
-                let i = (0..n)
-                    .find(|&i| log_scale[i] && given.1[i] <= 0.0)
-                    .unwrap_or(0);
-                PyValueError::new_err(format!(
+            bounds_to_log(&log_scale, lower, upper).map_err(|error| match error {
+                Error::InvalidEntry { index: i, .. } => PyValueError::new_err(format!(
                     "bounds[{i}] = ({}, {}) holds no x > 0, which log_scale[{i}] needs",
-                    fmt_float(given.0[i]),
-                    fmt_float(given.1[i])
-                ))
+                    fmt_float(lower[i]),
+                    fmt_float(upper[i])
+                )),
+                other => core_error(other),
             })?;
         }
         let problem = Problem {
