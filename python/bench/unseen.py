@@ -62,7 +62,10 @@ single precision (x and f rounded to float32, and the same with 1 added to f: th
 and -f32+1 names), made to show a failure and measured with its fix on 2026-12-07,
 and an eighteenth, parameters that span decades passed in their own units (decades.py: a
 bowl in the logarithms of every second coordinate, decades2 to decades10, and the rate
-constants of consecutive reactions, kinetics3), first run on 2026-12-07.
+constants of consecutive reactions, kinetics3), first run on 2026-12-07, and a nineteenth,
+kinks along curves and across rotated axes and a sine fitted to its samples
+(kinks_and_signals.py: crescent2, mifflin2, lq2, minimax-fit8, minimax-fit16, cusps10,
+cusps20, sinusoid3, sinusoid-long3), first run on 2026-12-07.
 Each problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
@@ -98,6 +101,7 @@ import classics
 import constraint_walls
 import decades
 import hodr
+import kinks_and_signals
 import least_squares
 import other_fields
 import piecewise_losses
@@ -829,6 +833,13 @@ PROBLEMS.update({f"{name}-f32{suffix}": PROBLEMS[name]._replace(
 # first run as Auto stood.
 PROBLEMS.update({name: Problem(*case, log_scale=decades.LOG_SCALE[name])
                  for name, case in decades.PROBLEMS.items()})
+
+
+# The nineteenth set (2026-12-07, ninety-fourth session): kinks along curves and across
+# rotated axes, and a sine's parameters fitted to its samples (kinks_and_signals.py:
+# crescent2, mifflin2, lq2, minimax-fit8, minimax-fit16, cusps10, cusps20, sinusoid3,
+# sinusoid-long3); first run as Auto stood.
+PROBLEMS.update({name: Problem(*case) for name, case in kinks_and_signals.PROBLEMS.items()})
 
 
 def in_decades(problem):
