@@ -65,7 +65,11 @@ bowl in the logarithms of every second coordinate, decades2 to decades10, and th
 constants of consecutive reactions, kinetics3), first run on 2026-12-07, and a nineteenth,
 kinks along curves and across rotated axes and a sine fitted to its samples
 (kinks_and_signals.py: crescent2, mifflin2, lq2, minimax-fit8, minimax-fit16, cusps10,
-cusps20, sinusoid3, sinusoid-long3), first run on 2026-12-07.
+cusps20, sinusoid3, sinusoid-long3), first run on 2026-12-07, and a twentieth, minima that
+are sets rather than points, as a model's symmetry makes them (symmetric_minima.py: the
+Rayleigh quotient, rayleigh10 and rayleigh20, phase retrieval, phase-retrieval8 and
+phase-retrieval16, a matrix's factors, factorisation7 and factorisation22, and five charges
+on a sphere, thomson10, and twelve, thomson24), first run on 2026-12-07.
 Each problem states its dimension, box (or none), scale sigma0, budget,
 target and the range its starts are drawn from (default [-3, 3]^n); every solver gets the
 same statement and the same start, uniform in that range from the seed. A run
@@ -107,6 +111,7 @@ import other_fields
 import piecewise_losses
 import raster_losses
 import simulations
+import symmetric_minima
 
 warnings.filterwarnings("ignore")
 
@@ -840,6 +845,13 @@ PROBLEMS.update({name: Problem(*case, log_scale=decades.LOG_SCALE[name])
 # crescent2, mifflin2, lq2, minimax-fit8, minimax-fit16, cusps10, cusps20, sinusoid3,
 # sinusoid-long3); first run as Auto stood.
 PROBLEMS.update({name: Problem(*case) for name, case in kinks_and_signals.PROBLEMS.items()})
+
+
+# The twentieth set (2026-12-07, ninety-fifth session): minima that are sets, not points
+# (symmetric_minima.py: rayleigh10, rayleigh20, phase-retrieval8, phase-retrieval16,
+# factorisation7, factorisation22, thomson10, thomson24); first run as Auto stood but
+# thomson24, added after to find where Auto fails.
+PROBLEMS.update({name: Problem(*case) for name, case in symmetric_minima.PROBLEMS.items()})
 
 
 def in_decades(problem):
