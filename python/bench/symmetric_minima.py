@@ -30,15 +30,10 @@ import numpy as np
 from raster_losses import Case
 
 
-def rotation(n, rng):
-    """An orthonormal basis from the QR of a Gaussian matrix."""
-    q, _ = np.linalg.qr(rng.standard_normal((n, n)))
-    return q
-
-
 def rayleigh(n):
-    """x'Ax / x'x with A's eigenvalues 1 ... n in a random basis; returns (f, x*)."""
-    q = rotation(n, np.random.default_rng(2020 + n))
+    """x'Ax / x'x with A's eigenvalues 1 ... n in a random orthonormal basis (the QR of a
+    Gaussian matrix); returns (f, x*)."""
+    q, _ = np.linalg.qr(np.random.default_rng(2020 + n).standard_normal((n, n)))
     a = q @ np.diag(np.arange(1.0, n + 1.0)) @ q.T
 
     def f(x):
