@@ -125,7 +125,8 @@ class Counted:
     """f with COCO's bookkeeping: evaluations, the first that reached the target (the
     run ends there; the evaluations after it count for nothing), the wall time from
     the object's making (the run's start) to that evaluation's return, in seconds, and
-    the lowest finite value returned (None before the first). With
+    the lowest finite value returned (None before the first) with the evaluation counts
+    at which it fell (`best_within`). With
     `failures` > 0 each evaluation fails (returns NaN, and reaches no target) with that
     probability, whatever the point: draws from a generator seeded by the run's seed, so
     that each solver's k-th evaluation of a run fails alike."""
@@ -138,6 +139,7 @@ class Counted:
         self.hit = None
         self.hit_time = None
         self.best = None
+        self.falls = []
         self.start = time.perf_counter()
 
     def __call__(self, x):
@@ -151,10 +153,21 @@ class Counted:
             return value
         if self.best is None or value < self.best:
             self.best = value
+            self.falls.append((self.evaluations, value))
         if self.hit is None and value - self.f_opt <= self.target:
             self.hit = self.evaluations
             self.hit_time = time.perf_counter() - self.start
         return value
+
+    def best_within(self, evaluations):
+        """The lowest finite value among the first `evaluations` evaluations (None where
+        none was finite): the best point a caller with that budget would hold."""
+        best = None
+        for count, value in self.falls:
+            if count > evaluations:
+                break
+            best = value
+        return best
 
 
 def ackley(x):
