@@ -70,15 +70,8 @@ def main():
         parser.error(f"--at takes budgets of at least 1 evaluation per dimension, got {args.at!r}")
     if args.seeds < 1:
         parser.error(f"--seeds must be at least 1, got {args.seeds}")
-    names = args.problems.split(",")
-    for name in names:
-        if name not in unseen.PROBLEMS:
-            parser.error(f"unknown problem {name!r} (choose from {', '.join(unseen.PROBLEMS)})")
-    solvers = args.solvers.split(",")
-    for solver in solvers:
-        if solver not in unseen.SOLVERS:
-            parser.error(f"unknown solver {solver!r} "
-                         f"(choose from {', '.join(unseen.SOLVERS)})")
+    names = unseen.chosen(parser, args.problems, unseen.PROBLEMS, "problem")
+    solvers = unseen.chosen(parser, args.solvers, unseen.SOLVERS, "solver")
     others = [s for s in solvers if s != "hodr"] if "hodr" in solvers else []
     print("| problem | n | evaluations | target | " + " | ".join(
         f"{s} median f − f* (runs at target)" for s in solvers) + " |")

@@ -955,6 +955,16 @@ def seconds(t):
     return f"{t:.2f} s"
 
 
+def chosen(parser, listed, known, kind):
+    """The comma-separated names in `listed`, each one of `known`'s keys; a parser error
+    names the first that is not."""
+    names = listed.split(",")
+    for name in names:
+        if name not in known:
+            parser.error(f"unknown {kind} {name!r} (choose from {', '.join(known)})")
+    return names
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=10)
@@ -977,14 +987,8 @@ def main():
         log_scale=args.log_scale, budgeted=not args.no_budget)
     if not (np.isfinite(args.sigma0_factor) and args.sigma0_factor > 0):
         parser.error(f"--sigma0-factor must be positive and finite, got {args.sigma0_factor}")
-    names = args.problems.split(",")
-    for name in names:
-        if name not in PROBLEMS:
-            parser.error(f"unknown problem {name!r} (choose from {', '.join(PROBLEMS)})")
-    solvers = args.solvers.split(",")
-    for solver in solvers:
-        if solver not in SOLVERS:
-            parser.error(f"unknown solver {solver!r} (choose from {', '.join(SOLVERS)})")
+    names = chosen(parser, args.problems, PROBLEMS, "problem")
+    solvers = chosen(parser, args.solvers, SOLVERS, "solver")
     others = [s for s in ("pycma", "BOBYQA") if s in solvers and "hodr" in solvers]
     print("| problem | n | budget | target | " + " | ".join(
         f"{s} solved / median evaluations / time" for s in solvers) + "".join(
