@@ -35,9 +35,10 @@ def gaps_within(solver, problem, seeds, checkpoints):
     """For each checkpoint (evaluations), the runs' lowest f - f* within it (inf where
     nothing finite was found)."""
     gaps = [[] for _ in checkpoints]
+    f_opt = problem.f_opt
     for seed in range(seeds):
         x0 = unseen.draw_start(problem, np.random.default_rng(seed))
-        counted = unseen.Counted(problem.f, problem.f_opt, problem.target, problem.budget,
+        counted = unseen.Counted(problem.f, f_opt, problem.target, problem.budget,
                                  problem.failures, seed)
         try:
             unseen.SOLVERS[solver](counted, x0, problem, seed)
@@ -45,13 +46,8 @@ def gaps_within(solver, problem, seeds, checkpoints):
             pass
         for row, k in zip(gaps, checkpoints):
             best = counted.best_within(k)
-            row.append(np.inf if best is None else best - problem.f_opt)
+            row.append(np.inf if best is None else best - f_opt)
     return gaps
-
-
-def median(values):
-    """The lower of the two middle values."""
-    return sorted(values)[(len(values) - 1) // 2]
 
 
 def main():
@@ -87,7 +83,7 @@ def main():
         for i, (k, evaluations) in enumerate(zip(per_dim, checkpoints)):
             if evaluations > problem.budget:
                 continue
-            medians = {s: median(gaps[s][i]) for s in solvers}
+            medians = {s: unseen.lower_median(gaps[s][i]) for s in solvers}
             cells = [f"{medians[s]:.3g} ({sum(g <= problem.target for g in gaps[s][i])}"
                      f"/{args.seeds})" for s in solvers]
             print(f"| {name} | {problem.n} | {evaluations} | {problem.target:g} | "

@@ -955,6 +955,11 @@ def seconds(t):
     return f"{t:.2f} s"
 
 
+def lower_median(values):
+    """The median of `values`, the lower of the two middle ones where their count is even."""
+    return sorted(values)[(len(values) - 1) // 2]
+
+
 def chosen(parser, listed, known, kind):
     """The comma-separated names in `listed`, each one of `known`'s keys; a parser error
     names the first that is not."""
@@ -1019,13 +1024,13 @@ def main():
                 gaps.append(np.inf if counted.best is None else counted.best - problem.f_opt)
             solved = sorted(h for h, _ in hits if h is not None)
             times = sorted(t for _, t in hits if t is not None)
-            median = solved[(len(solved) - 1) // 2] if solved else None
-            median_time = times[(len(times) - 1) // 2] if times else None
+            median = lower_median(solved) if solved else None
+            median_time = lower_median(times) if times else None
             if 2 * len(solved) >= args.seeds:
                 medians[solver] = (median, median_time)
             # Where most runs miss the target, how far they got: the median of the runs'
             # lowest f - f* (the lower of the two middle runs).
-            missed = (f" (median f − f* {sorted(gaps)[(args.seeds - 1) // 2]:.2g})"
+            missed = (f" (median f − f* {lower_median(gaps):.2g})"
                       if 2 * len(solved) < args.seeds else "")
             cells.append(f"{len(solved)}/{args.seeds} / {median if median else '—'}"
                          f" / {seconds(median_time)}{missed}")
