@@ -73,8 +73,8 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
     /// Whether the run has stalled on a shape the metric has not learnt: no fit can be
     /// determined (a full model from n = 15), the last n model steps went unconfirmed,
     /// and the model's curvature in whitened coordinates is anisotropic — its largest
-    /// |eigenvalue| at least [`STALLED_ANISOTROPY`] times the median one. O(n³), with
-    /// the trust region's scratch (`a`, `v`, `lambda`).
+    /// |eigenvalue| at least [`STALLED_ANISOTROPY`] times the median one. O(n³) (the
+    /// eigenvalues alone), with the trust region's scratch (`a`, `v`, `lambda`).
     pub(super) fn stalled_on_shape(&mut self) -> bool {
         let n = self.theta.len();
         if self.shape != Shape::Full
@@ -84,7 +84,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             return false;
         }
         self.mem.a[..n * n].copy_from_slice(&self.mem.h[..n * n]);
-        eigen::symmetric(self.mem.a, self.mem.v, n);
+        eigen::eigenvalues(self.mem.a, self.mem.v, n);
         for (m, &e) in self.mem.lambda[..n].iter_mut().zip(self.mem.a[..n].iter()) {
             *m = e.abs();
         }

@@ -14,7 +14,7 @@
 //!    finite estimates reached.
 //!
 //! Cost: about 3n³ multiplications (Jacobi rotations need ~6n³ per sweep, and several
-//! sweeps).
+//! sweeps); [`eigenvalues`] alone, without the eigenvectors, about n³.
 
 use crate::real::Real;
 
@@ -41,11 +41,29 @@ pub(super) fn symmetric<T: Real>(a: &mut [T], v: &mut [T], n: usize) {
     v[..n * n].copy_from_slice(&a[..n * n]);
     let (d, rest) = a.split_at_mut(n);
     let e = &mut rest[..n];
-    tridiagonalise(v, n, d, e);
+    reduce(v, n, d, e);
+    form_q(v, n);
     // QL rotates pairs of Q's columns: they are rows of Qᵀ, contiguous.
     transpose(v, n);
-    ql(v, n, d, e);
+    ql(Some(v), n, d, e);
     transpose(v, n);
+}
+
+/// The eigenvalues of the symmetric row-major n×n `a` (its whole square is read and
+/// overwritten), unordered, in `a[..n]`: [`symmetric`]'s, bit for bit, without the
+/// eigenvectors, whose accumulation is most of its cost: the reduction to tridiagonal
+/// form, about n³ multiplications of its 3n³, and QL iterations of O(n²). `work` holds
+/// at least n² floats. Non-finite entries give non-finite results.
+#[inline(never)]
+pub(super) fn eigenvalues<T: Real>(a: &mut [T], work: &mut [T], n: usize) {
+    if n <= 1 {
+        return;
+    }
+    work[..n * n].copy_from_slice(&a[..n * n]);
+    let (d, rest) = a.split_at_mut(n);
+    let e = &mut rest[..n];
+    reduce(work, n, d, e);
+    ql(None, n, d, e);
 }
 
 /// Transposes the row-major n×n `m` in place.
@@ -57,11 +75,11 @@ fn transpose<T: Real>(m: &mut [T], n: usize) {
     }
 }
 
-/// Reduces the symmetric `q` (n ≥ 2) to tridiagonal form: on return `d` holds T's
-/// diagonal, `e[i]` (i ≥ 1) its entry `T[i][i−1]` (`e[0]` = 0), and `q` the orthogonal Q
-/// with A = Q T Qᵀ.
+/// Reduces the symmetric `q` (n ≥ 2) to tridiagonal form T = Qᵀ A Q: on return `d` holds
+/// T's diagonal, `e[i]` (i ≥ 1) its entry `T[i][i−1]` (`e[0]` = 0), and column k of `q`
+/// below the diagonal the reflector Pₖ's vector uₖ, from which [`form_q`] builds Q.
 #[inline(always)]
-fn tridiagonalise<T: Real>(q: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
+fn reduce<T: Real>(q: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
     // Reflectors: uₖ is stored in column k below the diagonal (rows k + 1 …), unscaled;
     // β is recomputed from it. The work vector p lives in `d` (its entries k + 1 … are
     // not yet final).
@@ -120,6 +138,12 @@ fn tridiagonalise<T: Real>(q: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
     d[n - 1] = q[(n - 1) * n + n - 1];
     e[n - 1] = q[(n - 1) * n + n - 2];
     e[0] = T::ZERO;
+}
+
+/// Overwrites `q`, as [`reduce`] left it (n ≥ 2), with the orthogonal Q = P₀P₁⋯Pₙ₋₃ of
+/// A = Q T Qᵀ.
+#[inline(always)]
+fn form_q<T: Real>(q: &mut [T], n: usize) {
     // Q = P₀(P₁(⋯Pₙ₋₃)), built from the last reflector back: before Pₖ is applied, Q
     // differs from I only in rows and columns ≥ k + 2, and uₖ (column k) is outside that.
     q[(n - 1) * n + n - 1] = T::ONE;
@@ -167,10 +191,11 @@ fn tridiagonalise<T: Real>(q: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
 }
 
 /// Diagonalises the symmetric tridiagonal T (diagonal `d`, sub-diagonal `e[1..]`) by
-/// implicit QL iterations, rotating the rows of `qt` (Qᵀ) along: on return `d` holds the
-/// eigenvalues and the rows of `qt` the eigenvectors of Q T Qᵀ.
+/// implicit QL iterations, rotating the rows of `qt` (Qᵀ), where given, along: on return
+/// `d` holds the eigenvalues and the rows of `qt` the eigenvectors of Q T Qᵀ. The
+/// rotations applied to `d` and `e` do not depend on `qt`.
 #[inline(always)]
-fn ql<T: Real>(qt: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
+fn ql<T: Real>(mut qt: Option<&mut [T]>, n: usize, d: &mut [T], e: &mut [T]) {
     // e[i] = T[i+1][i] from here on.
     for i in 1..n {
         e[i - 1] = e[i];
@@ -212,9 +237,11 @@ fn ql<T: Real>(qt: &mut [T], n: usize, d: &mut [T], e: &mut [T]) {
                 p = s * t;
                 d[i + 1] = h + p;
                 g = c * t - b;
-                let (first, second) = qt[i * n..(i + 2) * n].split_at_mut(n);
-                for (x, y) in first.iter_mut().zip(second.iter_mut()) {
-                    (*x, *y) = (c * *x - s * *y, s * *x + c * *y);
+                if let Some(qt) = qt.as_deref_mut() {
+                    let (first, second) = qt[i * n..(i + 2) * n].split_at_mut(n);
+                    for (x, y) in first.iter_mut().zip(second.iter_mut()) {
+                        (*x, *y) = (c * *x - s * *y, s * *x + c * *y);
+                    }
                 }
             }
             if !deflated {
@@ -340,6 +367,23 @@ mod tests {
         ];
         for a in &cases {
             check(a, n, 1e-12);
+        }
+    }
+
+    /// [`eigenvalues`] gives [`symmetric`]'s eigenvalues bit for bit.
+    #[test]
+    fn eigenvalues_alone_are_the_decompositions() {
+        for n in 1..=N {
+            for (seed, spread) in [(3u64, 0.0), (5, 8.0)] {
+                let a = random_symmetric(n, seed * 613 + n as u64, spread);
+                let (mut full, mut alone) = (a, a);
+                let (mut v, mut work) = ([0.0; N * N], [0.0; N * N]);
+                symmetric(&mut full, &mut v, n);
+                eigenvalues(&mut alone, &mut work, n);
+                for (x, y) in full[..n].iter().zip(&alone[..n]) {
+                    assert_eq!(x.to_bits(), y.to_bits(), "n {n}: {x} against {y}");
+                }
+            }
         }
     }
 
