@@ -53,7 +53,8 @@ pub(super) fn symmetric<T: Real>(a: &mut [T], v: &mut [T], n: usize) {
 /// overwritten), unordered, in `a[..n]`: [`symmetric`]'s, bit for bit, without the
 /// eigenvectors, whose accumulation is most of its cost: the reduction to tridiagonal
 /// form, about n³ multiplications of its 3n³, and QL iterations of O(n²). `work` holds
-/// at least n² floats. Non-finite entries give non-finite results.
+/// at least n² floats. Non-finite entries give non-finite results. Never inlined, for
+/// [`symmetric`]'s reason.
 #[inline(never)]
 pub(super) fn eigenvalues<T: Real>(a: &mut [T], work: &mut [T], n: usize) {
     if n <= 1 {
