@@ -80,9 +80,10 @@
 //!   only differences within a group inform g and H, and values are compared (θ's
 //!   replacement, ties, the values' spread) only within a group.
 //! * **Unseeded noise.** An objective declared deterministic is checked: at the first
-//!   model step after each restart (until noise is found) θ is evaluated once more,
-//!   unremembered. Where the two values differ, the objective draws fresh noise at
-//!   every call — a renderer whose seed is not passed on — and a lucky draw of f(θ)
+//!   model step after each restart (until noise is found), and in the first descent at
+//!   the model step after the first step on a rough fit that falls short, θ is
+//!   evaluated once more, unremembered. Where the two values differ, the objective
+//!   draws fresh noise at every call — a renderer whose seed is not passed on — and a lucky draw of f(θ)
 //!   rejects every later step, which is how such a descent ends; a third draw then
 //!   tells noise that every draw carries (all three differ) from sparse outliers on
 //!   exact values, and only the former's rejections within the noise keep σ (below).
@@ -707,17 +708,17 @@ struct State<T> {
     fail_scale: T,
     /// The least σ at which a model step on a rough fit (η > `ROUGH`) fell short
     /// (ρ̂ < 0.1, no tie) and σ was not widened for it, since f(θ) last fell or the run
-    /// last restarted, on a deterministic objective; zero when none did. The rough rule
-    /// (`Auto::model_step`) widens σ only below it.
+    /// last restarted, on a deterministic objective; zero when none did, or when the
+    /// check that followed found noise. The rough rule (`Auto::model_step`) widens σ
+    /// only below it.
     poor_scale: T,
     /// The objective is noisy ([`Objective::deterministic`] is false): values are
     /// compared, and fitted, only within a noise group — the points evaluated on one
     /// seed.
     noisy: bool,
-    /// θ was evaluated a second time since the run last restarted, to check that an
-    /// objective declared deterministic is (`Auto::check_determinism`); true until the
-    /// first restart.
-    checked: bool,
+    /// Where the check that an objective declared deterministic is
+    /// (`Auto::check_determinism`) stands in this descent.
+    check: Check,
     /// The check found otherwise: the objective draws fresh noise at every evaluation
     /// though it claims to be deterministic (a renderer whose seed the caller does not
     /// pass on). The fit then down-weighs the points it cannot explain, and θ is drawn
@@ -870,6 +871,29 @@ struct State<T> {
     creep: Creep<T>,
 }
 
+/// Where the check that an objective declared deterministic is, evaluating θ a second
+/// time (`Auto::check_determinism`), stands in a descent.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Check {
+    /// The run's first descent waits for a step on a rough fit that falls short, where
+    /// the run would record a poor scale (`State::poor_scale`), a rule for exact values
+    /// that noise undoes: the check is due then. A descent that never meets one pays
+    /// nothing for the check until it restarts.
+    Deferred,
+    /// The next model step evaluates θ again.
+    Due,
+    /// θ was evaluated again since the run last restarted, or noise was found.
+    Done,
+}
+
+impl Check {
+    /// The check at a restart or a new descent: due, unless noise was found already — a
+    /// descent may end held by a lucky draw of f(θ) that no later step can beat.
+    fn after_restart(unseeded: bool) -> Check {
+        if unseeded { Check::Done } else { Check::Due }
+    }
+}
+
 /// How a run goes on after a descent that ended on a flat piece of f is centred.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum AfterCentre {
@@ -923,7 +947,7 @@ impl<T: Real> State<T> {
             theta_spreads: [(T::ZERO, T::ZERO); noise::THETA_SPREADS],
             theta_spreads_taken: 0,
             noisy: false,
-            checked: true,
+            check: Check::Deferred,
             unseeded: false,
             dense: false,
             doubted: false,

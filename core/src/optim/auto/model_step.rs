@@ -10,9 +10,9 @@ use super::model::Shape;
 use super::noise::NOISE_RADIUS;
 use super::options::AutoStep;
 use super::{
-    Auto, CONTINUATION_SCALE, DETERMINED_METRIC_WEIGHT, GROWTH_WIDTH, NOISE_MARGIN, PAIRS_PAY,
-    PAIRS_SKIPPED, PLATEAU_WIDTH, REACH, ROUGH, SETTLED_FIT, SETTLED_HALVINGS, SHRINK, SMOOTH,
-    STRIDE, THETA_DRAWS, lower_median, metric, resolution, tie_width,
+    Auto, CONTINUATION_SCALE, Check, DETERMINED_METRIC_WEIGHT, GROWTH_WIDTH, NOISE_MARGIN,
+    PAIRS_PAY, PAIRS_SKIPPED, PLATEAU_WIDTH, REACH, ROUGH, SETTLED_FIT, SETTLED_HALVINGS, SHRINK,
+    SMOOTH, STRIDE, THETA_DRAWS, lower_median, metric, resolution, tie_width,
 };
 use crate::error::Error;
 use crate::objective::Objective;
@@ -33,7 +33,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let Some(value) = self.st.value else {
             return Ok((AutoStep::Plateau, None));
         };
-        if !self.st.noisy && !self.st.checked {
+        if !self.st.noisy && self.st.check == Check::Due {
             self.check_determinism(objective, value, spent)?;
         }
         if self.st.unseeded && !self.st.voting {
@@ -279,6 +279,12 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         let least_poor = self.st.poor_scale <= T::ZERO || sigma < self.st.poor_scale;
         if poor && least_poor && noise > T::from_f64(ROUGH) && !self.st.noisy && !self.st.unseeded {
             self.st.poor_scale = sigma;
+            // Noise, undeclared, makes fits rough and their steps fall short just so,
+            // and a poor scale would stop σ from widening out of it: the next model
+            // step checks, and forgets the poor scale where it finds noise.
+            if self.st.check == Check::Deferred {
+                self.st.check = Check::Due;
+            }
         }
         // Whether a shortfall may be blamed on σ: the points near θ determine the model
         // at this scale. Points farther out (z ≤ 2ρ fits them) do not count: they saw f

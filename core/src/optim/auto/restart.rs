@@ -7,8 +7,8 @@ use rand_core::Rng;
 
 use super::options::AutoStep;
 use super::{
-    Auto, PLATEAU_WIDTH, RESTART_SCALES, RESTARTS, RESTARTS_BEFORE_FRESH, State, UNVARIED_WIDTH,
-    reflect,
+    Auto, Check, PLATEAU_WIDTH, RESTART_SCALES, RESTARTS, RESTARTS_BEFORE_FRESH, State,
+    UNVARIED_WIDTH, reflect,
 };
 use crate::real::Real;
 use crate::sample::normal;
@@ -268,8 +268,7 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
             evaluations: run.evaluations,
             bounded: run.bounded,
             noisy: run.noisy,
-            // A descent may end held by noise: check again, as a restart does.
-            checked: run.unseeded,
+            check: Check::after_restart(run.unseeded),
             unseeded: run.unseeded,
             dense: run.dense,
             voting: run.voting,
@@ -319,8 +318,6 @@ impl<'b, T: Real, R: Rng> Auto<'b, T, R> {
         self.st.creep.restart();
         self.st.survey = true;
         self.st.has_prior &= smooth;
-        // A run that ends its descent may have been held by noise: a lucky draw of
-        // f(θ) that no later step can beat. Check, until noise is found.
-        self.st.checked = self.st.unseeded;
+        self.st.check = Check::after_restart(self.st.unseeded);
     }
 }
